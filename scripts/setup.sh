@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages quadcover needs (only those missing) and builds it in build/ (Release).
+# Usage: bash scripts/setup.sh            (idempotent; safe to run again)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libsuitesparse-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
+  libpng-dev libstb-dev libgtest-dev libbenchmark-dev libfplll-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
+  clang libclang-rt-14-dev
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+JOBS=${JOBS:-$(nproc)}
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${QUADCOVER_CMAKE_ARGS:-} >/dev/null
+cmake --build build -j"$JOBS"

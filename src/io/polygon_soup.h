@@ -1,0 +1,53 @@
+#pragma once
+// What a reader returns: positions and polygon faces exactly as the file states them, with the source
+// location of every element so that validation can name the file and line of each problem.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace quadcover {
+
+struct PolygonSoup {
+  std::string file;  ///< source path (for messages); empty for in-memory data
+
+  /// #V by 3 vertex positions, as read (may contain NaN/inf: validation reports them).
+  Eigen::MatrixX3d positions;
+  /// Faces in compressed form: face f has corners face_vertices[face_offsets[f] .. face_offsets[f+1]),
+  /// 0-based vertex indices as read (may be out of range: validation reports them).
+  std::vector<std::int64_t> face_offsets{0};
+  std::vector<std::int64_t> face_vertices;
+
+  /// 1-based source line (OBJ/OFF/PLY ASCII/STL ASCII) or element number (binary formats) of each vertex and face;
+  /// empty when the soup was built in memory.
+  std::vector<long> vertex_lines;
+  std::vector<long> face_lines;
+  /// "line" for text formats, "element" for binary ones: how to read vertex_lines/face_lines.
+  std::string location_unit = "line";
+
+  std::size_t num_vertices() const { return static_cast<std::size_t>(positions.rows()); }
+  std::size_t num_faces() const { return face_offsets.size() - 1; }
+  std::size_t face_size(std::size_t f) const {
+    return static_cast<std::size_t>(face_offsets[f + 1] - face_offsets[f]);
+  }
+  const std::int64_t* face_begin(std::size_t f) const { return face_vertices.data() + face_offsets[f]; }
+
+  void add_face(const std::int64_t* begin, std::size_t n, long line) {
+    face_vertices.insert(face_vertices.end(), begin, begin + n);
+    face_offsets.push_back(static_cast<std::int64_t>(face_vertices.size()));
+    face_lines.push_back(line);
+  }
+
+  /// "file:line" (or "file, element N") of face f / vertex v, for messages.
+  std::string face_location(std::size_t f) const;
+  std::string vertex_location(std::size_t v) const;
+
+  /// A soup from plain triangle arrays (V #V by 3, F #F by 3, 0-based), e.g. from the Python module.
+  static PolygonSoup from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+};
+
+/// Fans every polygon with more than three corners into triangles (corner 0 to each consecutive pair).
+/// Used only when the user asks for it (`--triangulate`); face_lines are kept for every piece.
+PolygonSoup triangulate_polygons(const PolygonSoup& soup);
+
+}  // namespace quadcover

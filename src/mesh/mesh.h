@@ -1,0 +1,162 @@
+#pragma once
+// The triangle mesh every stage reads (thesis 1.1): positions, faces, connectivity and cached intrinsic geometry.
+// Immutable after construction; build it with build_mesh() (validates) or Mesh::from_triangles().
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <complex>
+#include <span>
+#include <vector>
+
+#include "io/polygon_soup.h"
+#include "mesh/validate.h"
+
+namespace quadcover {
+
+using Complex = std::complex<double>;
+
+/// Per connected component (faces connected through edges): counts and topology, χ = v - e + f (1.1),
+/// genus from χ = 2 - 2g - b (1.2 extended to boundaries).
+struct ComponentInfo {
+  int vertices = 0, edges = 0, faces = 0, boundary_loops = 0;
+  int euler_characteristic = 0;
+  int genus = 0;
+};
+
+/// Conventions (used everywhere in quadcover):
+///  - Face f has corners F(f,0), F(f,1), F(f,2), counter-clockwise around the outward normal.
+///  - Face edge k of f is the edge *opposite* corner k, running from corner k+1 to corner k+2 (mod 3).
+///  - Edge e runs from E(e,0) to E(e,1) with E(e,0) < E(e,1). FE_sign(f,k) = +1 if face f traverses its edge k
+///    in that direction, -1 otherwise.
+///  - EF(e,0) is the face traversing e positively (e is positively oriented in it: it lies to the left of e),
+///    EF(e,1) the face traversing it negatively; -1 where there is none (boundary).
+///    For an interior edge, s = EF(e,0) and t = EF(e,1) are the "s" and "t" of thesis (1.6).
+///  - Each face has a tangent basis (b1, b2): b1 = unit(p1 - p0), b2 = n × b1. Tangent vectors in a face are
+///    complex numbers in that basis (Z_t = X_t + iY_t, thesis 3.1); J (90° rotation) is multiplication by i.
+class Mesh {
+ public:
+  Mesh() = default;
+
+  /// Builds a mesh from triangle arrays. \throw TopologyError listing every problem if invalid.
+  /// V  #V by 3 positions; F  #F by 3 0-based vertex indices.
+  static Mesh from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+  // ---- sizes
+  int num_vertices() const { return static_cast<int>(V_.rows()); }
+  int num_edges() const { return static_cast<int>(E_.rows()); }
+  int num_faces() const { return static_cast<int>(F_.rows()); }
+
+  // ---- combinatorics
+  const Eigen::MatrixX3d& V() const { return V_; }    ///< #V by 3
+  const Eigen::MatrixX3i& F() const { return F_; }    ///< #F by 3
+  const Eigen::MatrixX2i& E() const { return E_; }    ///< #E by 2, E(e,0) < E(e,1)
+  const Eigen::MatrixX3i& FE() const { return FE_; }  ///< #F by 3, edge opposite corner k
+  const Eigen::MatrixX3i& FE_sign() const { return FE_sign_; }  ///< #F by 3, ±1
+  const Eigen::MatrixX2i& EF() const { return EF_; }  ///< #E by 2, positive / negative face or -1
+  /// #E by 2: the corner index (0..2) of edge e opposite to it in EF(e,0) / EF(e,1), or -1.
+  const Eigen::MatrixX2i& EF_corner() const { return EF_corner_; }
+
+  bool is_boundary_edge(int e) const { return EF_(e, 0) < 0 || EF_(e, 1) < 0; }
+  bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }
+  /// The face across face edge k of f, or -1 on the boundary.
+  int neighbor(int f, int k) const {
+    const int e = FE_(f, k);
+    return EF_(e, 0) == f ? EF_(e, 1) : EF_(e, 0);
+  }
+
+  /// Ordered fan of vertex v: (face, corner) pairs counter-clockwise around the normal; for a boundary vertex the
+  /// fan starts at the face whose clockwise side is the boundary.
+  struct FanCorner {
+    int face, corner;
+  };
+  std::span<const FanCorner> fan(int v) const {
+    return {fan_.data() + fan_offsets_[v], fan_.data() + fan_offsets_[v + 1]};
+  }
+  int valence(int v) const;  ///< number of incident edges
+
+  /// Boundary loops as vertex sequences, each oriented with the surface to its left.
+  const std::vector<std::vector<int>>& boundary_loops() const { return boundary_loops_; }
+  /// Per loop, the boundary edges in loop order (edge i joins vertex i and i+1 of the loop).
+  const std::vector<std::vector<int>>& boundary_loop_edges() const { return boundary_loop_edges_; }
+
+  // ---- components and topology
+  int num_components() const { return static_cast<int>(components_.size()); }
+  const std::vector<ComponentInfo>& components() const { return components_; }
+  const Eigen::VectorXi& face_component() const { return face_component_; }
+  const Eigen::VectorXi& vertex_component() const { return vertex_component_; }
+  int euler_characteristic() const { return num_vertices() - num_edges() + num_faces(); }
+  int num_boundary_loops() const { return static_cast<int>(boundary_loops_.size()); }
+  /// Sum of the component genera.
+  int genus() const;
+
+  // ---- geometry (cached)
+  const Eigen::VectorXd& face_areas() const { return face_area_; }       ///< #F
+  const Eigen::MatrixX3d& face_normals() const { return face_normal_; }  ///< #F by 3, unit
+  const Eigen::MatrixX3d& corner_angles() const { return corner_angle_; }  ///< #F by 3, radians
+  const Eigen::MatrixX3d& corner_cotangents() const { return corner_cot_; }  ///< #F by 3, cot of corner angles
+  const Eigen::VectorXd& edge_lengths() const { return edge_length_; }  ///< #E
+  /// Angle defect (Def. 1.8): 2π - Σα at interior vertices, π - Σα (geodesic curvature) at boundary vertices,
+  /// so that Σ_v angle_defect = 2πχ (discrete Gauss-Bonnet) holds for every mesh.
+  const Eigen::VectorXd& angle_defect() const { return angle_defect_; }
+  /// Face tangent basis: #F by 3 each; b1 = unit(p1 - p0), b2 = n × b1.
+  const Eigen::MatrixX3d& face_basis1() const { return face_b1_; }
+  const Eigen::MatrixX3d& face_basis2() const { return face_b2_; }
+  /// Corner positions in the face basis: #F by 3 complex, corner 0 at the origin, corner 1 on the positive real axis.
+  const Eigen::MatrixX3cd& corner_local() const { return corner_local_; }
+  /// Face edge k (from corner k+1 to corner k+2) as a complex vector in the face basis.
+  Complex edge_vector_local(int f, int k) const {
+    return corner_local_(f, (k + 2) % 3) - corner_local_(f, (k + 1) % 3);
+  }
+  /// Levi-Civita transport across interior edge e: a tangent vector w in the basis of s = EF(e,0) is ρ_e·w in the
+  /// basis of t = EF(e,1) after unfolding the two triangles into a plane. |ρ_e| = 1; 1 on boundary edges.
+  const Eigen::VectorXcd& edge_transport() const { return edge_transport_; }
+  double mean_edge_length() const { return mean_edge_length_; }
+  double bounding_box_diagonal() const;
+  double total_area() const { return face_area_.sum(); }
+
+  /// Converts a 3D vector (projected to the tangent plane) into face f's complex coordinates and back.
+  Complex to_local(int f, const Eigen::Vector3d& w) const {
+    return {w.dot(face_b1_.row(f)), w.dot(face_b2_.row(f))};
+  }
+  Eigen::Vector3d to_world(int f, Complex z) const {
+    return z.real() * face_b1_.row(f).transpose() + z.imag() * face_b2_.row(f).transpose();
+  }
+
+ private:
+  friend struct MeshBuilder;
+  void build_connectivity();
+  void build_geometry();
+
+  Eigen::MatrixX3d V_;
+  Eigen::MatrixX3i F_;
+  Eigen::MatrixX2i E_;
+  Eigen::MatrixX3i FE_, FE_sign_;
+  Eigen::MatrixX2i EF_, EF_corner_;
+  std::vector<char> boundary_vertex_;
+  std::vector<int> fan_offsets_;
+  std::vector<FanCorner> fan_;
+  std::vector<std::vector<int>> boundary_loops_, boundary_loop_edges_;
+  std::vector<ComponentInfo> components_;
+  Eigen::VectorXi face_component_, vertex_component_;
+
+  Eigen::VectorXd face_area_, edge_length_, angle_defect_;
+  Eigen::MatrixX3d face_normal_, corner_angle_, corner_cot_, face_b1_, face_b2_;
+  Eigen::MatrixX3cd corner_local_;
+  Eigen::VectorXcd edge_transport_;
+  double mean_edge_length_ = 0;
+};
+
+/// The result of building a mesh from a file's soup.
+struct MeshBuildResult {
+  Mesh mesh;
+  ValidationReport report;       ///< warnings (unreferenced vertices, flipped faces); fatal problems throw instead
+  std::vector<int> vertex_map;   ///< soup vertex -> mesh vertex, -1 for dropped unreferenced vertices
+  std::vector<int> face_source;  ///< mesh face -> soup face (several when polygons were triangulated)
+};
+
+/// Checks the soup against Def. 1.2 and everything else listed in ProblemKind; does not throw.
+ValidationReport validate(const PolygonSoup& soup, const ValidationOptions& options = {});
+
+/// Validates and builds. \throw TopologyError whose problems() lists every fatal problem with its location.
+MeshBuildResult build_mesh(const PolygonSoup& soup, const ValidationOptions& options = {});
+
+}  // namespace quadcover

@@ -1,0 +1,96 @@
+#include "support/test_meshes.h"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "io/read_mesh.h"
+
+namespace quadcover::testing {
+
+std::string data_path(const std::string& name) {
+  std::string p = std::string(QUADCOVER_TEST_DATA_DIR) + "/" + name;
+  if (name.find('.') == std::string::npos) p += ".obj";
+  return p;
+}
+
+Mesh load_test_mesh(const std::string& name) { return build_mesh(read_mesh(data_path(name))).mesh; }
+
+Mesh make_torus(int n_major, int n_minor, double R, double r) {
+  Eigen::MatrixX3d V(n_major * n_minor, 3);
+  Eigen::MatrixX3i F(2 * n_major * n_minor, 3);
+  auto id = [&](int i, int j) { return ((i + n_major) % n_major) * n_minor + (j + n_minor) % n_minor; };
+  for (int i = 0; i < n_major; ++i)
+    for (int j = 0; j < n_minor; ++j) {
+      const double u = 2 * std::numbers::pi * i / n_major, v = 2 * std::numbers::pi * j / n_minor;
+      V.row(id(i, j)) << (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v);
+      const int q = 2 * (i * n_minor + j);
+      F.row(q) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
+      F.row(q + 1) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
+    }
+  return Mesh::from_triangles(V, F);
+}
+
+Mesh make_grid(int n) {
+  Eigen::MatrixX3d V((n + 1) * (n + 1), 3);
+  Eigen::MatrixX3i F(2 * n * n, 3);
+  auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) V.row(id(i, j)) << double(i) / n, double(j) / n, 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int q = 2 * (j * n + i);
+      F.row(q) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
+      F.row(q + 1) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
+    }
+  return Mesh::from_triangles(V, F);
+}
+
+Mesh make_cylinder(int n_around, int n_up, double r, double h) {
+  Eigen::MatrixX3d V(n_around * (n_up + 1), 3);
+  Eigen::MatrixX3i F(2 * n_around * n_up, 3);
+  auto id = [&](int i, int j) { return j * n_around + (i + n_around) % n_around; };
+  for (int j = 0; j <= n_up; ++j)
+    for (int i = 0; i < n_around; ++i) {
+      const double a = 2 * std::numbers::pi * i / n_around;
+      V.row(id(i, j)) << r * std::cos(a), r * std::sin(a), h * j / n_up;
+    }
+  for (int j = 0; j < n_up; ++j)
+    for (int i = 0; i < n_around; ++i) {
+      const int q = 2 * (j * n_around + i);
+      F.row(q) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
+      F.row(q + 1) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
+    }
+  return Mesh::from_triangles(V, F);
+}
+
+Mesh make_ellipsoid(int level, double a, double b, double c) {
+  std::vector<Eigen::Vector3d> P = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<Eigen::Vector3i> T = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int i, int j) {
+      const auto key = std::minmax(i, j);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      P.push_back((P[i] + P[j]).normalized());
+      return mid[key] = static_cast<int>(P.size()) - 1;
+    };
+    std::vector<Eigen::Vector3i> next;
+    for (const auto& t : T) {
+      const int m01 = midpoint(t[0], t[1]), m12 = midpoint(t[1], t[2]), m20 = midpoint(t[2], t[0]);
+      next.push_back({t[0], m01, m20});
+      next.push_back({m01, t[1], m12});
+      next.push_back({m20, m12, t[2]});
+      next.push_back({m01, m12, m20});
+    }
+    T = std::move(next);
+  }
+  Eigen::MatrixX3d V(P.size(), 3);
+  for (std::size_t i = 0; i < P.size(); ++i) V.row(static_cast<Eigen::Index>(i)) << a * P[i].x(), b * P[i].y(), c * P[i].z();
+  Eigen::MatrixX3i F(T.size(), 3);
+  for (std::size_t i = 0; i < T.size(); ++i) F.row(static_cast<Eigen::Index>(i)) = T[i].transpose();
+  return Mesh::from_triangles(V, F);
+}
+
+}  // namespace quadcover::testing

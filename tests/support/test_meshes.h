@@ -1,0 +1,23 @@
+#pragma once
+// Test helpers: meshes shipped in tests/data and meshes generated in the test.
+#include <string>
+
+#include "mesh/mesh.h"
+
+namespace quadcover::testing {
+
+/// Path of tests/data/NAME (NAME without extension gets ".obj").
+std::string data_path(const std::string& name);
+/// Loads and builds tests/data/NAME.obj.
+Mesh load_test_mesh(const std::string& name);
+
+/// A closed torus with radii R > r, n_major × n_minor quads split into triangles.
+Mesh make_torus(int n_major, int n_minor, double R = 2.0, double r = 0.7);
+/// A regular triangulated grid of the unit square [0,1]² (z = 0), n × n quads.
+Mesh make_grid(int n);
+/// An open cylinder of radius r and height h around the z axis, n_around × n_up quads.
+Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
+/// A UV sphere-like closed surface (octahedron subdivided `level` times and projected), scaled by (a, b, c).
+Mesh make_ellipsoid(int level, double a = 1.0, double b = 1.0, double c = 1.0);
+
+}  // namespace quadcover::testing
