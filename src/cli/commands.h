@@ -14,6 +14,4 @@ struct GlobalOptions {
 /// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage.
 enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2 };
 
-void register_info(CLI::App& app, GlobalOptions& global, int& exit_code);
-
 }  // namespace quadcover::cli

@@ -2,7 +2,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "cli/commands.h"
+#include "cli/registry.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 
@@ -68,6 +68,7 @@ int run_info(const InfoOptions& opt, const GlobalOptions& global) {
 
 }  // namespace
 
+namespace {
 void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info", "Print counts, topology (genus, boundaries, components) and every validation problem of a mesh");
@@ -78,5 +79,8 @@ void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   cmd->add_flag("-q,--quiet", global.quiet, "Print nothing but errors");
   cmd->callback([opt, &global, &exit_code] { exit_code = run_info(*opt, global); });
 }
+
+const CommandRegistrar registrar{10, "info", register_info};
+}  // namespace
 
 }  // namespace quadcover::cli

@@ -1,7 +1,9 @@
 // quadcover command-line tool: dispatches to the subcommands and maps errors to exit codes.
 #include <iostream>
 
-#include "cli/commands.h"
+#include <algorithm>
+
+#include "cli/registry.h"
 #include "common/errors.h"
 
 int main(int argc, char** argv) {
@@ -11,7 +13,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   cli::GlobalOptions global;
   int exit_code = cli::kOk;
-  cli::register_info(app, global, exit_code);
+  auto& commands = cli::command_registry();
+  std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+  for (const auto& c : commands) c.fn(app, global, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

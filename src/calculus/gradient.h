@@ -1,0 +1,18 @@
+#pragma once
+// Gradients of Lagrange (conforming) and Crouzeix–Raviart (nonconforming) functions (thesis 1.2):
+// ∇φ_p|t = (1/2A_t) J e and ∇ψ_e|t = -(1/A_t) J e, as complex per-face vectors (see vector_field.h).
+#include <Eigen/SparseCore>
+
+#include "calculus/vector_field.h"
+
+namespace quadcover {
+
+/// #F by #V complex: (G u)_t = ∇u|_t for u ∈ S_h given at the vertices.
+Eigen::SparseMatrix<Complex> conforming_gradient(const Mesh& mesh);
+/// #F by #E complex: (G* v)_t = ∇v|_t for v ∈ S_h* given at the edge midpoints.
+Eigen::SparseMatrix<Complex> nonconforming_gradient(const Mesh& mesh);
+
+VectorField gradient(const Mesh& mesh, const Eigen::VectorXd& u);               ///< u: #V
+VectorField nonconforming_gradient(const Mesh& mesh, const Eigen::VectorXd& v);  ///< v: #E
+
+}  // namespace quadcover

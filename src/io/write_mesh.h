@@ -1,0 +1,20 @@
+#pragma once
+// Mesh writers. Every writer is atomic (temporary file + rename, see atomic_file.h): on failure no partial file
+// is left. \throw InputError naming the path if the file cannot be written.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace quadcover {
+
+/// OBJ with `v` and `f` lines. V #V by 3, F #F by 3 (0-based).
+void write_obj(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+/// OBJ with per-corner texture coordinates: `v`, `vt`, `f v/vt`. UV #UV by 2; FUV #F by 3 indices into UV.
+void write_obj_with_uv(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
+                       const Eigen::MatrixX2d& UV, const Eigen::MatrixX3i& FUV);
+
+/// OBJ with polygon faces of any size (quad meshes). faces: 0-based vertex indices per face.
+void write_polygon_obj(const std::string& path, const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
+
+}  // namespace quadcover
