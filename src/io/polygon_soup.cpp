@@ -4,13 +4,14 @@ namespace quadcover {
 
 namespace {
 std::string location(const std::string& file, const std::vector<long>& lines, const std::string& unit,
-                     std::size_t i, const char* what) {
+                     std::size_t i, const std::string& element) {
   std::string s = file.empty() ? std::string("<input>") : file;
   if (i < lines.size()) {
     if (unit == "line") return s + ":" + std::to_string(lines[i]);
-    return s + ", " + what + " " + std::to_string(lines[i]);
+    return s + ", " + element + " element " + std::to_string(lines[i]);
   }
-  return s + ", " + what + " " + std::to_string(i);
+  // In-memory soups have no source locations: name the 0-based index.
+  return s + ", " + element + " " + std::to_string(i);
 }
 }  // namespace
 
@@ -19,7 +20,7 @@ std::string PolygonSoup::face_location(std::size_t f) const {
 }
 
 std::string PolygonSoup::vertex_location(std::size_t v) const {
-  return location(file, vertex_lines, location_unit, v, "vertex");
+  return location(file, vertex_lines, location_unit, v, vertex_element);
 }
 
 PolygonSoup PolygonSoup::from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
@@ -40,17 +41,23 @@ PolygonSoup triangulate_polygons(const PolygonSoup& soup) {
   out.positions = soup.positions;
   out.vertex_lines = soup.vertex_lines;
   out.location_unit = soup.location_unit;
+  out.vertex_element = soup.vertex_element;
+  out.uv = soup.uv;
+  const bool uv = soup.has_uv();
   for (std::size_t f = 0; f < soup.num_faces(); ++f) {
     const std::int64_t* c = soup.face_begin(f);
+    const std::int64_t* t = uv ? soup.face_uv.data() + soup.face_offsets[f] : nullptr;
     const std::size_t n = soup.face_size(f);
     const long line = f < soup.face_lines.size() ? soup.face_lines[f] : static_cast<long>(f);
     if (n <= 3) {
       out.add_face(c, n, line);
+      if (uv) out.face_uv.insert(out.face_uv.end(), t, t + n);
       continue;
     }
     for (std::size_t k = 1; k + 1 < n; ++k) {
       const std::int64_t tri[3] = {c[0], c[k], c[k + 1]};
       out.add_face(tri, 3, line);
+      if (uv) out.face_uv.insert(out.face_uv.end(), {t[0], t[k], t[k + 1]});
     }
   }
   if (soup.face_lines.empty()) out.face_lines.clear();

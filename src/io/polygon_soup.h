@@ -18,12 +18,21 @@ struct PolygonSoup {
   std::vector<std::int64_t> face_offsets{0};
   std::vector<std::int64_t> face_vertices;
 
+  /// Optional texture coordinates (OBJ `vt` lines): #UV by 2 (u, v; a third `w` is ignored); empty if none.
+  Eigen::MatrixX2d uv;
+  /// Per-corner index into `uv`, same layout as face_vertices (0-based; -1 where a corner has no `vt`).
+  /// Empty when the file has no `vt` references at all; otherwise face_uv.size() == face_vertices.size().
+  std::vector<std::int64_t> face_uv;
+
   /// 1-based source line (OBJ/OFF/PLY ASCII/STL ASCII) or element number (binary formats) of each vertex and face;
   /// empty when the soup was built in memory.
   std::vector<long> vertex_lines;
   std::vector<long> face_lines;
   /// "line" for text formats, "element" for binary ones: how to read vertex_lines/face_lines.
   std::string location_unit = "line";
+  /// For "element" locations: the file's element that locates a vertex ("vertex"; "facet" for STL, whose welded
+  /// vertices are located by the first facet using them).
+  std::string vertex_element = "vertex";
 
   std::size_t num_vertices() const { return static_cast<std::size_t>(positions.rows()); }
   std::size_t num_faces() const { return face_offsets.size() - 1; }
@@ -38,7 +47,9 @@ struct PolygonSoup {
     face_lines.push_back(line);
   }
 
-  /// "file:line" (or "file, element N") of face f / vertex v, for messages.
+  bool has_uv() const { return !face_uv.empty(); }
+
+  /// "file:line" (or "file, face element N" for binary formats) of face f / vertex v, for messages.
   std::string face_location(std::size_t f) const;
   std::string vertex_location(std::size_t v) const;
 
@@ -47,7 +58,7 @@ struct PolygonSoup {
 };
 
 /// Fans every polygon with more than three corners into triangles (corner 0 to each consecutive pair).
-/// Used only when the user asks for it (`--triangulate`); face_lines are kept for every piece.
+/// Used only when the user asks for it (`--triangulate`); face_lines and face_uv are kept for every piece.
 PolygonSoup triangulate_polygons(const PolygonSoup& soup);
 
 }  // namespace quadcover

@@ -28,10 +28,23 @@ std::string file_extension(const std::string& path) {
   return ext;
 }
 
+PolygonSoup read_mesh_from_memory(std::string_view bytes, const std::string& name, const std::string& extension) {
+  if (extension == "obj") return read_obj_from_memory(bytes, name);
+  if (extension == "off") return read_off_from_memory(bytes, name);
+  if (extension == "ply") return read_ply_from_memory(bytes, name);
+  if (extension == "stl") return read_stl_from_memory(bytes, name);
+  throw InputError(name, 0, "unsupported mesh format '." + extension + "' (supported: .obj, .off, .ply, .stl)");
+}
+
 PolygonSoup read_mesh(const std::string& path) {
   const std::string ext = file_extension(path);
-  if (ext == "obj") return read_obj(path);
-  throw InputError(path, 0, "unsupported mesh format '." + ext + "' (supported: .obj)");
+  if (ext != "obj" && ext != "off" && ext != "ply" && ext != "stl")
+    throw InputError(path, 0, "unsupported mesh format '." + ext + "' (supported: .obj, .off, .ply, .stl)");
+  return read_mesh_from_memory(read_file_bytes(path), path, ext);
 }
+
+PolygonSoup read_off(const std::string& path) { return read_off_from_memory(read_file_bytes(path), path); }
+PolygonSoup read_ply(const std::string& path) { return read_ply_from_memory(read_file_bytes(path), path); }
+PolygonSoup read_stl(const std::string& path) { return read_stl_from_memory(read_file_bytes(path), path); }
 
 }  // namespace quadcover

@@ -1,17 +1,40 @@
 #pragma once
 // Mesh readers. Each returns the file's contents as a PolygonSoup with source locations and throws
-// InputError (file and line) on anything it cannot parse. Validation happens later, in mesh/.
+// InputError (file and line, or element number for binary data) on anything it cannot parse. Validation happens
+// later, in mesh/. Every reader has an in-memory entry point (`*_from_memory`, used by the fuzzers and tests);
+// `name` is only used in messages. No reader trusts a count in a header: sizes are checked against the data.
 #include <string>
+#include <string_view>
 
 #include "io/polygon_soup.h"
 
 namespace quadcover {
 
-/// Wavefront OBJ: `v` and `f` lines (with `v/vt/vn` corners and negative relative indices); other lines ignored.
+/// Wavefront OBJ: `v`, `vt` and `f` lines (with `v/vt/vn` corners and negative relative indices); other lines
+/// ignored. Texture coordinates referenced by faces fill soup.uv / soup.face_uv.
 PolygonSoup read_obj(const std::string& path);
+PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name);
+
+/// OFF (also COFF/NOFF/STOFF/4OFF-less variants with per-vertex extras): header, counts, vertices, faces
+/// `n i0 .. in-1` (a face colour after the indices is ignored); `#` comments anywhere.
+PolygonSoup read_off(const std::string& path);
+PolygonSoup read_off_from_memory(std::string_view bytes, const std::string& name);
+
+/// PLY, ASCII or binary little/big endian: element `vertex` (x, y, z of any numeric type; other properties
+/// skipped), element `face` (list property `vertex_indices` or `vertex_index`, any count and index type); other
+/// elements skipped. Locations are lines (ASCII) or element numbers (binary, 1-based within the element).
+PolygonSoup read_ply(const std::string& path);
+PolygonSoup read_ply_from_memory(std::string_view bytes, const std::string& name);
+
+/// STL, ASCII or binary (detected from the content). STL stores each triangle with its own corner positions:
+/// identical positions are welded into one vertex, numbered in order of first appearance (deterministic).
+PolygonSoup read_stl(const std::string& path);
+PolygonSoup read_stl_from_memory(std::string_view bytes, const std::string& name);
 
 /// Reads by extension (.obj, .off, .ply, .stl; case-insensitive). \throw InputError for unknown extensions.
 PolygonSoup read_mesh(const std::string& path);
+/// The same on bytes already in memory; `extension` as returned by file_extension().
+PolygonSoup read_mesh_from_memory(std::string_view bytes, const std::string& name, const std::string& extension);
 
 /// Reads the whole file into memory. \throw InputError if it cannot be opened or read.
 std::string read_file_bytes(const std::string& path);

@@ -8,46 +8,95 @@
 
 namespace quadcover {
 
-PolygonSoup read_obj(const std::string& path) {
-  const std::string bytes = read_file_bytes(path);
+namespace {
+
+// Parses one OBJ index (1-based, or negative = relative to the `count` elements read so far) into a 0-based index.
+bool parse_obj_index(std::string_view tok, std::int64_t count, std::int64_t& out) {
+  std::int64_t idx = 0;
+  const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), idx);
+  if (ec != std::errc() || ptr != tok.data() + tok.size() || idx == 0) return false;
+  out = idx > 0 ? idx - 1 : count + idx;
+  return true;
+}
+
+}  // namespace
+
+PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name) {
   PolygonSoup soup;
-  soup.file = path;
+  soup.file = name;
   std::vector<double> xyz;
-  xyz.reserve(bytes.size() / 12);
-  std::vector<std::int64_t> corners;
+  xyz.reserve(bytes.size() / 16);
+  std::vector<double> uvs;
+  std::vector<std::int64_t> corner_uv;  // one entry per corner; dropped at the end if no corner has a `vt`
+  bool any_uv = false;
+  std::vector<std::int64_t> corners, uv_corners;
   TextScanner scan(bytes);
   while (scan.next_line()) {
-    std::string_view key = scan.token();
+    const std::string_view key = scan.token();
     if (key == "v") {
       double p[3];
-      for (double& c : p) {
-        if (!scan.number(c)) throw InputError(path, scan.line(), "vertex line needs three numeric coordinates");
-      }
+      for (double& c : p)
+        if (!scan.number(c)) throw InputError(name, scan.line(), "vertex line needs three numeric coordinates");
+      // Anything after x y z (a weight w or vertex colours) carries nothing we need.
       xyz.insert(xyz.end(), p, p + 3);
       soup.vertex_lines.push_back(scan.line());
+    } else if (key == "vt") {
+      double t[2] = {0, 0};
+      if (!scan.number(t[0])) throw InputError(name, scan.line(), "texture coordinate line needs a numeric u");
+      // v is optional in the OBJ specification (default 0); w is ignored.
+      if (!scan.at_line_end() && !scan.number(t[1]))
+        throw InputError(name, scan.line(), "texture coordinate v is not a number");
+      uvs.insert(uvs.end(), t, t + 2);
     } else if (key == "f") {
       corners.clear();
+      uv_corners.clear();
       const auto num_read = static_cast<std::int64_t>(xyz.size() / 3);
+      const auto num_uv = static_cast<std::int64_t>(uvs.size() / 2);
       std::string_view tok;
       while (!(tok = scan.token()).empty()) {
-        // A corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`: only the position index matters here.
-        const std::string_view vtok = tok.substr(0, tok.find('/'));
-        std::int64_t idx = 0;
-        const auto [ptr, ec] = std::from_chars(vtok.data(), vtok.data() + vtok.size(), idx);
-        if (ec != std::errc() || ptr != vtok.data() + vtok.size() || idx == 0)
-          throw InputError(path, scan.line(), "bad face corner '" + std::string(tok) + "' (expected a non-zero vertex index)");
-        // Positive indices are 1-based; negative ones count back from the last vertex read so far.
-        corners.push_back(idx > 0 ? idx - 1 : num_read + idx);
+        // A corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`.
+        const std::size_t slash = tok.find('/');
+        std::int64_t v = 0;
+        if (!parse_obj_index(tok.substr(0, slash), num_read, v))
+          throw InputError(name, scan.line(),
+                           "bad face corner '" + std::string(tok) + "' (expected a non-zero vertex index)");
+        corners.push_back(v);
+        std::int64_t t = -1;
+        if (slash != std::string_view::npos) {
+          const std::string_view rest = tok.substr(slash + 1);
+          const std::string_view vt = rest.substr(0, rest.find('/'));
+          if (!vt.empty()) {
+            if (!parse_obj_index(vt, num_uv, t))
+              throw InputError(name, scan.line(),
+                               "bad face corner '" + std::string(tok) + "' (expected a non-zero texture index)");
+            if (t < 0 || t >= num_uv)
+              throw InputError(name, scan.line(),
+                               "face corner '" + std::string(tok) + "' refers to texture coordinate " +
+                                   std::to_string(t + 1) + " but only " + std::to_string(num_uv) +
+                                   " were defined before this line");
+            any_uv = true;
+          }
+        }
+        uv_corners.push_back(t);
       }
       if (corners.size() < 3)
-        throw InputError(path, scan.line(), "face has " + std::to_string(corners.size()) + " corners (at least 3 needed)");
+        throw InputError(name, scan.line(),
+                         "face has " + std::to_string(corners.size()) + " corners (at least 3 needed)");
       soup.add_face(corners.data(), corners.size(), scan.line());
+      corner_uv.insert(corner_uv.end(), uv_corners.begin(), uv_corners.end());
     }
-    // Every other statement (vt, vn, g, o, s, usemtl, mtllib, l, comments) carries nothing we need.
+    // Every other statement (vn, g, o, s, usemtl, mtllib, l, p) carries nothing we need.
   }
   soup.positions = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
       xyz.data(), static_cast<Eigen::Index>(xyz.size() / 3), 3);
+  if (any_uv) {
+    soup.uv = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(
+        uvs.data(), static_cast<Eigen::Index>(uvs.size() / 2), 2);
+    soup.face_uv = std::move(corner_uv);
+  }
   return soup;
 }
+
+PolygonSoup read_obj(const std::string& path) { return read_obj_from_memory(read_file_bytes(path), path); }
 
 }  // namespace quadcover

@@ -5,7 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "io/polygon_soup.h"
+
 namespace quadcover {
+
+// Numbers are written in the shortest form that reads back to the same double (exact round trip).
+// Index arguments are checked: an index out of range throws std::invalid_argument and leaves no file.
 
 /// OBJ with `v` and `f` lines. V #V by 3, F #F by 3 (0-based).
 void write_obj(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
@@ -16,5 +21,9 @@ void write_obj_with_uv(const std::string& path, const Eigen::MatrixX3d& V, const
 
 /// OBJ with polygon faces of any size (quad meshes). faces: 0-based vertex indices per face.
 void write_polygon_obj(const std::string& path, const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
+
+/// OBJ of a polygon soup as read: positions, `vt` lines and `f v/vt` corners where soup.face_uv has them.
+/// Soup indices must be in range (validate first); -1 in face_uv writes the corner without texture index.
+void write_soup_obj(const std::string& path, const PolygonSoup& soup);
 
 }  // namespace quadcover

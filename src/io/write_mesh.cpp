@@ -1,0 +1,111 @@
+#include "io/write_mesh.h"
+
+#include <stdexcept>
+
+#include "io/atomic_file.h"
+#include "io/text_format.h"
+
+namespace quadcover {
+
+namespace {
+
+using detail::TextBuffer;
+
+void check_index(const std::string& path, std::int64_t i, std::int64_t n, const char* what, std::int64_t face) {
+  if (i < 0 || i >= n)
+    throw std::invalid_argument(path + ": face " + std::to_string(face) + " has " + what + " index " +
+                                std::to_string(i) + " outside [0, " + std::to_string(n) + ")");
+}
+
+void put_vertices(TextBuffer& b, const Eigen::MatrixX3d& V) {
+  for (Eigen::Index v = 0; v < V.rows(); ++v)
+    b.put("v ").num(V(v, 0)).put(' ').num(V(v, 1)).put(' ').num(V(v, 2)).put('\n');
+}
+
+void put_uvs(TextBuffer& b, const Eigen::MatrixX2d& UV) {
+  for (Eigen::Index t = 0; t < UV.rows(); ++t) b.put("vt ").num(UV(t, 0)).put(' ').num(UV(t, 1)).put('\n');
+}
+
+}  // namespace
+
+void write_obj(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    TextBuffer b(out);
+    put_vertices(b, V);
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      b.put('f');
+      for (int k = 0; k < 3; ++k) {
+        check_index(path, F(f, k), V.rows(), "vertex", f);
+        b.put(' ').num(F(f, k) + 1);
+      }
+      b.put('\n');
+    }
+    b.flush();
+  });
+}
+
+void write_obj_with_uv(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
+                       const Eigen::MatrixX2d& UV, const Eigen::MatrixX3i& FUV) {
+  if (FUV.rows() != F.rows())
+    throw std::invalid_argument(path + ": FUV has " + std::to_string(FUV.rows()) + " rows but F has " +
+                                std::to_string(F.rows()));
+  write_file_atomically(path, [&](std::ostream& out) {
+    TextBuffer b(out);
+    put_vertices(b, V);
+    put_uvs(b, UV);
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+      b.put('f');
+      for (int k = 0; k < 3; ++k) {
+        check_index(path, F(f, k), V.rows(), "vertex", f);
+        check_index(path, FUV(f, k), UV.rows(), "texture", f);
+        b.put(' ').num(F(f, k) + 1).put('/').num(FUV(f, k) + 1);
+      }
+      b.put('\n');
+    }
+    b.flush();
+  });
+}
+
+void write_polygon_obj(const std::string& path, const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    TextBuffer b(out);
+    put_vertices(b, V);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (faces[f].size() < 3)
+        throw std::invalid_argument(path + ": face " + std::to_string(f) + " has fewer than 3 corners");
+      b.put('f');
+      for (int v : faces[f]) {
+        check_index(path, v, V.rows(), "vertex", static_cast<std::int64_t>(f));
+        b.put(' ').num(v + 1);
+      }
+      b.put('\n');
+    }
+    b.flush();
+  });
+}
+
+void write_soup_obj(const std::string& path, const PolygonSoup& soup) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    TextBuffer b(out);
+    put_vertices(b, soup.positions);
+    put_uvs(b, soup.uv);
+    const auto nv = static_cast<std::int64_t>(soup.num_vertices());
+    const auto nt = static_cast<std::int64_t>(soup.uv.rows());
+    for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+      b.put('f');
+      for (auto i = soup.face_offsets[f]; i < soup.face_offsets[f + 1]; ++i) {
+        const auto idx = static_cast<std::size_t>(i);
+        check_index(path, soup.face_vertices[idx], nv, "vertex", static_cast<std::int64_t>(f));
+        b.put(' ').num(soup.face_vertices[idx] + 1);
+        if (soup.has_uv() && soup.face_uv[idx] >= 0) {
+          check_index(path, soup.face_uv[idx], nt, "texture", static_cast<std::int64_t>(f));
+          b.put('/').num(soup.face_uv[idx] + 1);
+        }
+      }
+      b.put('\n');
+    }
+    b.flush();
+  });
+}
+
+}  // namespace quadcover
