@@ -1,0 +1,128 @@
+#pragma once
+// Sparse complex Cholesky factorization 𝔏̄* = LᴴL (thesis 6.2.1) whose factor is modified in place by rank-1
+// updates and downdates instead of being recomputed; the sparsity pattern never changes.
+//
+// Notation: A is n by n Hermitian positive definite (full storage). CXSparse factors P A Pᵀ = L Lᴴ with a fill
+// reducing permutation P (AMD); "x" below is the forward-solve vector L x = P b, so that
+// bᴴ A⁻¹ b = xᴴx (the identity behind E_D = ½xᴴx, 6.2.1). All indices in this API are in A's original numbering.
+#include <Eigen/SparseCore>
+#include <memory>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace quadcover {
+
+/// One entry of a sparse complex vector, index in A's numbering.
+struct SparseEntry {
+  int index;
+  Complex value;
+};
+
+/// A Hermitian change D of A concentrated in row/column k: D(k,j) = d_j, D(j,k) = conj(d_j) for the listed j ≠ k,
+/// D(k,k) = 0. A matching change at edge e_k is such a change with two entries (6.2.1, "Sparse Cholesky updates").
+struct StarChange {
+  int k = -1;
+  std::vector<SparseEntry> d;
+};
+
+/// The two rank-1 terms of a star change (Deng's eigen-split, 6.2.1): D = w₁w₁ᴴ - w₂w₂ᴴ with
+/// w₁,₂ = sqrt(λ/2)·(e_k ± u), λ = sqrt(Σ|d_j|²), u_j = conj(d_j)/λ; eigenvalues ±λ with eigenvectors (e_k ± u)/√2.
+/// Applying w₁ (update, λ > 0) before w₂ (downdate) keeps every intermediate matrix positive definite.
+/// \return {w₁, w₂}; both empty if D = 0.
+std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const StarChange& change);
+
+/// Cholesky factor with in-place rank-1 modifications, plus a maintained right-hand side b and forward solution x
+/// (L x = P b) so that bᴴA⁻¹b is available after every change without a back substitution.
+class UpdatableCholesky {
+ public:
+  UpdatableCholesky();
+  ~UpdatableCholesky();
+  UpdatableCholesky(UpdatableCholesky&&) noexcept;
+  UpdatableCholesky& operator=(UpdatableCholesky&&) noexcept;
+
+  /// Symbolic analysis (AMD on A) and numeric factorization with CXSparse; sets b = 0.
+  /// \throw NumericalError("cholesky") if A is not positive definite or not square.
+  explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A);
+
+  int size() const;
+  /// Nonzeros of L (including the diagonal).
+  long factor_nonzeros() const;
+
+  /// Sets the right-hand side and recomputes x with a full forward solve.
+  void set_rhs(const Eigen::VectorXcd& b);
+  const Eigen::VectorXcd& rhs() const { return b_; }
+  /// bᴴ A⁻¹ b = xᴴx for the current A and b.
+  double rhs_energy() const { return x_norm2_; }
+  /// x in the permuted order (L x = P b).
+  const Eigen::VectorXcd& forward_solution() const { return x_; }
+  /// A⁻¹ b (forward and back substitution), in A's numbering.
+  Eigen::VectorXcd solve_full() const;
+
+  /// L L^H <- L L^H + sigma w w^H (sigma = ±1) with CXSparse's cs_ci_updown, then a full forward solve.
+  /// The pattern of w w^H must lie in the pattern of A. \throw NumericalError if the result is not positive definite
+  /// (the factor is then invalid: refactor).
+  void rank1_cxsparse(std::span<const SparseEntry> w, int sigma);
+  /// A <- A + D via the two rank-1 terms of deng_split() with cs_ci_updown, then a full forward solve.
+  void apply_star_change_cxsparse(const StarChange& change);
+
+  /// Permutation: perm()[new] = old; etree parent in the permuted numbering (-1 for roots).
+  const std::vector<int>& perm() const { return perm_; }
+  const std::vector<int>& inverse_perm() const { return pinv_; }
+  const std::vector<int>& etree() const { return parent_; }
+  /// L in the permuted numbering (n by n lower triangular, real positive diagonal).
+  Eigen::SparseMatrix<Complex> factor() const;
+
+  // Raw column storage of L for the path-local evaluator (diagonal first in every column, rows increasing).
+  const int* col_ptr() const;
+  const int* row_idx() const;
+  Complex* values();
+  const Complex* values() const;
+
+ private:
+  friend class FactorTrial;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<int> perm_, pinv_, parent_;
+  Eigen::VectorXcd b_;  // permuted: b_[new] = b[perm[new]]
+  Eigen::VectorXcd x_;  // permuted forward solution
+  double x_norm2_ = 0;
+  void full_forward_solve();
+};
+
+/// A tentative modification of an UpdatableCholesky evaluated without touching it ("reach-limited"): star changes
+/// and right-hand side changes are applied to private copies of the affected columns only, which all lie on the
+/// etree paths from the changed rows to the root; x changes only on those paths, so the new xᴴx costs
+/// O(Σ_path nnz(L_j)) instead of a full forward solve. Several trials may evaluate concurrently against the same
+/// (unchanged) factor; commit() writes one back.
+class FactorTrial {
+ public:
+  explicit FactorTrial(int n = 0);
+  /// Starts a new trial (forgets previous changes; O(touched)).
+  void reset();
+  /// Adds A <- A + D (Deng split, update before downdate, 6.2.1). Changes are applied in the order given.
+  /// \return false if an intermediate matrix lost positive definiteness (the trial is then invalid).
+  bool add_star_change(const UpdatableCholesky& F, const StarChange& change);
+  /// Adds b <- b + delta at entries (A's numbering).
+  void add_rhs_change(const UpdatableCholesky& F, std::span<const SparseEntry> delta);
+  /// Reach-limited forward solve on the touched paths. \return the new bᴴA⁻¹b = xᴴx.
+  double evaluate(const UpdatableCholesky& F);
+  /// Writes the modified columns, b and x back into F (after evaluate()).
+  void commit(UpdatableCholesky& F) const;
+  /// Number of columns of L touched (the reach of the change).
+  int reach() const { return static_cast<int>(touched_.size()); }
+
+ private:
+  void touch_path(const UpdatableCholesky& F, int j);
+  bool rank1(const UpdatableCholesky& F, const std::vector<SparseEntry>& w, double sigma);
+  std::vector<int> slot_;          // column -> offset into vals_, -1 if untouched
+  std::vector<int> touched_;       // touched columns (permuted numbering)
+  std::vector<Complex> vals_;      // private copies of the touched columns
+  std::vector<Complex> w_, acc_, db_, xnew_;  // dense work arrays (zero outside touched)
+  double energy_ = 0;
+  bool valid_ = true, evaluated_ = false;
+};
+
+}  // namespace quadcover
