@@ -9,10 +9,18 @@
 //    transport of Mesh::edge_transport(); for a general frame, (X_t, Y_t) is matched with
 //    ρ_e · R'^{m_e}(X_s, Y_s), R'(X, Y) = (Y, -X), which is J applied to both vectors when Y = JX.
 //    (The thesis's R(X,Y) = (-Y,X) turns the other way, so its m_st is our -m_e.)
-//  - Curvature (3.4): θ_e = arg(X_t / (i^{m_e} ρ_e X_s)) ∈ (-π, π]; the initial matching (5.1) makes |θ_e| <= π/4.
+//  - Curvature (3.4): θ_e = ∠_e - (π/2)·m_e with ∠_e = arg(X_t / (ρ_e X_s)) ∈ (-π, π] the intrinsic angle from X_s
+//    to X_t (for a general frame X is replaced by the first vector of the orthogonalized frame (X,Y)^⊥). θ_e is
+//    not wrapped: the initial matching (5.1) makes |θ_e| <= π/4, a later matching change by k adds -(π/2)k.
 //  - Indices are stored in quarters: quarter_index(p) = 4·ind_p ∈ Z. Boundary vertices have index 0.
 //    A branch point is a vertex with quarter_index ≠ 0 mod 4 (odd: ±1 mod 4, even: 2 mod 4).
+//    With our sign of m the matching index (Def. 3.2) is 4·ind_p(m) = -Σ m over the edges crossed counter-clockwise
+//    around p. It agrees with the cross-field index (Def. 3.3) modulo 4 quarters (same branch points, same
+//    even/odd class); exactly, ind^cross_p = ind_p(m) + ind_p(X), ind_p(X) the integer vector-field index of X
+//    itself (Def. 1.18 with zero matching). On a closed surface Σ_p ind^cross_p = χ, Σ_p ind_p(m) = 0.
 #include <Eigen/Core>
+#include <complex>
+#include <utility>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -29,5 +37,24 @@ struct BranchPoint {
   int vertex;
   int quarter_index;  ///< 4·ind_p (Def. 3.2), never 0 mod 4
 };
+
+/// A cross field (Y = iX) with the given first vectors and matching.
+FrameField make_cross_field(Eigen::VectorXcd X, Eigen::VectorXi matching);
+
+/// First vector of the orthogonalized frame (X,Y)^⊥ = ½(X - JY, JX + Y) (thesis 3.1.2); the second is i times it.
+inline Complex orthogonalized(Complex X, Complex Y) { return 0.5 * (X - Complex(0, 1) * Y); }
+/// First vectors of (X_t,Y_t)^⊥ for every face. \return #F
+Eigen::VectorXcd orthogonalized_frames(const FrameField& field);
+
+/// The frame-switching operator of our convention applied k times: R'^k(X, Y) with R'(X,Y) = (Y,-X), i.e. the
+/// thesis's R^{-k} (R(X,Y) = (-Y,X), R² = -id (3.1)). For Y = iX it multiplies both vectors by i^k.
+std::pair<Complex, Complex> frame_switch(Complex X, Complex Y, int k);
+
+/// Unit cross directions in 3D for drawing: u_t and v_t = n_t × u_t; the cross at t is {±u_t, ±v_t}.
+struct CrossDirections {
+  Eigen::MatrixX3d u;  ///< #F by 3, world coordinates of X^⊥_t / |X^⊥_t|
+  Eigen::MatrixX3d v;  ///< #F by 3, the quarter turn of u_t about the face normal
+};
+CrossDirections cross_directions(const Mesh& mesh, const FrameField& field);
 
 }  // namespace quadcover
