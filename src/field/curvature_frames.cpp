@@ -3,7 +3,6 @@
 #include <cmath>
 #include <vector>
 
-#include "calculus/stiffness.h"
 #include "mesh/shape_operator.h"
 
 namespace quadcover {
@@ -36,7 +35,9 @@ Tensor2 project(const Mesh& mesh, int t, const Eigen::Matrix3d& S) {
 
 void hildebrandt_polthier(const Mesh& mesh, CurvatureFrames& out) {
   const std::vector<Eigen::Matrix3d> Sv = vertex_shape_operators(mesh);
-  const Eigen::VectorXd Av = vertex_areas(mesh);
+  Eigen::VectorXd Av = Eigen::VectorXd::Zero(mesh.num_vertices());  // barycentric vertex areas ⅓ Σ A_t
+  for (int t = 0; t < mesh.num_faces(); ++t)
+    for (int k = 0; k < 3; ++k) Av[mesh.F()(t, k)] += mesh.face_areas()[t] / 3.0;
   for (int t = 0; t < mesh.num_faces(); ++t) {
     Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
     for (int k = 0; k < 3; ++k) {
