@@ -1,8 +1,10 @@
-// `quadcover info MESH`: counts, topology and validation problems of a mesh file.
+// `quadcover info MESH...`: counts, topology and validation problems of mesh files (one file, several, or folders).
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cli/common.h"
 #include "cli/registry.h"
+#include "common/errors.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 
@@ -11,19 +13,26 @@ namespace quadcover::cli {
 namespace {
 
 struct InfoOptions {
-  std::string input;
+  std::vector<std::string> inputs;
   bool triangulate = false;
   bool fix_orientation = false;
 };
 
-int run_info(const InfoOptions& opt, const GlobalOptions& global) {
-  const PolygonSoup soup = read_mesh(opt.input);
+struct InfoResult {
+  nlohmann::json json;
+  ValidationReport report;
+};
+
+InfoResult inspect(const std::string& input, const InfoOptions& opt) {
+  const PolygonSoup soup = read_mesh(input);
   ValidationOptions vopt;
   vopt.triangulate = opt.triangulate;
   vopt.fix_orientation = opt.fix_orientation;
-  const ValidationReport report = validate(soup, vopt);
-  nlohmann::json j;
-  j["file"] = opt.input;
+  InfoResult r;
+  r.report = validate(soup, vopt);
+  const ValidationReport& report = r.report;
+  nlohmann::json& j = r.json;
+  j["file"] = input;
   j["valid"] = report.valid();
   nlohmann::json problems = nlohmann::json::array();
   for (const auto& p : report.problems)
@@ -53,34 +62,58 @@ int run_info(const InfoOptions& opt, const GlobalOptions& global) {
     j["manifold"] = manifold;
     j["orientable"] = orientable;
   }
-  if (global.json) {
-    std::cout << j.dump(2) << "\n";
-  } else if (!global.quiet) {
-    std::cout << opt.input << "\n";
-    for (const char* key : {"vertices", "edges", "faces", "components", "boundary_loops", "genus",
-                            "euler_characteristic", "manifold", "orientable"})
-      if (j.contains(key)) std::cout << "  " << key << ": " << j[key].dump() << "\n";
-  }
-  for (const auto& p : report.problems)
-    std::cerr << (p.fatal ? "error: " : "warning: ") << p.message << "\n";
-  return report.valid() ? kOk : kBadInput;
+  return r;
 }
 
-}  // namespace
+int run_single(const std::string& input, const InfoOptions& opt, const GlobalOptions& global) {
+  const InfoResult r = inspect(input, opt);
+  if (global.json) {
+    std::cout << r.json.dump(2) << "\n";
+  } else if (!global.quiet) {
+    std::cout << input << "\n";
+    for (const char* key : {"vertices", "edges", "faces", "components", "boundary_loops", "genus",
+                            "euler_characteristic", "manifold", "orientable"})
+      if (r.json.contains(key)) std::cout << "  " << key << ": " << r.json[key].dump() << "\n";
+  }
+  for (const auto& p : r.report.problems)
+    std::cerr << (p.fatal ? "error: " : "warning: ") << p.message << "\n";
+  return r.report.valid() ? kOk : kBadInput;
+}
 
-namespace {
 void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Print counts, topology (genus, boundaries, components) and every validation problem of a mesh");
-  cmd->add_option("mesh", opt->input, "Input mesh (.obj, .off, .ply, .stl)")->required()->check(CLI::ExistingFile);
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Print counts, topology (genus, boundaries, components) and every validation problem of mesh files");
+  add_input_option(*cmd, opt->inputs,
+                   "Input meshes (.obj, .off, .ply, .stl) or folders of them; several are checked in parallel and "
+                   "summarized in a table");
   cmd->add_flag("--triangulate", opt->triangulate, "Fan-triangulate polygons instead of reporting them as errors");
   cmd->add_flag("--fix-orientation", opt->fix_orientation, "Reorient an orientable but inconsistently oriented mesh");
-  cmd->add_flag("--json", global.json, "Print the result as JSON on stdout");
-  cmd->add_flag("-q,--quiet", global.quiet, "Print nothing but errors");
-  cmd->callback([opt, &global, &exit_code] { exit_code = run_info(*opt, global); });
+  add_global_options(*cmd, global);
+  cmd->callback([opt, &global, &exit_code] {
+    if (!is_batch(opt->inputs)) {
+      exit_code = run_single(opt->inputs[0], *opt, global);
+      return;
+    }
+    BatchSpec spec;
+    spec.inputs = opt->inputs;
+    spec.summary_columns = {"vertices", "faces", "components", "boundary_loops", "genus"};
+    exit_code = run_batch(spec, global, [opt](const std::string& input, ProgressSink&) {
+      InfoResult r = inspect(input, *opt);
+      if (!r.report.valid()) {
+        std::vector<std::string> problems;
+        for (const auto& p : r.report.problems)
+          if (p.fatal) problems.push_back(p.message);
+        const std::string what = input + ": not a valid mesh (" + std::to_string(problems.size()) + " problems)";
+        throw TopologyError(what, std::move(problems));
+      }
+      return r.json;
+    });
+  });
 }
 
 const CommandRegistrar registrar{10, "info", register_info};
+
 }  // namespace
 
 }  // namespace quadcover::cli

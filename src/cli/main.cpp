@@ -1,13 +1,14 @@
 // quadcover command-line tool: dispatches to the subcommands and maps errors to exit codes.
+#include <algorithm>
 #include <iostream>
 
-#include <algorithm>
-
+#include "cli/common.h"
 #include "cli/registry.h"
-#include "common/errors.h"
 
 int main(int argc, char** argv) {
   using namespace quadcover;
+  cli::run_start_time();  // --time-limit counts from here
+  cli::install_interrupt_handler();
   CLI::App app{"quadcover: seamless quad-aligned parameterization and quad remeshing (QuadCover, Kälberer)"};
   app.set_version_flag("--version", std::string("quadcover ") + QUADCOVER_VERSION);
   app.require_subcommand(1);
@@ -21,16 +22,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : cli::kBadInput;
-  } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return cli::kBadInput;
-  } catch (const TopologyError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    for (const auto& p : e.problems()) std::cerr << "  " << p << "\n";
-    return cli::kBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return cli::kInternal;
+  } catch (...) {
+    std::string message;
+    const int code = cli::describe_current_exception(message);
+    std::cerr << "error: " << message << "\n";
+    return code;
   }
   return exit_code;
 }

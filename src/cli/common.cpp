@@ -1,0 +1,421 @@
+#include "cli/common.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <sys/ioctl.h>
+#include <thread>
+#include <unistd.h>
+
+#include "common/errors.h"
+#include "io/atomic_file.h"
+#include "io/read_mesh.h"
+
+namespace quadcover::cli {
+
+// ---- options ------------------------------------------------------------------------------------------------
+
+void add_global_options(CLI::App& cmd, GlobalOptions& global) {
+  cmd.add_flag("--json", global.json, "Print the result as JSON on stdout (batch: one document for all files)");
+  cmd.add_flag("-q,--quiet", global.quiet, "Print nothing but errors (no progress, no result lines)");
+  cmd.add_flag("-v,--verbose", global.verbose, "Print every progress report as its own line on stderr");
+  cmd.add_option("--time-limit", global.time_limit,
+                 "Stop long stages after SECONDS and write the best result so far (default 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
+  cmd.add_option("-j,--jobs", global.jobs, "Files processed at once in batch mode (default 0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std::string& description) {
+  cmd.add_option("mesh", inputs, description)->required()->check(CLI::ExistingPath);
+}
+
+// ---- cancellation -------------------------------------------------------------------------------------------
+
+namespace {
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT handler needs a lock-free flag");
+
+extern "C" void on_sigint(int) {
+  g_interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C kills the process
+}
+}  // namespace
+
+void install_interrupt_handler() {
+  struct sigaction sa{};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+bool interrupted() { return g_interrupted.load(); }
+void request_interrupt() { g_interrupted.store(true); }
+void clear_interrupt() { g_interrupted.store(false); }
+
+std::chrono::steady_clock::time_point run_start_time() {
+  static const auto start = std::chrono::steady_clock::now();
+  return start;
+}
+
+std::mutex& stderr_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// ---- progress -----------------------------------------------------------------------------------------------
+
+ProgressStyle stderr_progress_style(const GlobalOptions& global) {
+  ProgressStyle style;
+  style.quiet = global.quiet;
+  style.verbose = global.verbose;
+  style.live = !global.verbose && ::isatty(STDERR_FILENO) != 0;
+  if (style.live) {
+    winsize ws{};
+    if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 20) style.width = ws.ws_col - 1;
+    style.delay = 0.3;
+  }
+  if (global.verbose) style.delay = style.interval = 0;
+  return style;
+}
+
+TerminalProgress::TerminalProgress(std::ostream& out, ProgressStyle style, Clock::time_point deadline)
+    : out_(out), style_(std::move(style)), deadline_(deadline), start_(Clock::now()), stage_start_(start_),
+      last_print_(start_ - std::chrono::hours(1)) {}
+
+namespace {
+TerminalProgress::Clock::time_point deadline_for(const GlobalOptions& global) {
+  if (global.time_limit <= 0) return TerminalProgress::Clock::time_point::max();
+  return run_start_time() + std::chrono::duration_cast<TerminalProgress::Clock::duration>(
+                                std::chrono::duration<double>(global.time_limit));
+}
+}  // namespace
+
+TerminalProgress::TerminalProgress(const GlobalOptions& global)
+    : TerminalProgress(std::cerr, stderr_progress_style(global), deadline_for(global)) {}
+
+TerminalProgress::~TerminalProgress() { finish(); }
+
+void TerminalProgress::finish() {
+  std::lock_guard lock(mutex_);
+  if (live_dirty_) {
+    std::lock_guard err_lock(stderr_mutex());
+    out_ << "\r\x1b[K" << std::flush;
+    live_dirty_ = false;
+  }
+}
+
+std::string TerminalProgress::format_line(std::string_view stage, double fraction, std::string_view message,
+                                          double eta_seconds, bool bar, int width) {
+  std::ostringstream s;
+  s << stage;
+  const bool known = fraction >= 0;
+  const double f = std::clamp(fraction, 0.0, 1.0);
+  if (bar) {
+    constexpr int kBar = 24;
+    s << " [";
+    if (known) {
+      const int filled = static_cast<int>(std::lround(f * kBar));
+      s << std::string(filled, '=') << std::string(kBar - filled, ' ');
+    } else {
+      s << std::string(kBar / 2 - 1, ' ') << "..." << std::string(kBar - kBar / 2 - 2, ' ');
+    }
+    s << "]";
+  }
+  if (known) s << ' ' << std::setw(3) << static_cast<int>(std::floor(f * 100)) << '%';
+  if (!message.empty()) s << "  " << message;
+  if (known && eta_seconds >= 0 && f < 1) {
+    s << "  ETA ";
+    if (eta_seconds < 60)
+      s << static_cast<int>(std::ceil(eta_seconds)) << 's';
+    else
+      s << static_cast<int>(eta_seconds / 60) << 'm' << std::setw(2) << std::setfill('0')
+        << static_cast<int>(eta_seconds) % 60 << 's';
+  }
+  std::string line = s.str();
+  if (width > 0 && static_cast<int>(line.size()) > width) line.resize(static_cast<std::size_t>(width));
+  return line;
+}
+
+void TerminalProgress::report(std::string_view stage, double fraction, std::string_view message) {
+  if (style_.quiet) return;
+  std::lock_guard lock(mutex_);
+  const Clock::time_point now = Clock::now();
+  const bool new_stage = stage != stage_;
+  if (new_stage) {
+    stage_ = std::string(stage);
+    stage_start_ = now;
+  }
+  const double since_start = std::chrono::duration<double>(now - start_).count();
+  if (since_start < style_.delay) return;
+  const double since_print = std::chrono::duration<double>(now - last_print_).count();
+  const double interval = style_.live ? 0.1 : style_.interval;
+  const bool stage_done = fraction >= 1;
+  if (!style_.verbose && since_print < interval && !(new_stage && style_.live) && !(stage_done && style_.live))
+    return;
+  last_print_ = now;
+  const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
+  const double eta = fraction > 0 && fraction < 1 ? elapsed * (1 - fraction) / fraction : -1;
+  std::lock_guard err_lock(stderr_mutex());
+  if (style_.live) {
+    const int width = style_.width - static_cast<int>(style_.prefix.size());
+    out_ << "\r\x1b[K" << style_.prefix << format_line(stage, fraction, message, eta, true, width) << std::flush;
+    live_dirty_ = true;
+  } else {
+    out_ << style_.prefix << format_line(stage, fraction, message, eta, false, 0) << '\n' << std::flush;
+  }
+  printed_any_ = true;
+}
+
+bool TerminalProgress::cancelled() const {
+  const bool by_signal = interrupted();
+  const bool by_time = deadline_ != Clock::time_point::max() && Clock::now() >= deadline_;
+  if ((by_signal || by_time) && !announced_stop_ && !style_.quiet) {
+    std::lock_guard lock(mutex_);
+    if (!announced_stop_) {
+      announced_stop_ = true;
+      std::lock_guard err_lock(stderr_mutex());
+      out_ << (live_dirty_ ? "\n" : "") << style_.prefix
+           << (by_signal ? "interrupted" : "time limit reached") << ": stopping with the best result so far\n"
+           << std::flush;
+    }
+  }
+  return by_signal || by_time;
+}
+
+// ---- batch --------------------------------------------------------------------------------------------------
+
+namespace {
+bool is_mesh_file(const std::filesystem::path& p) {
+  const std::string ext = file_extension(p.string());
+  return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
+}
+}  // namespace
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const std::string& arg : args) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(arg, ec);
+    if (ec || !fs::exists(st)) throw InputError(arg, 0, "no such file or folder");
+    if (fs::is_directory(st)) {
+      std::vector<std::string> found;
+      for (const auto& entry : fs::directory_iterator(arg, ec))
+        if (entry.is_regular_file() && is_mesh_file(entry.path())) found.push_back(entry.path().string());
+      if (ec) throw InputError(arg, 0, "cannot list folder: " + ec.message());
+      if (found.empty()) throw InputError(arg, 0, "folder holds no mesh files (.obj .off .ply .stl)");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else {
+      files.push_back(arg);
+    }
+  }
+  return files;
+}
+
+bool is_batch(const std::vector<std::string>& args) {
+  return args.size() > 1 || (args.size() == 1 && std::filesystem::is_directory(args[0]));
+}
+
+std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix) {
+  namespace fs = std::filesystem;
+  const fs::path in(input);
+  const fs::path dir = output_dir.empty() ? in.parent_path() : fs::path(output_dir);
+  return (dir / (in.stem().string() + suffix)).string();
+}
+
+int describe_current_exception(std::string& message) {
+  try {
+    throw;
+  } catch (const InputError& e) {
+    message = e.what();
+    return kBadInput;
+  } catch (const TopologyError& e) {
+    message = e.what();
+    for (const auto& p : e.problems()) message += "\n  " + p;
+    return kBadInput;
+  } catch (const std::exception& e) {
+    message = e.what();
+    return kInternal;
+  } catch (...) {
+    message = "unknown error";
+    return kInternal;
+  }
+}
+
+std::vector<FileResult> process_files(const std::vector<std::string>& files, const GlobalOptions& global,
+                                      const FileJob& job, std::ostream& log) {
+  std::vector<FileResult> results(files.size());
+  std::atomic<int> done{0};
+  const int threads = global.jobs > 0 ? global.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t width = [&] {
+    std::size_t w = 0;
+    for (const auto& f : files) w = std::max(w, f.size());
+    return w;
+  }();
+  auto run_one = [&](std::size_t i) {
+    FileResult& r = results[i];
+    r.input = files[i];
+    ProgressStyle style;
+    style.quiet = global.quiet || !global.verbose;  // batch: per-file progress only with --verbose
+    style.verbose = global.verbose;
+    style.delay = style.interval = 0;
+    style.prefix = files[i] + ": ";
+    TerminalProgress progress(log, style,
+                              global.time_limit > 0
+                                  ? run_start_time() + std::chrono::duration_cast<TerminalProgress::Clock::duration>(
+                                                           std::chrono::duration<double>(global.time_limit))
+                                  : TerminalProgress::Clock::time_point::max());
+    const auto t0 = std::chrono::steady_clock::now();
+    if (interrupted()) {
+      r.exit_code = kInternal;
+      r.error = "not started: interrupted";
+    } else {
+      try {
+        r.result = job(files[i], progress);
+      } catch (...) {
+        r.exit_code = describe_current_exception(r.error);
+      }
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const int n = ++done;
+    if (!global.quiet) {
+      std::lock_guard lock(stderr_mutex());
+      log << '[' << n << '/' << files.size() << "] " << std::left << std::setw(static_cast<int>(width)) << files[i]
+          << std::right << (r.exit_code == kOk ? "  ok  " : "  FAILED  ") << std::fixed << std::setprecision(2)
+          << r.seconds << " s" << std::defaultfloat << '\n';
+      if (r.exit_code != kOk) log << "  error: " << r.error << '\n';
+      log << std::flush;
+    }
+  };
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) { run_one(i); },
+                      tbb::simple_partitioner());
+  });
+  return results;
+}
+
+namespace {
+std::string cell(const nlohmann::json& v) {
+  if (v.is_null()) return "-";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) {
+    std::ostringstream s;
+    s << std::setprecision(4) << v.get<double>();
+    return s.str();
+  }
+  return v.dump();
+}
+}  // namespace
+
+void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
+                   const GlobalOptions& global, std::ostream& out) {
+  int failed = 0;
+  for (const auto& r : results) failed += r.exit_code != kOk;
+  if (global.json) {
+    nlohmann::json files = nlohmann::json::array();
+    for (const auto& r : results) {
+      nlohmann::json j{{"file", r.input}, {"ok", r.exit_code == kOk}, {"exit_code", r.exit_code},
+                       {"seconds", r.seconds}};
+      if (r.exit_code == kOk)
+        j["result"] = r.result;
+      else
+        j["error"] = r.error;
+      files.push_back(std::move(j));
+    }
+    out << nlohmann::json{{"files", files},
+                          {"succeeded", static_cast<int>(results.size()) - failed},
+                          {"failed", failed}}
+               .dump(2)
+        << '\n';
+    return;
+  }
+  if (global.quiet) return;
+  std::vector<std::string> header{"file", "status", "seconds"};
+  header.insert(header.end(), columns.begin(), columns.end());
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : results) {
+    std::ostringstream secs;
+    secs << std::fixed << std::setprecision(2) << r.seconds;
+    std::vector<std::string> row{r.input, r.exit_code == kOk ? "ok" : (r.exit_code == kBadInput ? "bad input" : "failed"),
+                                 secs.str()};
+    for (const auto& c : columns)
+      row.push_back(r.exit_code == kOk && r.result.is_object() && r.result.contains(c) ? cell(r.result[c]) : "-");
+    rows.push_back(std::move(row));
+  }
+  std::vector<std::size_t> w(header.size());
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    w[c] = header[c].size();
+    for (const auto& row : rows) w[c] = std::max(w[c], row[c].size());
+  }
+  auto print_row = [&](const std::vector<std::string>& row) {
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      if (c) out << "  ";
+      if (c == 0)
+        out << std::left << std::setw(static_cast<int>(w[c])) << row[c] << std::right;
+      else
+        out << std::setw(static_cast<int>(w[c])) << row[c];
+    }
+    out << '\n';
+  };
+  print_row(header);
+  std::size_t total = 2 * (w.size() - 1);
+  for (auto x : w) total += x;
+  out << std::string(total, '-') << '\n';
+  for (const auto& row : rows) print_row(row);
+  out << results.size() - failed << " of " << results.size() << " files succeeded";
+  if (failed) out << ", " << failed << " failed";
+  out << '\n';
+}
+
+int batch_exit_code(const std::vector<FileResult>& results) {
+  int code = kOk;
+  for (const auto& r : results) {
+    if (r.exit_code == kBadInput) return kBadInput;
+    if (r.exit_code != kOk) code = r.exit_code;
+  }
+  return code;
+}
+
+void print_key_values(const nlohmann::json& j, std::ostream& out) {
+  if (!j.is_object()) {
+    if (!j.is_null()) out << j.dump() << '\n';
+    return;
+  }
+  for (const auto& [key, value] : j.items()) out << "  " << key << ": " << cell(value) << '\n';
+}
+
+int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job) {
+  if (!is_batch(spec.inputs)) {
+    nlohmann::json result;
+    {
+      TerminalProgress progress(global);
+      result = job(spec.inputs.at(0), progress);
+    }
+    if (global.json)
+      std::cout << result.dump(2) << '\n';
+    else if (!global.quiet)
+      print_key_values(result, std::cout);
+    return kOk;
+  }
+  const std::vector<FileResult> results = process_files(expand_inputs(spec.inputs), global, job, std::cerr);
+  print_summary(results, spec.summary_columns, global, std::cout);
+  return batch_exit_code(results);
+}
+
+void write_json_atomically(const std::string& path, const nlohmann::json& j) {
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << '\n'; });
+}
+
+}  // namespace quadcover::cli

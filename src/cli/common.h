@@ -1,0 +1,184 @@
+#pragma once
+// Shared machinery of the quadcover commands: global options, progress on stderr, Ctrl-C / --time-limit,
+// batch processing and atomic outputs.
+//
+// ---- Guide for command authors (src/cli/<name>.cpp) -------------------------------------------------------------
+//
+//   namespace {
+//   struct XOptions { std::vector<std::string> inputs; std::string output; };
+//
+//   void register_x(CLI::App& app, GlobalOptions& global, int& exit_code) {
+//     auto opt = std::make_shared<XOptions>();
+//     CLI::App* cmd = app.add_subcommand("x", "One line saying what x does");
+//     add_input_option(*cmd, opt->inputs);                  // MESH... : files and/or folders
+//     cmd->add_option("-o,--output", opt->output, "Output file (one input) or folder (several inputs)");
+//     add_global_options(*cmd, global);                     // --json -q -v --time-limit -j
+//     cmd->callback([opt, &global, &exit_code] {
+//       BatchSpec spec;
+//       spec.inputs = opt->inputs;
+//       spec.summary_columns = {"faces", "E_D"};            // keys of the returned JSON shown in the summary table
+//       exit_code = run_batch(spec, global, [&](const std::string& input, ProgressSink& progress) {
+//         const Mesh mesh = load_mesh(input);                       // throws InputError/TopologyError
+//         Result r = compute(mesh, options, progress);              // long stages honour progress.cancelled()
+//         write_file_atomically(output_for(input, opt->output, spec, ".x.obj"), ...);  // never a partial file
+//         return nlohmann::json{{"faces", ...}, {"E_D", ...}};      // printed with --json or tabulated
+//       });
+//     });
+//   }
+//   const CommandRegistrar registrar{30, "x", register_x};
+//   }  // namespace
+//
+// - One input: the job runs on the calling thread with a live progress bar (a TTY) or plain lines (not a TTY);
+//   its exceptions propagate to main(), which prints them and maps them to the exit code (0 ok, 1 internal,
+//   2 bad input). The returned JSON is printed (--json) or shown as "key: value" lines unless --quiet.
+// - Several inputs or a folder: files run in parallel (-j, default all cores); a failing file prints its error,
+//   the others continue; a summary table (or a JSON document with --json) follows; the exit code is the worst.
+// - Ctrl-C or --time-limit make progress.cancelled() return true: the stage stops and returns its best result so
+//   far, and the command still writes it. A second Ctrl-C kills the process.
+// ------------------------------------------------------------------------------------------------------------------
+#include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli/commands.h"
+#include "common/progress.h"
+
+namespace quadcover::cli {
+
+// ---- options ------------------------------------------------------------------------------------------------
+
+/// Adds --json, -q/--quiet, -v/--verbose, --time-limit SECONDS and -j/--jobs N to a subcommand.
+void add_global_options(CLI::App& cmd, GlobalOptions& global);
+
+/// Adds the positional "mesh" argument: one or more existing files or folders.
+void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
+                      const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
+
+// ---- cancellation -------------------------------------------------------------------------------------------
+
+/// Installs the SIGINT handler: the first Ctrl-C sets the interrupt flag, a second one kills the process.
+void install_interrupt_handler();
+/// True after Ctrl-C (or request_interrupt()).
+bool interrupted();
+/// Sets / clears the interrupt flag (tests; also the SIGINT handler's action).
+void request_interrupt();
+void clear_interrupt();
+/// The time the run started (first call; main() calls it at start-up). --time-limit counts from here.
+std::chrono::steady_clock::time_point run_start_time();
+
+// ---- progress -----------------------------------------------------------------------------------------------
+
+/// How a TerminalProgress writes.
+struct ProgressStyle {
+  bool live = false;          ///< redraw one line with a bar (\r) instead of printing plain lines
+  bool quiet = false;         ///< print nothing (cancellation still works)
+  bool verbose = false;       ///< plain mode: print every report
+  std::string prefix;         ///< put in front of every line (batch mode: the file name)
+  double delay = 1.0;         ///< seconds before anything is shown: quick commands stay silent
+  double interval = 1.0;      ///< plain mode: at most one line per interval (live mode redraws every 0.1 s)
+  int width = 100;            ///< live mode: columns of the terminal
+};
+
+/// The style for stderr: live bar when stderr is a terminal, plain lines otherwise, per the global options.
+ProgressStyle stderr_progress_style(const GlobalOptions& global);
+
+/// A ProgressSink for the command line: stage name, bar or percentage, the stage's message (iteration, E_D, ...)
+/// and an ETA from the stage's elapsed time and fraction. cancelled() is true after Ctrl-C or past the deadline.
+/// Thread-safe: several sinks may share one stream (batch mode).
+class TerminalProgress final : public ProgressSink {
+ public:
+  using Clock = std::chrono::steady_clock;
+  /// deadline: Clock::time_point::max() for none.
+  TerminalProgress(std::ostream& out, ProgressStyle style, Clock::time_point deadline = Clock::time_point::max());
+  /// stderr, stderr_progress_style(global), deadline from --time-limit counted from run_start_time().
+  explicit TerminalProgress(const GlobalOptions& global);
+  ~TerminalProgress() override;
+
+  void report(std::string_view stage, double fraction, std::string_view message) override;
+  bool cancelled() const override;
+  /// Ends the live line (called by the destructor).
+  void finish();
+
+  /// One line of progress as shown: "stage  45%  message  ETA 3s" (plain) or with a bar (live). Exposed for tests.
+  static std::string format_line(std::string_view stage, double fraction, std::string_view message, double eta_seconds,
+                                 bool bar, int width);
+
+ private:
+  std::ostream& out_;
+  ProgressStyle style_;
+  Clock::time_point deadline_, start_, stage_start_, last_print_;
+  std::string stage_;
+  bool printed_any_ = false, live_dirty_ = false;
+  mutable bool announced_stop_ = false;
+  mutable std::mutex mutex_;
+};
+
+/// The mutex every writer to stderr from worker threads takes (progress lines, per-file results).
+std::mutex& stderr_mutex();
+
+// ---- batch --------------------------------------------------------------------------------------------------
+
+/// Files named on the command line, with every folder replaced by its mesh files (.obj .off .ply .stl, not
+/// recursive, sorted by name). \throw InputError for a path that does not exist or a folder without meshes.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& args);
+
+/// True if the arguments ask for batch mode: more than one argument or a folder.
+bool is_batch(const std::vector<std::string>& args);
+
+/// Where a batch writes the output of `input`: output_dir / (input's stem + suffix), e.g. ("a/bunny.obj", "out",
+/// ".quad.obj") -> "out/bunny.quad.obj". With an empty output_dir: next to the input.
+std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix);
+
+/// What one file of a batch produced.
+struct FileResult {
+  std::string input;
+  int exit_code = kOk;   ///< 0 ok, 1 internal, 2 bad input
+  std::string error;     ///< empty on success; otherwise the message main() would print (several lines allowed)
+  double seconds = 0;
+  nlohmann::json result; ///< what the job returned (null on failure)
+};
+
+/// The work done for one input file; returns a JSON summary of the result.
+using FileJob = std::function<nlohmann::json(const std::string& input, ProgressSink& progress)>;
+
+struct BatchSpec {
+  std::vector<std::string> inputs;            ///< as given: files and/or folders
+  std::vector<std::string> summary_columns;   ///< keys of the job results shown in the summary table
+};
+
+/// Runs the job on every file, `jobs` at a time (0 = all cores) with TBB; exceptions are caught per file and turned
+/// into FileResult::error / exit_code. Results are in input order whatever the scheduling (deterministic output).
+/// Each finished file is reported on `log` (unless quiet).
+std::vector<FileResult> process_files(const std::vector<std::string>& files, const GlobalOptions& global,
+                                      const FileJob& job, std::ostream& log);
+
+/// The summary table (text) or, with --json, {"files": [...], "succeeded": n, "failed": m} on `out`.
+void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
+                   const GlobalOptions& global, std::ostream& out);
+
+/// Worst exit code of a batch: 0 if all ok, else 2 if any bad input, else 1.
+int batch_exit_code(const std::vector<FileResult>& results);
+
+/// One input: runs the job with a TerminalProgress on stderr (exceptions propagate) and prints its result
+/// (JSON with --json, "key: value" lines otherwise, nothing with --quiet). Several: process_files + print_summary.
+/// Returns the exit code.
+int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job);
+
+// ---- errors and outputs ---------------------------------------------------------------------------------------
+
+/// Classifies the exception currently being handled (call inside catch (...)): returns the exit code and sets
+/// `message` to what should be printed (one line per problem, without "error: ").
+int describe_current_exception(std::string& message);
+
+/// Writes `j` (pretty-printed) atomically: no partial file on failure.
+void write_json_atomically(const std::string& path, const nlohmann::json& j);
+
+/// Prints a JSON object as "  key: value" lines (used for a single file's result without --json).
+void print_key_values(const nlohmann::json& j, std::ostream& out);
+
+}  // namespace quadcover::cli

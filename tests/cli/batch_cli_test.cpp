@@ -1,0 +1,68 @@
+// Batch mode through the real binary: `quadcover info FOLDER FILE --json` processes every file, a broken one
+// fails alone, and the exit code and JSON summary say so.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "support/test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string out;
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " 2>/dev/null";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
+  const fs::path dir = fs::temp_directory_path() / ("quadcover_batch_cli_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "a_eight.obj");
+  fs::copy_file(quadcover::testing::data_path("bad/torus_klein_nonorientable"), dir / "b_klein.obj");
+  const std::string extra = quadcover::testing::data_path("torus_5k");
+
+  const CliRun r = run("info --json -j 2 " + dir.string() + " " + extra);
+  EXPECT_EQ(r.code, 2);  // one bad input
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["files"].size(), 3u);
+  EXPECT_EQ(j["succeeded"], 2);
+  EXPECT_EQ(j["failed"], 1);
+  EXPECT_EQ(j["files"][0]["result"]["genus"], 2);
+  EXPECT_FALSE(j["files"][1]["ok"]);
+  EXPECT_NE(j["files"][1]["error"].get<std::string>().find("orientable"), std::string::npos);
+  EXPECT_EQ(j["files"][2]["result"]["genus"], 1);
+
+  // The text summary lists every file and the count; all good -> exit 0.
+  fs::remove(dir / "b_klein.obj");
+  const CliRun t = run("info " + dir.string() + " " + extra);
+  EXPECT_EQ(t.code, 0);
+  EXPECT_NE(t.out.find("2 of 2 files succeeded"), std::string::npos);
+  EXPECT_NE(t.out.find("a_eight.obj"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(InfoBatch, GlobalOptionsAreAcceptedAndValidated) {
+  EXPECT_EQ(run("info --time-limit 5 -q " + quadcover::testing::data_path("eight_genus2")).code, 0);
+  EXPECT_EQ(run("info --time-limit -1 " + quadcover::testing::data_path("eight_genus2")).code, 2);
+  EXPECT_EQ(run("info /no/such/file.obj").code, 2);
+}
+
+}  // namespace
