@@ -384,6 +384,7 @@ PolygonSoup read_ply_from_memory(std::string_view bytes, const std::string& name
   }
   if (vertex_elements != 1) throw InputError(name, 0, "PLY file must declare exactly one 'vertex' element");
   if (face_elements > 1) throw InputError(name, 0, "PLY file declares more than one 'face' element");
+  for (const auto& e : h.elements) find_roles(e, name);  // report missing x/y/z or index lists before any data
   PolygonSoup soup;
   soup.file = name;
   std::vector<double> xyz;
