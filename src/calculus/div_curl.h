@@ -1,15 +1,25 @@
 #pragma once
 // Discrete divergence and curl of piecewise constant fields (Def. 1.11, formulas (1.6)); at boundary vertices and
 // edges the terms of missing triangles vanish. Averaging property (1.7): div = ½ Cᵀ div*, curl = ½ Cᵀ curl*.
+//
+// Sign of curl*: we follow the integral definition of Def. 1.11 (τ counter-clockwise along ∂star(e)), which is
+// what (1.7), curl* = -div* J, the system (1.9) and the frame-field curl (3.3) all use:
+//     curl* X(e) = ⟨X_t, e⟩ - ⟨X_s, e⟩,   s = EF(e,0) (e positively oriented in s), t = EF(e,1).
+// The explicit formula printed in (1.6), ⟨X_s, e⟩ - ⟨X_t, e⟩, has the opposite sign of its own "= -div* JX".
+// div* X(e) = ⟨X_s, Je⟩ - ⟨X_t, Je⟩ as printed. Both are independent of the orientation of e.
 #include <Eigen/Core>
 
 #include "calculus/vector_field.h"
 
 namespace quadcover {
 
-Eigen::VectorXd divergence(const Mesh& mesh, const VectorField& X);       ///< div X, #V
-Eigen::VectorXd curl(const Mesh& mesh, const VectorField& X);             ///< curl X, #V
-Eigen::VectorXd divergence_star(const Mesh& mesh, const VectorField& X);  ///< div* X, #E  (1.6)
-Eigen::VectorXd curl_star(const Mesh& mesh, const VectorField& X);        ///< curl* X, #E (1.6), s = EF(e,0), t = EF(e,1)
+/// div X(p) = -½ Σ_{t∋p} ⟨X_t, J e_t⟩ = -∫⟨X, ∇φ_p⟩ (1.6), #V.  X: #F.
+Eigen::VectorXd divergence(const Mesh& mesh, const VectorField& X);
+/// curl X(p) = ½ Σ_{t∋p} ⟨X_t, e_t⟩ = -div JX(p) (1.6), #V.
+Eigen::VectorXd curl(const Mesh& mesh, const VectorField& X);
+/// div* X(e) = ⟨X_s - X_t, J e⟩ = -∫⟨X, ∇ψ_e⟩ (1.6), #E.
+Eigen::VectorXd divergence_star(const Mesh& mesh, const VectorField& X);
+/// curl* X(e) = ⟨X_t - X_s, e⟩ = -div* JX(e), #E (see the sign note above); s = EF(e,0), t = EF(e,1).
+Eigen::VectorXd curl_star(const Mesh& mesh, const VectorField& X);
 
 }  // namespace quadcover

@@ -1,13 +1,17 @@
 #pragma once
-// Sparse Cholesky factorization computed once and reused for many right-hand sides. Backed by CHOLMOD
-// (supernodal, real or complex Hermitian) when QUADCOVER_HAVE_CHOLMOD, else Eigen's SimplicialLLT.
-// Positive semi-definite stiffness matrices are made definite by the caller (see hodge.h), never silently here.
+// Sparse Cholesky factorization computed once and reused for many right-hand sides (thesis 1.2.4). Backed by
+// CHOLMOD (supernodal LLᴴ, real or complex Hermitian) when QUADCOVER_HAVE_CHOLMOD, else Eigen's SimplicialLLT
+// with AMD ordering. Positive semi-definite stiffness matrices are made definite by the caller (see hodge.h),
+// never silently here: no diagonal shift is ever added.
 #include <Eigen/SparseCore>
 #include <memory>
 
 #include "mesh/mesh.h"
 
 namespace quadcover {
+
+/// Which factorization library to use. Automatic = CHOLMOD when compiled in, else Eigen.
+enum class CholeskyBackend { Automatic, Cholmod, Eigen };
 
 template <class Scalar>
 class SparseCholesky {
@@ -16,18 +20,32 @@ class SparseCholesky {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
-  SparseCholesky();
+  SparseCholesky();  ///< CholeskyBackend::Automatic
+  /// \throw NumericalError if `backend` is Cholmod and quadcover was built without CHOLMOD.
+  explicit SparseCholesky(CholeskyBackend backend);
   ~SparseCholesky();
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
-  /// Symbolic analysis + numeric factorization of the symmetric/Hermitian positive definite A (full storage).
-  /// \throw NumericalError naming `stage` if A is not positive definite.
+  /// True iff quadcover was built with CHOLMOD (QUADCOVER_USE_CHOLMOD=ON).
+  static bool cholmod_available();
+  /// The backend in use: Cholmod or Eigen (never Automatic).
+  CholeskyBackend backend() const;
+
+  /// Symbolic analysis + numeric factorization of the symmetric/Hermitian positive definite A (full storage;
+  /// only the lower triangle is read). A may be 0 by 0.
+  /// \throw NumericalError naming `stage` if A is not positive definite (or not square).
   void compute(const Matrix& A, const char* stage = "cholesky");
-  /// Numeric refactorization reusing the symbolic analysis (same sparsity pattern).
+  /// Numeric refactorization reusing the symbolic analysis of compute(); A must have the same sparsity pattern.
+  /// \throw NumericalError if A is not positive definite, has another pattern, or compute() was never called.
   void refactorize(const Matrix& A);
+  /// x with A x = b.  b: rows() entries.
   Vector solve(const Vector& b) const;
+  /// X with A X = B, all columns at once.  B: rows() by k.
   Dense solve(const Dense& B) const;
+  /// y = L⁻¹ P b for the factorization Pᵀ L Lᴴ P = A, so that bᴴ A⁻¹ b = ‖y‖² (forward substitution only; the
+  /// energy E_D of thesis 6.2.1 is ½‖y‖²).
+  Vector forward_solve(const Vector& b) const;
   Eigen::Index rows() const;
 
  private:

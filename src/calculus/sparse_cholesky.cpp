@@ -1,0 +1,256 @@
+// Sparse Cholesky backends: CHOLMOD (supernodal) and Eigen::SimplicialLLT. See sparse_cholesky.h.
+#include "calculus/sparse_cholesky.h"
+
+#include <Eigen/SparseCholesky>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "common/errors.h"
+
+#ifdef QUADCOVER_HAVE_CHOLMOD
+#include <cholmod.h>
+#endif
+
+namespace quadcover {
+
+namespace {
+
+template <class Scalar>
+constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
+
+#ifdef QUADCOVER_HAVE_CHOLMOD
+// CHOLMOD state: one cholmod_common per factorization (CHOLMOD keeps workspace and status in it, so solves are
+// serialized with a mutex), the factor L, and a copy of the lower triangle it was computed from.
+template <class Scalar>
+class CholmodBackend {
+ public:
+  using Matrix = Eigen::SparseMatrix<Scalar>;
+  using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  CholmodBackend() {
+    cholmod_start(&common_);
+    common_.supernodal = CHOLMOD_SUPERNODAL;  // supernodal LLᴴ (BLAS-3)
+    common_.print = 0;                        // the library never prints; failures become NumericalError
+  }
+  ~CholmodBackend() {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_finish(&common_);
+  }
+  CholmodBackend(const CholmodBackend&) = delete;
+  CholmodBackend& operator=(const CholmodBackend&) = delete;
+
+  void analyze(const Matrix& lower, const std::string& stage) {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_sparse A = view(lower);
+    factor_ = cholmod_analyze(&A, &common_);
+    if (!factor_ || common_.status < CHOLMOD_OK)
+      throw NumericalError(stage, "CHOLMOD symbolic analysis failed (status " + std::to_string(common_.status) + ")");
+  }
+
+  void factorize(const Matrix& lower, const std::string& stage) {
+    cholmod_sparse A = view(lower);
+    const int ok = cholmod_factorize(&A, factor_, &common_);
+    if (!ok || common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n)
+      throw NumericalError(stage, "matrix of size " + std::to_string(lower.rows()) +
+                                      " is not positive definite (CHOLMOD stopped at column " +
+                                      std::to_string(factor_->minor) + ")");
+    if (common_.status < CHOLMOD_OK)
+      throw NumericalError(stage, "CHOLMOD factorization failed (status " + std::to_string(common_.status) + ")");
+  }
+
+  /// sys = CHOLMOD_A (full solve), or CHOLMOD_P then CHOLMOD_L for the forward half.
+  Dense solve(const Dense& B, bool forward_only) const {
+    std::lock_guard lock(mutex_);
+    Dense X = B;
+    const int systems_full[] = {CHOLMOD_A};
+    const int systems_forward[] = {CHOLMOD_P, CHOLMOD_L};
+    const int* systems = forward_only ? systems_forward : systems_full;
+    const int count = forward_only ? 2 : 1;
+    for (int s = 0; s < count; ++s) {
+      cholmod_dense in = view(X);
+      cholmod_dense* out = cholmod_solve(systems[s], factor_, &in, &common_);
+      if (!out) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")");
+      std::copy_n(static_cast<const Scalar*>(out->x), X.size(), X.data());
+      cholmod_free_dense(&out, &common_);
+    }
+    return X;
+  }
+
+ private:
+  static int xtype() { return kIsComplex<Scalar> ? CHOLMOD_COMPLEX : CHOLMOD_REAL; }  // interleaved re/im
+
+  // Non-owning views of Eigen storage (column-major, int indices, compressed).
+  static cholmod_sparse view(const Matrix& m) {
+    cholmod_sparse A{};
+    A.nrow = static_cast<size_t>(m.rows());
+    A.ncol = static_cast<size_t>(m.cols());
+    A.nzmax = static_cast<size_t>(m.nonZeros());
+    A.p = const_cast<int*>(m.outerIndexPtr());
+    A.i = const_cast<int*>(m.innerIndexPtr());
+    A.x = const_cast<Scalar*>(m.valuePtr());
+    A.stype = -1;  // lower triangle stored; upper = conjugate transpose
+    A.itype = CHOLMOD_INT;
+    A.xtype = xtype();
+    A.dtype = CHOLMOD_DOUBLE;
+    A.sorted = 1;
+    A.packed = 1;
+    return A;
+  }
+  static cholmod_dense view(Dense& m) {
+    cholmod_dense B{};
+    B.nrow = static_cast<size_t>(m.rows());
+    B.ncol = static_cast<size_t>(m.cols());
+    B.nzmax = static_cast<size_t>(m.size());
+    B.d = static_cast<size_t>(m.rows());
+    B.x = m.data();
+    B.xtype = xtype();
+    B.dtype = CHOLMOD_DOUBLE;
+    return B;
+  }
+
+  mutable cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+  mutable std::mutex mutex_;
+};
+#endif
+
+}  // namespace
+
+template <class Scalar>
+struct SparseCholesky<Scalar>::Impl {
+  CholeskyBackend backend = CholeskyBackend::Eigen;
+  std::string stage = "cholesky";
+  Eigen::Index n = -1;  ///< -1 until compute()
+  Eigen::Index lower_nnz = 0;
+  Eigen::SimplicialLLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> eigen;
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  std::optional<CholmodBackend<Scalar>> cholmod;
+#endif
+
+  void check_posdef() const {
+    if (eigen.info() != Eigen::Success)
+      throw NumericalError(stage, "matrix of size " + std::to_string(n) + " is not positive definite (Eigen LLT)");
+  }
+};
+
+template <class Scalar>
+SparseCholesky<Scalar>::SparseCholesky() : SparseCholesky(CholeskyBackend::Automatic) {}
+
+template <class Scalar>
+SparseCholesky<Scalar>::SparseCholesky(CholeskyBackend backend) : impl_(std::make_unique<Impl>()) {
+  if (backend == CholeskyBackend::Automatic)
+    backend = cholmod_available() ? CholeskyBackend::Cholmod : CholeskyBackend::Eigen;
+  if (backend == CholeskyBackend::Cholmod && !cholmod_available())
+    throw NumericalError("cholesky", "the CHOLMOD backend was requested but quadcover was built without CHOLMOD");
+  impl_->backend = backend;
+}
+
+template <class Scalar>
+SparseCholesky<Scalar>::~SparseCholesky() = default;
+template <class Scalar>
+SparseCholesky<Scalar>::SparseCholesky(SparseCholesky&&) noexcept = default;
+template <class Scalar>
+SparseCholesky<Scalar>& SparseCholesky<Scalar>::operator=(SparseCholesky&&) noexcept = default;
+
+template <class Scalar>
+bool SparseCholesky<Scalar>::cholmod_available() {
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  return true;
+#else
+  return false;
+#endif
+}
+
+template <class Scalar>
+CholeskyBackend SparseCholesky<Scalar>::backend() const {
+  return impl_->backend;
+}
+
+template <class Scalar>
+void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage) {
+  Impl& im = *impl_;
+  im.stage = stage ? stage : "cholesky";
+  if (A.rows() != A.cols())
+    throw NumericalError(im.stage, "matrix is " + std::to_string(A.rows()) + " by " + std::to_string(A.cols()) +
+                                       ", not square");
+  im.n = -1;
+  Matrix lower = A.template triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  im.lower_nnz = lower.nonZeros();
+  if (A.rows() > 0) {
+#ifdef QUADCOVER_HAVE_CHOLMOD
+    if (im.backend == CholeskyBackend::Cholmod) {
+      im.cholmod.emplace();
+      im.cholmod->analyze(lower, im.stage);
+      im.cholmod->factorize(lower, im.stage);
+    }
+#endif
+    if (im.backend == CholeskyBackend::Eigen) {
+      im.eigen.compute(lower);
+      im.check_posdef();
+    }
+  }
+  im.n = A.rows();
+}
+
+template <class Scalar>
+void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
+  Impl& im = *impl_;
+  if (im.n < 0) throw NumericalError(im.stage, "refactorize() called before compute()");
+  Matrix lower = A.template triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  if (A.rows() != im.n || A.cols() != im.n || lower.nonZeros() != im.lower_nnz)
+    throw NumericalError(im.stage, "refactorize(): the sparsity pattern differs from the analyzed one");
+  if (im.n == 0) return;
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  if (im.backend == CholeskyBackend::Cholmod) im.cholmod->factorize(lower, im.stage);
+#endif
+  if (im.backend == CholeskyBackend::Eigen) {
+    im.eigen.factorize(lower);
+    im.check_posdef();
+  }
+}
+
+template <class Scalar>
+typename SparseCholesky<Scalar>::Dense SparseCholesky<Scalar>::solve(const Dense& B) const {
+  const Impl& im = *impl_;
+  if (im.n < 0) throw NumericalError(im.stage, "solve() called before compute()");
+  if (B.rows() != im.n)
+    throw NumericalError(im.stage, "solve(): right-hand side has " + std::to_string(B.rows()) + " rows, matrix " +
+                                       std::to_string(im.n));
+  if (im.n == 0 || B.cols() == 0) return Dense(B.rows(), B.cols());
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  if (im.backend == CholeskyBackend::Cholmod) return im.cholmod->solve(B, false);
+#endif
+  return im.eigen.solve(B);
+}
+
+template <class Scalar>
+typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::solve(const Vector& b) const {
+  return solve(Dense(b)).col(0);
+}
+
+template <class Scalar>
+typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::forward_solve(const Vector& b) const {
+  const Impl& im = *impl_;
+  if (im.n < 0) throw NumericalError(im.stage, "forward_solve() called before compute()");
+  if (b.rows() != im.n) throw NumericalError(im.stage, "forward_solve(): right-hand side has the wrong size");
+  if (im.n == 0) return Vector(0);
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  if (im.backend == CholeskyBackend::Cholmod) return im.cholmod->solve(Dense(b), true).col(0);
+#endif
+  // Eigen: P A Pᵀ = L Lᴴ, so y = L⁻¹ P b.
+  Vector pb = im.eigen.permutationP() * b;
+  return im.eigen.matrixL().solve(pb);
+}
+
+template <class Scalar>
+Eigen::Index SparseCholesky<Scalar>::rows() const {
+  return impl_->n < 0 ? 0 : impl_->n;
+}
+
+template class SparseCholesky<double>;
+template class SparseCholesky<Complex>;
+
+}  // namespace quadcover
