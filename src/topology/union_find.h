@@ -1,0 +1,33 @@
+#pragma once
+// Disjoint sets with path halving and union by size (internal helper of the topology stage).
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace quadcover::detail {
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(static_cast<std::size_t>(n)), size_(static_cast<std::size_t>(n), 1) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  /// Merges the sets of a and b; false if they were already one set.
+  bool unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+    return true;
+  }
+
+ private:
+  std::vector<int> parent_, size_;
+};
+
+}  // namespace quadcover::detail

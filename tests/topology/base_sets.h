@@ -1,0 +1,29 @@
+#pragma once
+// Test helper: deterministic pseudo-random base sets B of interior vertices.
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace quadcover::testing {
+
+/// `count` distinct interior vertices drawn with a fixed seed (fewer if the mesh has fewer), sorted.
+inline std::vector<int> random_interior_vertices(const Mesh& mesh, int count, unsigned seed) {
+  std::vector<int> interior;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (!mesh.is_boundary_vertex(v)) interior.push_back(v);
+  std::mt19937 rng(seed);
+  std::vector<int> chosen;
+  for (int i = 0; i < count && !interior.empty(); ++i) {
+    std::uniform_int_distribution<std::size_t> pick(0, interior.size() - 1);
+    const std::size_t j = pick(rng);
+    chosen.push_back(interior[j]);
+    interior[j] = interior.back();
+    interior.pop_back();
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+}  // namespace quadcover::testing
