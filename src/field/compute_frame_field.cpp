@@ -1,0 +1,66 @@
+#include "field/compute_frame_field.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "field/indices.h"
+#include "field/matching.h"
+#include "field/propagation.h"
+#include "field/smoothing.h"
+
+namespace quadcover {
+
+FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptions& options, ProgressSink& progress) {
+  FrameFieldResult r;
+  const int nf = mesh.num_faces();
+  progress.report("field", 0.0, "principal curvature frames");
+  r.curvature = principal_curvature_frames(mesh, options.curvature);  // 5.1.1
+  const FrameField curvature_field = cross_field_with_straightest_matching(mesh, r.curvature.direction);  // (5.1)
+  r.stability = stability_weights(mesh, r.curvature, field_curvature(mesh, curvature_field));            // (5.2)
+
+  progress.report("field", 0.3, "feature alignment and propagation");
+  const FeatureConstraints features = feature_constraints(mesh, options.features);
+  r.constrained = features.constrained;
+  Eigen::VectorXcd X = r.curvature.direction;
+  for (int t = 0; t < nf; ++t)
+    if (r.constrained[static_cast<std::size_t>(t)]) X[t] = features.direction[t];
+  r.trusted = select_trusted(mesh, r.stability, options.trusted_fraction, r.constrained);
+  X = propagate_frames(mesh, X, r.trusted, r.stability);  // 5.1.2
+  r.field = cross_field_with_straightest_matching(mesh, X);
+  r.energy_smooth_initial = r.energy_smooth = smoothing_energy(mesh, r.field);
+
+  if (!progress.cancelled() && options.smoothing_rounds > 0) {
+    progress.report("field", 0.5, "smoothing (5.3)");
+    FrameSmoother smoother(mesh, r.field, r.stability, r.trusted, r.constrained, options.lambda);
+    Eigen::VectorXd alpha = smoother.solve();
+    for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
+      // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching.
+      int changed = 0;
+      const Eigen::VectorXd& theta = smoother.curvature();
+      for (int e = 0; e < mesh.num_edges(); ++e) {
+        if (mesh.is_boundary_edge(e)) continue;
+        const double smoothed = theta[e] - alpha[mesh.EF()(e, 0)] + alpha[mesh.EF()(e, 1)];
+        const int k = static_cast<int>(std::lround(2.0 * smoothed / std::numbers::pi));
+        if (k != 0) {
+          smoother.change_matching(e, k);
+          ++changed;
+        }
+      }
+      if (changed == 0) break;
+      alpha = smoother.solve();
+    }
+    r.field = smoother.rotated(alpha);
+    r.energy_smooth = smoothing_energy(mesh, r.field);
+    r.energy_align = smoother.alignment_energy(alpha);
+  }
+  progress.report("field", 0.9, "indices");
+  r.branch_points = branch_points(mesh, r.field);
+  progress.report("field", 1.0, "done");
+  return r;
+}
+
+FrameField compute_frame_field(const Mesh& mesh, const FieldOptions& options, ProgressSink& progress) {
+  return compute_frame_field_detailed(mesh, options, progress).field;
+}
+
+}  // namespace quadcover

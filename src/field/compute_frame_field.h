@@ -1,0 +1,52 @@
+#pragma once
+// The whole frame-field stage (thesis Chapter 5): curvature frames, feature alignment, trusted regions,
+// propagation, smoothing, indices.
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/progress.h"
+#include "field/curvature_frames.h"
+#include "field/feature_alignment.h"
+#include "field/frame_field.h"
+#include "mesh/mesh.h"
+
+namespace quadcover {
+
+struct FieldOptions {
+  CurvatureOptions curvature;  ///< estimator of the principal curvature frames (default HP)
+  FeatureOptions features;     ///< boundary / sharp-edge alignment (default on, 35°)
+  /// Fraction of faces whose curvature frames are trusted (5.1.2); the thesis recommends 10-30%.
+  double trusted_fraction = 0.2;
+  /// λ of (5.3) in (0, 1]: 1 ignores the curvature directions (only fixed faces anchor the field), small values
+  /// keep trusted frames in place. 0.5 weighs the (scale-normalized) terms equally; on the test meshes it lowers
+  /// E_S of the propagated field by a large factor while trusted frames turn by a few degrees on average.
+  double lambda = 0.5;
+  /// Smoothing rounds. After each round but the last, the matching is re-chosen as the straightest one (5.1) for
+  /// the smoothed frames (a right-hand-side update, no refactorization) and the system is solved again.
+  int smoothing_rounds = 2;
+};
+
+/// The frame field and what it was made from.
+struct FrameFieldResult {
+  FrameField field;                 ///< cross field (Y = iX) with its matching
+  CurvatureFrames curvature;        ///< principal curvature frames (5.1.1)
+  Eigen::VectorXd stability;        ///< #F, ω_t (5.2)
+  std::vector<char> trusted;        ///< #F, faces of the alignment term / propagation sources
+  std::vector<char> constrained;    ///< #F, feature-aligned faces (fixed during smoothing)
+  std::vector<BranchPoint> branch_points;
+  double energy_smooth_initial = 0;  ///< E_S of the propagated field with its straightest matching
+  double energy_smooth = 0;          ///< E_S of the result
+  double energy_align = 0;           ///< E_A of the result's rotation angles
+};
+
+/// Runs thesis Chapter 5 with the options' defaults documented above.
+/// \pre mesh is a valid triangle mesh. \throw NumericalError if the smoothing system cannot be factored.
+/// Honours progress.cancelled() between stages (returns the field reached so far, always a complete field).
+FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptions& options = {},
+                                              ProgressSink& progress = null_progress());
+
+/// Frame field guided by principal curvature (thesis 5.1); see FieldOptions for the defaults.
+FrameField compute_frame_field(const Mesh& mesh, const FieldOptions& options = {},
+                               ProgressSink& progress = null_progress());
+
+}  // namespace quadcover

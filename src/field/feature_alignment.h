@@ -1,0 +1,31 @@
+#pragma once
+// Alignment to boundary curves and sharp feature edges (beyond the thesis): faces along such curves get their
+// cross fixed to the curve direction; they count as trusted and smoothing keeps them fixed.
+#include <Eigen/Core>
+#include <vector>
+
+#include "mesh/mesh.h"
+
+namespace quadcover {
+
+struct FeatureOptions {
+  bool boundaries = true;  ///< constrain faces that have a boundary edge
+  /// An interior edge is a sharp feature when the angle between its two face normals |β_e| exceeds this many
+  /// degrees. 35° catches machined edges (typically 45°-90°) but not the folds of a curved organic mesh at
+  /// usual resolution (a few degrees per edge). <= 0 disables sharp features.
+  double sharp_angle_degrees = 35.0;
+};
+
+struct FeatureConstraints {
+  std::vector<char> constrained;   ///< #F: 1 if the face's cross is fixed
+  Eigen::VectorXcd direction;      ///< #F: unit direction of the curve in the face basis (0 where unconstrained)
+  std::vector<int> source_edge;    ///< #F: the edge the face is aligned with, -1 where unconstrained
+  std::vector<int> feature_edges;  ///< sharp interior edges, ascending (boundary edges not listed)
+};
+
+/// Finds boundary and sharp edges and, for every face having one, the direction its cross must contain.
+/// A face with several such edges follows the strongest (boundary counts as π, a sharp edge as |β_e|; ties:
+/// longer edge, then lower face-edge index): a cross cannot contain two non-perpendicular directions.
+FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options = {});
+
+}  // namespace quadcover

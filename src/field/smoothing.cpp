@@ -1,0 +1,157 @@
+#include "field/smoothing.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "common/errors.h"
+#include "field/matching.h"
+
+namespace quadcover {
+
+struct FrameSmoother::Solver {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+};
+
+FrameSmoother::~FrameSmoother() = default;
+FrameSmoother::FrameSmoother(FrameSmoother&&) noexcept = default;
+FrameSmoother& FrameSmoother::operator=(FrameSmoother&&) noexcept = default;
+
+FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Eigen::VectorXd& stability,
+                             const std::vector<char>& trusted, const std::vector<char>& fixed, double lambda)
+    : mesh_(&mesh), X0_(input.X), matching_(input.matching), lambda_(lambda) {
+  const int nf = mesh.num_faces(), ne = mesh.num_edges();
+  if (!(lambda > 0 && lambda <= 1)) throw std::invalid_argument("FrameSmoother: λ must lie in (0, 1]");
+  if (X0_.size() != nf || matching_.size() != ne || stability.size() != nf ||
+      trusted.size() != static_cast<std::size_t>(nf) || (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
+    throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
+  theta_ = field_curvature(mesh, make_cross_field(X0_, matching_));
+  omega_ = smoothing_edge_weights(mesh);
+
+  // Alignment weights a_t, normalized by their mean over the trusted faces.
+  align_ = Eigen::VectorXd::Zero(nf);
+  double sum = 0;
+  int count = 0;
+  for (int t = 0; t < nf; ++t)
+    if (trusted[static_cast<std::size_t>(t)]) {
+      align_[t] = stability[t] * mesh.face_areas()[t];
+      sum += align_[t];
+      ++count;
+    }
+  if (sum > 0) align_ *= count / sum;
+
+  // Fixed faces; then fix the most stable face of every free group that has no anchor.
+  fixed_.assign(static_cast<std::size_t>(nf), 0);
+  for (std::size_t t = 0; t < fixed.size(); ++t) fixed_[t] = fixed[t];
+  std::vector<int> group(static_cast<std::size_t>(nf), -1), stack;
+  for (int seed = 0; seed < nf; ++seed) {
+    if (fixed_[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
+    bool anchored = false;
+    int best = seed;
+    stack.assign(1, seed);
+    group[static_cast<std::size_t>(seed)] = seed;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      if ((1 - lambda) * align_[f] > 0) anchored = true;
+      if (stability[f] > stability[best] || (stability[f] == stability[best] && f < best)) best = f;
+      for (int k = 0; k < 3; ++k) {
+        const int g = mesh.neighbor(f, k);
+        if (g < 0) continue;
+        if (fixed_[static_cast<std::size_t>(g)]) {
+          anchored = true;
+        } else if (group[static_cast<std::size_t>(g)] < 0) {
+          group[static_cast<std::size_t>(g)] = seed;
+          stack.push_back(g);
+        }
+      }
+    }
+    if (!anchored) fixed_[static_cast<std::size_t>(best)] = 1;
+  }
+
+  unknown_of_face_.assign(static_cast<std::size_t>(nf), -1);
+  for (int t = 0; t < nf; ++t)
+    if (!fixed_[static_cast<std::size_t>(t)]) {
+      unknown_of_face_[static_cast<std::size_t>(t)] = static_cast<int>(unknowns_.size());
+      unknowns_.push_back(t);
+    }
+  const int n = num_unknowns();
+
+  // A (5.4) restricted to the free faces (fixed α = 0 moves nothing to the right-hand side), and b.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(n + 4 * ne));
+  b_ = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const double a = (1 - lambda) * align_[unknowns_[static_cast<std::size_t>(i)]];
+    if (a > 0) entries.emplace_back(i, i, a);
+  }
+  for (int e = 0; e < ne; ++e) {
+    if (mesh.is_boundary_edge(e)) continue;
+    const int s = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 0))];
+    const int t = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 1))];
+    const double w = lambda * omega_[e];
+    // ∂/∂α of ω(θ - α_s + α_t)²: row t gets ω(α_t - α_s) = -ωθ, row s gets ω(α_s - α_t) = ωθ.
+    if (s >= 0) {
+      entries.emplace_back(s, s, w);
+      b_[s] += w * theta_[e];
+    }
+    if (t >= 0) {
+      entries.emplace_back(t, t, w);
+      b_[t] -= w * theta_[e];
+    }
+    if (s >= 0 && t >= 0) {
+      entries.emplace_back(s, t, -w);
+      entries.emplace_back(t, s, -w);
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  solver_ = std::make_unique<Solver>();
+  solver_->ldlt.compute(A);
+  if (solver_->ldlt.info() != Eigen::Success)
+    throw NumericalError("field smoothing (5.4)", "factorization of the " + std::to_string(n) + "×" +
+                                                      std::to_string(n) + " system failed");
+}
+
+void FrameSmoother::change_matching(int e, int k) {
+  if (k == 0 || mesh_->is_boundary_edge(e)) return;
+  matching_[e] += k;
+  const double d = 0.5 * std::numbers::pi * k;  // θ_e -= (π/2)k
+  theta_[e] -= d;
+  const int s = unknown_of_face_[static_cast<std::size_t>(mesh_->EF()(e, 0))];
+  const int t = unknown_of_face_[static_cast<std::size_t>(mesh_->EF()(e, 1))];
+  if (s >= 0) b_[s] -= lambda_ * omega_[e] * d;  // (5.2.2)
+  if (t >= 0) b_[t] += lambda_ * omega_[e] * d;
+}
+
+Eigen::VectorXd FrameSmoother::solve() const {
+  Eigen::VectorXd alpha = Eigen::VectorXd::Zero(mesh_->num_faces());
+  if (unknowns_.empty()) return alpha;
+  const Eigen::VectorXd x = solver_->ldlt.solve(b_);
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) alpha[unknowns_[i]] = x[static_cast<Eigen::Index>(i)];
+  return alpha;
+}
+
+FrameField FrameSmoother::rotated(const Eigen::VectorXd& alpha) const {
+  Eigen::VectorXcd X(X0_.size());
+  for (Eigen::Index t = 0; t < X.size(); ++t) X[t] = std::polar(1.0, alpha[t]) * X0_[t];
+  return make_cross_field(std::move(X), matching_);
+}
+
+double FrameSmoother::smoothing_energy(const Eigen::VectorXd& alpha) const {
+  double E = 0;
+  for (int e = 0; e < mesh_->num_edges(); ++e) {
+    if (mesh_->is_boundary_edge(e)) continue;
+    const double d = theta_[e] - alpha[mesh_->EF()(e, 0)] + alpha[mesh_->EF()(e, 1)];
+    E += omega_[e] * d * d;
+  }
+  return E;
+}
+
+double FrameSmoother::alignment_energy(const Eigen::VectorXd& alpha) const {
+  return (align_.array() * alpha.array().square()).sum();
+}
+
+}  // namespace quadcover

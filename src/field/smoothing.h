@@ -1,0 +1,67 @@
+#pragma once
+// Frame field smoothing (thesis 5.2.1, (5.3)-(5.4)) with a factorization reused across matching changes (5.2.2).
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "field/frame_field.h"
+#include "mesh/mesh.h"
+
+namespace quadcover {
+
+/// Minimizes E(α) = λ E_S(α) + (1-λ) E_A(α) (5.3) over per-face rotation angles α_t of an input field X⁰:
+///   E_S(α) = Σ_e ω_e (θ_e - α_s + α_t)²,  ω_e = ‖e‖²/A_e, θ the curvature (3.4) of X⁰ with the current matching;
+///   E_A(α) = Σ_{trusted t} a_t α_t²,  a_t = ω_t^stable A_t / mean_trusted(ω^stable A)  (thesis: ω_t^stable A_t;
+///   we divide by its mean so that E_A, like E_S, is independent of the mesh's scale and λ means the same on
+///   every mesh).
+/// Faces marked `fixed` keep α_t = 0 (feature alignment). A connected group of free faces with neither a fixed
+/// neighbour nor a positive alignment weight would leave A (5.4) singular (E is invariant under a common
+/// rotation); its most stable face is then fixed as well.
+///
+/// A (5.4) does not depend on the matching: it is factored once in the constructor; change_matching() updates two
+/// entries of b and solve() costs two triangular solves.
+/// The smoother keeps a pointer to `mesh`, which must outlive it.
+class FrameSmoother {
+ public:
+  /// \param input      X⁰ and its matching (Y is ignored; the result is a cross field)
+  /// \param stability  #F stability weights ω_t (5.2)
+  /// \param trusted    #F flags of the alignment term E_A
+  /// \param fixed      #F flags of faces whose frame must not rotate (may be empty)
+  /// \param lambda     λ ∈ (0, 1]
+  /// \throw std::invalid_argument for λ outside (0,1] or wrong sizes; NumericalError if A cannot be factored.
+  FrameSmoother(const Mesh& mesh, const FrameField& input, const Eigen::VectorXd& stability,
+                const std::vector<char>& trusted, const std::vector<char>& fixed, double lambda);
+  ~FrameSmoother();
+  FrameSmoother(FrameSmoother&&) noexcept;
+  FrameSmoother& operator=(FrameSmoother&&) noexcept;
+
+  /// m_e += k on interior edge e: θ_e -= (π/2)k and only b changes (5.2.2).
+  void change_matching(int e, int k);
+  /// The minimizer α of (5.3) for the current matching: #F, 0 at fixed faces.
+  Eigen::VectorXd solve() const;
+  /// X_t = e^{iα_t} X⁰_t with the current matching (a cross field).
+  FrameField rotated(const Eigen::VectorXd& alpha) const;
+
+  double smoothing_energy(const Eigen::VectorXd& alpha) const;  ///< E_S(α)
+  double alignment_energy(const Eigen::VectorXd& alpha) const;  ///< E_A(α)
+
+  const Eigen::VectorXi& matching() const { return matching_; }
+  const Eigen::VectorXd& curvature() const { return theta_; }  ///< θ of X⁰ with the current matching, #E
+  /// Faces held at α = 0: the `fixed` ones plus those fixed to make A definite.
+  const std::vector<char>& fixed_faces() const { return fixed_; }
+  int num_unknowns() const { return static_cast<int>(unknowns_.size()); }
+
+ private:
+  struct Solver;
+  const Mesh* mesh_;
+  Eigen::VectorXcd X0_;
+  Eigen::VectorXi matching_;
+  Eigen::VectorXd theta_, omega_, align_;  // θ_e, ω_e (#E); a_t (#F)
+  double lambda_;
+  std::vector<char> fixed_;
+  std::vector<int> unknown_of_face_, unknowns_;
+  Eigen::VectorXd b_;
+  std::unique_ptr<Solver> solver_;
+};
+
+}  // namespace quadcover
