@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
@@ -73,6 +74,36 @@ inline Eigen::VectorXi gauge_matching(const Mesh& mesh, const Eigen::VectorXi& r
   Eigen::VectorXi m = Eigen::VectorXi::Zero(mesh.num_edges());
   for (int e = 0; e < mesh.num_edges(); ++e)
     if (!mesh.is_boundary_edge(e)) m[e] = r[mesh.EF()(e, 0)] - r[mesh.EF()(e, 1)];
+  return m;
+}
+
+/// Matching with prescribed isolated branch points: starting from `m`, for every pair (a, b) adds δ on the edges of a
+/// shortest vertex path a -> b (with the edge's orientation), which changes the quarter index by +δ at a and -δ at b
+/// and leaves every other vertex unchanged.
+inline Eigen::VectorXi add_branch_pairs(const Mesh& mesh, Eigen::VectorXi m,
+                                        const std::vector<std::pair<int, int>>& pairs, int delta) {
+  std::vector<std::vector<std::pair<int, int>>> adj(mesh.num_vertices());
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    adj[mesh.E()(e, 0)].push_back({mesh.E()(e, 1), e});
+    adj[mesh.E()(e, 1)].push_back({mesh.E()(e, 0), e});
+  }
+  for (const auto& [a, b] : pairs) {
+    std::vector<int> via(mesh.num_vertices(), -2);
+    std::vector<int> queue{a};
+    via[a] = -1;
+    for (std::size_t i = 0; i < queue.size() && via[b] == -2; ++i)
+      for (const auto& [w, e] : adj[queue[i]])
+        if (via[w] == -2 && !mesh.is_boundary_edge(e)) {
+          via[w] = e;
+          queue.push_back(w);
+        }
+    for (int v = b; v != a;) {
+      const int e = via[v];
+      const int u = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);  // path runs u -> v
+      m[e] += mesh.E()(e, 0) == u ? delta : -delta;
+      v = u;
+    }
+  }
   return m;
 }
 
