@@ -1,0 +1,54 @@
+#pragma once
+// Quad mesh extraction from an integer-grid map (thesis 2.1 requirement 3, 4.2.2; the method follows the idea of
+// QEx, Ebke et al. 2013, written from scratch): the vertices are the integer points of φ (counted once, also on
+// seams and at branch points), the edges are traced along integer iso-lines across triangles and seams using the
+// transitions i^k z + c, and faces are read off the resulting rotation system. All predicates are exact (fixed
+// point), so the result is consistent across seams. Folded or degenerate triangles and broken seams are cut out
+// locally and reported; iso-lines that leave the surface end on the boundary, giving clipped polygons.
+#include "common/progress.h"
+#include "mesh/mesh.h"
+#include "param/parameterization.h"
+#include "quad/quad_mesh.h"
+
+namespace quadcover {
+
+struct ExtractOptions {
+  /// Corner coordinates within `snap` grid units of a multiple of ½ are moved onto it (default 1e-6).
+  double snap = 1e-6;
+  /// Two sides of a seam that disagree by more than this (grid units) make the seam a cut (default 1e-5).
+  double seam_tolerance = 1e-5;
+  /// Faces with more corners than this are given up as broken (default 64).
+  int max_face_size = 64;
+};
+
+/// What extraction found and repaired. A valid seamless map on a closed surface with integer branch points gives
+/// all counters but `quads` zero.
+struct ExtractionReport {
+  int quads = 0, non_quads = 0;
+  int grid_vertices = 0;         ///< output vertices at integer points
+  int boundary_vertices = 0;     ///< output vertices where an iso-line meets the boundary
+  int flipped_triangles = 0;     ///< input triangles with negative parameter area (cut out)
+  int degenerate_triangles = 0;  ///< input triangles with zero parameter area (cut out)
+  int torn_seams = 0;            ///< edges whose transition does not hold (treated as boundary)
+  int non_integer_translations = 0;  ///< transitions whose translation is not in Z[i]
+  int failed_traces = 0;         ///< iso-line segments that could not be followed (e.g. into a non-integer branch point)
+  int dropped_faces = 0;         ///< faces not emitted because a bounding segment failed
+  int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
+};
+
+struct ExtractionResult {
+  QuadMesh mesh;
+  ExtractionReport report;
+};
+
+/// Extracts the quad mesh of an integer-grid map. Near-linear in #F + output size.
+/// \pre mesh is a valid triangle mesh; param.uv is #F by 3; transitions are per edge in Parameterization's convention.
+/// \throw InputError if param's array sizes do not match the mesh.
+ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, const ExtractOptions& options = {},
+                               ProgressSink& progress = null_progress());
+
+/// Total parameter-space area Σ_t |area(φ(t))|: for a valid seamless map of a closed surface it equals the
+/// number of quads of the extracted mesh.
+double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
+
+}  // namespace quadcover

@@ -1,0 +1,206 @@
+// Quad extraction on integer-grid maps whose quad meshes are known exactly.
+#include "quad/extract_quads.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "common/errors.h"
+#include "quad/quad_test_maps.h"
+
+namespace quadcover {
+namespace {
+
+using testing::cube_map;
+using testing::square_map;
+using testing::torus_map;
+
+std::vector<int> valences(const QuadMesh& q) {
+  std::vector<int> val(q.num_vertices(), 0);
+  for (const auto& f : q.faces)
+    for (int v : f) ++val[v];  // faces per vertex = valence on a closed manifold
+  return val;
+}
+
+void expect_clean(const ExtractionReport& r) {
+  EXPECT_EQ(r.flipped_triangles, 0);
+  EXPECT_EQ(r.torn_seams, 0);
+  EXPECT_EQ(r.failed_traces, 0);
+  EXPECT_EQ(r.dropped_faces, 0);
+  EXPECT_EQ(r.degenerate_faces, 0);
+}
+
+struct TorusCase {
+  int nM, nm, P, Q, shear;
+  double x0, y0;
+};
+class TorusMaps : public ::testing::TestWithParam<TorusCase> {};
+
+// A torus map with periods (P, 0) and (shear, Q) covers P·Q unit cells: exactly P·Q regular quads.
+TEST_P(TorusMaps, ExactQuadCountAllRegular) {
+  const TorusCase c = GetParam();
+  const auto [mesh, param] = torus_map(c.nM, c.nm, c.P, c.Q, c.shear, c.x0, c.y0);
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_faces(), c.P * c.Q);
+  EXPECT_EQ(res.mesh.num_quads(), c.P * c.Q);
+  EXPECT_EQ(res.mesh.num_vertices(), c.P * c.Q);
+  EXPECT_NEAR(parameter_area(mesh, param.uv), res.mesh.num_quads(), 1e-6);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_TRUE(t.closed());
+  EXPECT_EQ(t.euler_characteristic, 0);
+  for (int v : valences(res.mesh)) EXPECT_EQ(v, 4);
+  for (int i = 0; i < res.mesh.num_vertices(); ++i) {
+    EXPECT_EQ(res.mesh.on_grid[i], 1);
+    EXPECT_DOUBLE_EQ(res.mesh.uv[i].real(), std::round(res.mesh.uv[i].real()));
+  }
+}
+INSTANTIATE_TEST_SUITE_P(
+    Cases, TorusMaps,
+    ::testing::Values(TorusCase{24, 12, 17, 7, 0, 0.31, 0.17},    // generic: lines cross triangles
+                      TorusCase{24, 12, 24, 12, 0, 0.0, 0.0},     // grid points on every mesh vertex, lines on edges
+                      TorusCase{24, 12, 12, 6, 0, 0.0, 0.5},      // lines through vertices and along edges
+                      TorusCase{30, 10, 9, 5, 2, 0.43, 0.05},     // sheared periods
+                      TorusCase{16, 8, 3, 2, 1, 0.5, 0.5},        // coarse: quads much larger than triangles
+                      TorusCase{6, 4, 40, 30, 0, 0.123, 0.456}));  // fine: many grid points per triangle
+
+// Cube surface: rotational seams (i^k) and eight valence-3 branch points at grid points.
+TEST(ExtractQuads, CubeWithBranchPointsAtGridPoints) {
+  for (const auto& [n, m] : {std::pair{3, 5}, std::pair{4, 4}, std::pair{2, 7}}) {
+    const auto [mesh, param] = cube_map(n, m);
+    const ExtractionResult res = extract_quads(mesh, param);
+    expect_clean(res.report);
+    EXPECT_EQ(res.mesh.num_quads(), 6 * m * m);
+    EXPECT_EQ(res.mesh.num_faces(), 6 * m * m);
+    EXPECT_EQ(res.mesh.num_vertices(), 6 * m * m + 2);
+    const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+    EXPECT_TRUE(t.manifold() && t.closed());
+    EXPECT_EQ(t.euler_characteristic, 2);
+    const auto val = valences(res.mesh);
+    EXPECT_EQ(std::count(val.begin(), val.end(), 3), 8);
+    EXPECT_EQ(std::count(val.begin(), val.end(), 4), res.mesh.num_vertices() - 8);
+  }
+}
+
+// Branch points at cell centres (plain Z[i] rounding, thesis 4.2.2 Fig. 4.4 left): each becomes a triangle.
+TEST(ExtractQuads, CubeWithBranchPointsAtCellCentresGivesTriangles) {
+  const int m = 5;
+  const auto [mesh, param] = cube_map(3, m, {0.5, 0.5});
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_quads(), 6 * m * m - 6);  // the 8 triangles cover 8 · ¾ of the area
+  EXPECT_EQ(res.report.non_quads, 8);
+  for (const auto& f : res.mesh.faces) EXPECT_TRUE(f.size() == 4 || f.size() == 3);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.closed());
+  EXPECT_EQ(t.euler_characteristic, 2);
+}
+
+// Round-off on the corner values (as a solver produces) must not change anything: predicates are exact after
+// snapping and seam reconciliation.
+TEST(ExtractQuads, RobustToRoundOffInCornerValues) {
+  auto [mesh, param] = cube_map(3, 5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-1e-9, 1e-9);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) param.uv(f, c) += Complex(noise(rng), noise(rng));
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_quads(), 150);
+  EXPECT_EQ(res.mesh.num_faces(), 150);
+}
+
+// Aligned boundary: the unit square mapped onto [0,6]² gives the 6×6 grid.
+TEST(ExtractQuads, SquareAlignedWithBoundary) {
+  const auto [mesh, param] = square_map(4, 6.0, 0.0, {0, 0});
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_quads(), 36);
+  EXPECT_EQ(res.mesh.num_faces(), 36);
+  EXPECT_EQ(res.mesh.num_vertices(), 49);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.boundary_edges, 24);
+  EXPECT_EQ(t.euler_characteristic, 1);
+}
+
+// Polygon signed area in the parameter plane (all vertices of a face lie in one chart here: no seams).
+double uv_area(const QuadMesh& q, const std::vector<int>& f) {
+  double a = 0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Complex p = q.uv[f[i]], r = q.uv[f[(i + 1) % f.size()]];
+    a += 0.5 * (p.real() * r.imag() - p.imag() * r.real());
+  }
+  return a;
+}
+
+// A rotated square: faces cut by the boundary become clipped polygons; the polygons tile the parameter image
+// except for the four corner triangles they cut off (each under half a cell).
+TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
+  const double scale = 7.3, theta = 0.4;
+  const auto [mesh, param] = square_map(5, scale, theta, {0.21, 0.13});
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.euler_characteristic, 1);
+  EXPECT_GT(res.report.non_quads, 0);
+  EXPECT_GT(res.report.boundary_vertices, 0);
+  double total = 0;
+  for (const auto& f : res.mesh.faces) {
+    const double a = uv_area(res.mesh, f);
+    EXPECT_GT(a, 0);             // counter-clockwise, not folded
+    if (f.size() == 4) EXPECT_LE(a, 1 + 1e-9);
+    total += a;
+  }
+  EXPECT_LE(total, scale * scale + 1e-6);
+  EXPECT_GE(total, scale * scale - 2.0);
+  // Interior quads are unit cells.
+  int unit = 0;
+  for (const auto& f : res.mesh.faces) unit += std::abs(uv_area(res.mesh, f) - 1) < 1e-9;
+  EXPECT_GE(unit, static_cast<int>(std::floor((scale - 2) * (scale - 2))));
+}
+
+// Folds: a displaced vertex flips triangles; those are cut out, the rest is extracted, the output stays manifold.
+TEST(ExtractQuads, SurvivesFoldsAndReportsThem) {
+  auto [mesh, param] = torus_map(24, 12, 17, 7);
+  const int v = mesh.F()(100, 0);
+  int flipped_expected = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.F()(f, c) == v) param.uv(f, c) += Complex(1.7, 0.9);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Complex e1 = param.uv(f, 1) - param.uv(f, 0), e2 = param.uv(f, 2) - param.uv(f, 0);
+    flipped_expected += (e1.real() * e2.imag() - e1.imag() * e2.real()) < 0;
+  }
+  ASSERT_GT(flipped_expected, 0);
+  const ExtractionResult res = extract_quads(mesh, param);
+  EXPECT_EQ(res.report.flipped_triangles, flipped_expected);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(t.non_manifold_edges, 0);
+  EXPECT_EQ(t.degenerate_faces, 0);
+  EXPECT_GT(res.mesh.num_quads(), 17 * 7 - 20);  // only a neighbourhood of the fold is affected
+}
+
+// A broken seam (translation off the lattice) is cut open and reported instead of producing garbage.
+TEST(ExtractQuads, NonSeamlessTransitionIsCutAndReported) {
+  auto [mesh, param] = torus_map(24, 12, 17, 7);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    if (f % 2 == 0 && (f / 2) / 12 == 0)
+      for (int c = 0; c < 3; ++c) param.uv(f, c) += Complex(0.3, 0);
+  const ExtractionResult res = extract_quads(mesh, param);
+  EXPECT_GT(res.report.torn_seams, 0);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(t.non_manifold_edges, 0);
+  EXPECT_EQ(t.degenerate_faces, 0);
+}
+
+TEST(ExtractQuads, RejectsMismatchedSizes) {
+  auto [mesh, param] = torus_map(8, 4, 3, 2);
+  param.uv.conservativeResize(3, 3);
+  EXPECT_THROW(extract_quads(mesh, param), InputError);
+}
+
+}  // namespace
+}  // namespace quadcover
