@@ -1,0 +1,31 @@
+#pragma once
+// Harmonic fields from homology generators (thesis 1.2.6): the cut fields Σ_k (1.13), the standard basis
+// H_k = Σ_k - (Σ_k)_P of the harmonic fields, and the harmonic field H_b with prescribed periods (1.14).
+#include <Eigen/SparseCore>
+
+#include "calculus/hodge.h"
+#include "topology/homology.h"
+
+namespace quadcover {
+
+/// Σ_k of (1.13) for every generator, as the columns of a sparse #F by n complex matrix: on the faces left of γ_k,
+/// Σ_k(t) = Σ_{p ∈ t ∩ γ_k} ∇φ_p(t) (summed over the visits of γ_k at p), zero elsewhere. Σ_k is the gradient of
+/// the function that is 1 on the left bank of γ_k and 0 elsewhere, so curl* Σ_k = 0 on every interior edge and
+/// b_j(Σ_k) = δ_jk.
+Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis& basis);
+
+/// Σ_b = Σ_k b_k Σ_k (dense #F).
+VectorField sigma_field(const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b);
+
+/// The standard basis H_k = Σ_k - ∇u_k, 𝔏u_k = -div Σ_k (thesis 1.2.6), one factorization of 𝔏 for all k.
+/// H_k is divergence free and curl* free (harmonic) with b_j(H_k) = δ_jk.
+/// \pre hodge was built on the same mesh as basis.
+std::vector<VectorField> harmonic_basis(const HodgeDecomposer& hodge, const HomologyBasis& basis,
+                                        const Eigen::SparseMatrix<Complex>& sigma);
+
+/// H_b = Σ_b - ∇u with 𝔏u = -div Σ_b (1.14): the harmonic field with periods b_j(H_b) = b_j.
+/// b  #generators. \throw InputError if b has the wrong size.
+VectorField harmonic_field_with_periods(const HodgeDecomposer& hodge, const HomologyBasis& basis,
+                                        const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b);
+
+}  // namespace quadcover
