@@ -2,10 +2,45 @@
 
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include "mesh/shape_operator.h"
 
 namespace quadcover {
+
+namespace {
+
+// Keeps the sharp edges that lie on chains of at least `min_edges` sharp edges continuing each other.
+void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& sharp) {
+  if (min_edges <= 1 || sharp.empty()) return;
+  const int ne = mesh.num_edges();
+  std::vector<std::vector<int>> at(static_cast<std::size_t>(mesh.num_vertices()));
+  for (int e : sharp)
+    for (int j = 0; j < 2; ++j) at[static_cast<std::size_t>(mesh.E()(e, j))].push_back(e);
+  std::vector<int> parent(static_cast<std::size_t>(ne));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i)
+      i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  const auto away = [&](int e, int v) {  // unit direction of e leaving v
+    const int w = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
+    return Eigen::Vector3d((mesh.V().row(w) - mesh.V().row(v)).normalized());
+  };
+  const double continues = -std::cos(40.0 * std::numbers::pi / 180.0);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const auto& edges = at[static_cast<std::size_t>(v)];
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      for (std::size_t j = i + 1; j < edges.size(); ++j)
+        if (away(edges[i], v).dot(away(edges[j], v)) < continues) parent[static_cast<std::size_t>(find(edges[i]))] = find(edges[j]);
+  }
+  std::vector<int> size(static_cast<std::size_t>(ne), 0);
+  for (int e : sharp) ++size[static_cast<std::size_t>(find(e))];
+  std::erase_if(sharp, [&](int e) { return size[static_cast<std::size_t>(find(e))] < min_edges; });
+}
+
+}  // namespace
 
 FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options) {
   const int nf = mesh.num_faces(), ne = mesh.num_edges();
@@ -17,10 +52,11 @@ FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& o
     if (mesh.is_boundary_edge(e)) {
       if (options.boundaries) strength[e] = std::numbers::pi;
     } else if (options.sharp_angle_degrees > 0 && std::abs(beta[e]) > threshold) {
-      strength[e] = std::abs(beta[e]);
       out.feature_edges.push_back(e);
     }
   }
+  keep_feature_curves(mesh, options.min_curve_edges, out.feature_edges);
+  for (int e : out.feature_edges) strength[e] = std::abs(beta[e]);
   out.constrained.assign(static_cast<std::size_t>(nf), 0);
   out.source_edge.assign(static_cast<std::size_t>(nf), -1);
   out.direction = Eigen::VectorXcd::Zero(nf);

@@ -14,6 +14,11 @@ struct FeatureOptions {
   /// degrees. 35° catches machined edges (typically 45°-90°) but not the folds of a curved organic mesh at
   /// usual resolution (a few degrees per edge). <= 0 disables sharp features.
   double sharp_angle_degrees = 35.0;
+  /// A sharp edge counts only as part of a feature curve of at least this many sharp edges, consecutive ones
+  /// continuing each other (turning by less than 40° at their common vertex). Isolated sharp edges are noise
+  /// on coarse organic meshes (bunny_3k has ~250 edges above 35°, half of them isolated); CAD creases are long
+  /// chains. 1 keeps every sharp edge.
+  int min_curve_edges = 3;
 };
 
 struct FeatureConstraints {

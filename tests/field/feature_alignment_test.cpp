@@ -1,0 +1,88 @@
+// Alignment to boundaries and sharp features, through the whole pipeline (compute_frame_field).
+#include "field/feature_alignment.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "field/compute_frame_field.h"
+#include "mesh/shape_operator.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+class FeatureMeshes : public ::testing::TestWithParam<std::string> {};
+
+// Every constrained face's cross contains its curve direction exactly (up to rounding of one complex
+// multiplication), it is trusted, and smoothing did not move it.
+TEST_P(FeatureMeshes, ConstrainedCrossesContainCurveDirection) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  const FeatureConstraints fc = feature_constraints(mesh);
+  const FrameFieldResult r = compute_frame_field_detailed(mesh);
+  ASSERT_EQ(r.constrained, fc.constrained);
+  int constrained = 0;
+  for (int t = 0; t < mesh.num_faces(); ++t) {
+    if (!fc.constrained[static_cast<std::size_t>(t)]) continue;
+    ++constrained;
+    const int e = fc.source_edge[static_cast<std::size_t>(t)];
+    const Eigen::Vector3d d = (mesh.V().row(mesh.E()(e, 1)) - mesh.V().row(mesh.E()(e, 0))).normalized();
+    const Eigen::Vector3d u = mesh.to_world(t, r.field.X[t]);
+    // u ∥ d or u ⟂ d within the face plane: |u × d| · |u · d| = 0 and |u| = 1.
+    EXPECT_LT(u.cross(d).norm() * std::abs(u.dot(d)), 1e-12) << "face " << t;
+    EXPECT_NEAR(u.norm(), 1.0, 1e-12);
+    EXPECT_TRUE(r.trusted[static_cast<std::size_t>(t)]);
+    EXPECT_EQ(r.field.X[t], fc.direction[t]);  // smoothing kept α_t = 0 exactly
+  }
+  EXPECT_GT(constrained, 50);
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, FeatureMeshes, ::testing::Values("fandisk", "mech_holes_shark", "camelhead_boundary"),
+                         [](const auto& info) { return info.param; });
+
+// Which faces are constrained: with min_curve_edges = 1, every face with a boundary edge or with an edge whose
+// normals turn by more than the threshold, and nothing else. Disabling both removes all constraints.
+TEST(Features, ThresholdAndBoundaryDetection) {
+  for (const char* name : {"fandisk", "camelhead_boundary"}) {
+    const Mesh mesh = testing::load_test_mesh(name);
+    const Eigen::VectorXd beta = signed_dihedral_angles(mesh);
+    FeatureOptions all;
+    all.min_curve_edges = 1;
+    const FeatureConstraints fc = feature_constraints(mesh, all);
+    for (int t = 0; t < mesh.num_faces(); ++t) {
+      bool expect = false;
+      for (int k = 0; k < 3; ++k) {
+        const int e = mesh.FE()(t, k);
+        expect |= mesh.is_boundary_edge(e) || std::abs(beta[e]) > 35.0 * std::numbers::pi / 180;
+      }
+      ASSERT_EQ(fc.constrained[static_cast<std::size_t>(t)] != 0, expect) << name << " face " << t;
+    }
+    FeatureOptions off;
+    off.boundaries = false;
+    off.sharp_angle_degrees = 0;
+    const FeatureConstraints none = feature_constraints(mesh, off);
+    EXPECT_EQ(std::count(none.constrained.begin(), none.constrained.end(), 1), 0);
+    EXPECT_TRUE(none.feature_edges.empty());
+  }
+}
+
+// The curve filter keeps the creases of a CAD part (long chains) and drops isolated sharp edges of a coarse
+// organic mesh; every kept edge has a continuing sharp neighbour.
+TEST(Features, CurveFilter) {
+  FeatureOptions all;
+  all.min_curve_edges = 1;
+  const Mesh fandisk = testing::load_test_mesh("fandisk");
+  const auto f_all = feature_constraints(fandisk, all).feature_edges, f_kept = feature_constraints(fandisk).feature_edges;
+  EXPECT_GT(f_kept.size(), 0.95 * f_all.size());
+  const Mesh bunny = testing::load_test_mesh("bunny_3k");
+  const auto b_all = feature_constraints(bunny, all).feature_edges, b_kept = feature_constraints(bunny).feature_edges;
+  EXPECT_LT(b_kept.size(), 0.6 * b_all.size());
+  std::vector<int> count(static_cast<std::size_t>(bunny.num_vertices()), 0);
+  for (int e : b_kept)
+    for (int j = 0; j < 2; ++j) ++count[static_cast<std::size_t>(bunny.E()(e, j))];
+  for (int e : b_kept) EXPECT_GE(count[static_cast<std::size_t>(bunny.E()(e, 0))] + count[static_cast<std::size_t>(bunny.E()(e, 1))], 3);
+}
+
+}  // namespace
+}  // namespace quadcover
