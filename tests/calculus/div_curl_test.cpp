@@ -87,7 +87,9 @@ TEST_P(DivCurlOnRealMeshes, GradientsAreCurlFree) {
     }
   }
   for (int p = 0; p < mesh.num_vertices(); ++p)
-    if (!mesh.is_boundary_vertex(p)) ASSERT_NEAR(c[p], 0.0, 1e-10) << "vertex " << p;
+    if (!mesh.is_boundary_vertex(p)) {
+      ASSERT_NEAR(c[p], 0.0, 1e-10) << "vertex " << p;
+    }
 }
 
 // div J∇v = 0 at every interior vertex for v ∈ S_h*, and everywhere when v vanishes on boundary edges.
@@ -97,10 +99,11 @@ TEST_P(DivCurlOnRealMeshes, RotatedNonconformingGradientsAreDivergenceFree) {
   Eigen::VectorXd d = divergence(mesh, kJ * nonconforming_gradient(mesh, v));
   bool boundary_nonzero = false;
   for (int p = 0; p < mesh.num_vertices(); ++p) {
-    if (!mesh.is_boundary_vertex(p))
+    if (!mesh.is_boundary_vertex(p)) {
       ASSERT_NEAR(d[p], 0.0, 1e-10) << "vertex " << p;
-    else
+    } else {
       boundary_nonzero |= std::abs(d[p]) > 1e-3;
+    }
   }
   EXPECT_EQ(boundary_nonzero, mesh.num_boundary_loops() > 0);  // the boundary term is real, not an artifact
   for (int e = 0; e < mesh.num_edges(); ++e)

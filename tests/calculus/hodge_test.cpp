@@ -36,11 +36,13 @@ void expect_valid_decomposition(const Mesh& mesh, const VectorField& X, const Ho
   const double scale = std::sqrt(norm2 / mesh.total_area()) * mesh.mean_edge_length();  // typical |⟨X, e⟩|
   EXPECT_LT(divergence(mesh, h.harmonic).lpNorm<Eigen::Infinity>(), 1e-9 * scale);
   const Eigen::VectorXd cs = curl_star(mesh, h.harmonic);
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    if (mesh.is_boundary_edge(e))
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    if (mesh.is_boundary_edge(e)) {
       ASSERT_EQ(h.copotential[e], 0.0) << "Dirichlet co-potential on boundary edge " << e;
-    else
+    } else {
       ASSERT_LT(std::abs(cs[e]), 1e-9 * scale) << "curl* of the harmonic part at edge " << e;
+    }
+  }
   // (1.10) per component.
   Eigen::VectorXd iu = Eigen::VectorXd::Zero(mesh.num_components()), iv = iu;
   const Eigen::VectorXd av = vertex_areas(mesh), ae = edge_areas(mesh);
@@ -53,7 +55,9 @@ void expect_valid_decomposition(const Mesh& mesh, const VectorField& X, const Ho
   const double copotential_scale = h.copotential.lpNorm<Eigen::Infinity>() * mesh.total_area();
   for (int c = 0; c < mesh.num_components(); ++c) {
     EXPECT_LT(std::abs(iu[c]), 1e-12 * potential_scale) << "component " << c;
-    if (mesh.components()[c].boundary_loops == 0) EXPECT_LT(std::abs(iv[c]), 1e-12 * copotential_scale);
+    if (mesh.components()[c].boundary_loops == 0) {
+      EXPECT_LT(std::abs(iv[c]), 1e-12 * copotential_scale) << "component " << c;
+    }
   }
 }
 
@@ -99,7 +103,9 @@ TEST_P(HodgeOnRealMeshes, PotentialsSolveTheLinearSystems) {
   EXPECT_LT(r.norm(), 1e-10 * div.norm());
   const Eigen::VectorXd rs = nonconforming_stiffness(mesh) * hodge.coexact_potential(X) + cs;
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e)) ASSERT_LT(std::abs(rs[e]), 1e-10 * cs.norm()) << "edge " << e;
+    if (!mesh.is_boundary_edge(e)) {
+      ASSERT_LT(std::abs(rs[e]), 1e-10 * cs.norm()) << "edge " << e;
+    }
   EXPECT_EQ(&hodge.mesh(), &mesh);
 }
 
