@@ -39,9 +39,9 @@ Eigen::VectorXd checked_weights(const Mesh& mesh, const CutGraphOptions& options
   if (!options.edge_weights) return mesh.edge_lengths();
   const Eigen::VectorXd& w = *options.edge_weights;
   if (w.size() != mesh.num_edges())
-    throw InputError("", 0,
-                     "cut_graph: " + std::to_string(w.size()) + " edge weights for " +
-                         std::to_string(mesh.num_edges()) + " edges");
+    throw InputError(
+        "", 0,
+        "cut_graph: " + std::to_string(w.size()) + " edge weights for " + std::to_string(mesh.num_edges()) + " edges");
   for (int e = 0; e < w.size(); ++e)
     if (!(w[e] > 0) || !std::isfinite(w[e]))
       throw InputError("", 0, "cut_graph: edge weight " + std::to_string(e) + " is not positive and finite");
@@ -71,8 +71,8 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
   std::vector<char> is_source(static_cast<std::size_t>(nv), 0);
   for (const int v : base) {
     if (v < 0 || v >= nv)
-      throw InputError("", 0, "cut_graph: base vertex " + std::to_string(v) + " out of range [0, " +
-                                  std::to_string(nv) + ")");
+      throw InputError("", 0,
+                       "cut_graph: base vertex " + std::to_string(v) + " out of range [0, " + std::to_string(nv) + ")");
     is_source[v] = 1;
   }
   for (int v = 0; v < nv; ++v)
@@ -129,9 +129,8 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
     if (!in_tree[e] && !mesh.is_boundary_edge(e)) candidates.push_back(e);
   std::vector<double> sigma(static_cast<std::size_t>(ne), 0.0);
   for (const int e : candidates) sigma[e] = loop_length(e);
-  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
-    return sigma[a] != sigma[b] ? sigma[a] > sigma[b] : a < b;
-  });
+  std::sort(candidates.begin(), candidates.end(),
+            [&](int a, int b) { return sigma[a] != sigma[b] ? sigma[a] > sigma[b] : a < b; });
   g.cotree = Eigen::VectorXi::Zero(ne);
   detail::UnionFind faces(nf);
   std::vector<int> leftover;

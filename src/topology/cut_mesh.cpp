@@ -10,8 +10,8 @@ namespace quadcover {
 CutMesh cut_mesh(const Mesh& mesh, const Eigen::VectorXi& cut) {
   const int nv = mesh.num_vertices(), ne = mesh.num_edges(), nf = mesh.num_faces();
   if (cut.size() != ne)
-    throw InputError("", 0, "cut_mesh: " + std::to_string(cut.size()) + " cut flags for " + std::to_string(ne) +
-                                " edges");
+    throw InputError("", 0,
+                     "cut_mesh: " + std::to_string(cut.size()) + " cut flags for " + std::to_string(ne) + " edges");
   auto separates = [&](int e) { return cut[e] != 0 || mesh.is_boundary_edge(e); };
 
   CutMesh result;

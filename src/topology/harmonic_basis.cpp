@@ -42,7 +42,8 @@ Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis&
     const HomologyGenerator& g = basis.generators[k];
     const int m = static_cast<int>(g.edges.size());
     if (g.closed) {
-      for (int i = 0; i < m; ++i) add_visit(mesh, k, g.vertices[i], g.vertices[(i + m - 1) % m], g.vertices[i + 1], entries);
+      for (int i = 0; i < m; ++i)
+        add_visit(mesh, k, g.vertices[i], g.vertices[(i + m - 1) % m], g.vertices[i + 1], entries);
     } else {
       for (int i = 0; i <= m; ++i)
         add_visit(mesh, k, g.vertices[i], i > 0 ? g.vertices[i - 1] : -1, i < m ? g.vertices[i + 1] : -1, entries);
@@ -55,8 +56,9 @@ Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis&
 
 VectorField sigma_field(const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b) {
   if (b.size() != sigma.cols())
-    throw InputError("", 0, "sigma_field: " + std::to_string(b.size()) + " periods for " +
-                                std::to_string(sigma.cols()) + " generators");
+    throw InputError(
+        "", 0,
+        "sigma_field: " + std::to_string(b.size()) + " periods for " + std::to_string(sigma.cols()) + " generators");
   return sigma * b.cast<Complex>();
 }
 
@@ -74,8 +76,9 @@ std::vector<VectorField> harmonic_basis(const HodgeDecomposer& hodge, const Homo
 VectorField harmonic_field_with_periods(const HodgeDecomposer& hodge, const HomologyBasis& basis,
                                         const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b) {
   if (b.size() != basis.size())
-    throw InputError("", 0, "harmonic_field_with_periods: " + std::to_string(b.size()) + " periods for " +
-                                std::to_string(basis.size()) + " generators");
+    throw InputError("", 0,
+                     "harmonic_field_with_periods: " + std::to_string(b.size()) + " periods for " +
+                         std::to_string(basis.size()) + " generators");
   const VectorField S = sigma_field(sigma, b);
   return S - gradient(hodge.mesh(), hodge.exact_potential(S));  // (1.14)
 }

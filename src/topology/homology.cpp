@@ -241,8 +241,9 @@ HomologyBasis homology_basis(const Mesh& mesh, const CutGraph& graph) {
 
 Eigen::VectorXd periods(const HomologyBasis& basis, const VectorField& X) {
   if (X.size() != basis.period_operator.cols())
-    throw InputError("", 0, "periods: field has " + std::to_string(X.size()) + " faces, mesh has " +
-                                std::to_string(basis.period_operator.cols()));
+    throw InputError("", 0,
+                     "periods: field has " + std::to_string(X.size()) + " faces, mesh has " +
+                         std::to_string(basis.period_operator.cols()));
   return (basis.period_operator.conjugate() * X).real();
 }
 

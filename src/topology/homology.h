@@ -23,7 +23,7 @@ struct HomologyGenerator {
   std::vector<int> vertices;  ///< v_0 … v_m
   std::vector<int> edges;     ///< m edges, edges[i] joins vertices[i] and vertices[i+1]
   bool closed = true;
-  int crossing_edge = -1;     ///< e_j, the edge its dual cycle crosses
+  int crossing_edge = -1;  ///< e_j, the edge its dual cycle crosses
 };
 
 /// A closed walk in the dual graph: faces[i] -> faces[(i+1) % n] across edges[i].

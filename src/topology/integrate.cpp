@@ -9,8 +9,8 @@ namespace quadcover {
 Eigen::VectorXd integrate_cut_vertices(const Mesh& mesh, const CutMesh& cut, const VectorField& X) {
   const int nf = mesh.num_faces();
   if (X.size() != nf)
-    throw InputError("", 0, "integrate: field has " + std::to_string(X.size()) + " faces, mesh has " +
-                                std::to_string(nf));
+    throw InputError("", 0,
+                     "integrate: field has " + std::to_string(X.size()) + " faces, mesh has " + std::to_string(nf));
   Eigen::VectorXd u = Eigen::VectorXd::Zero(cut.num_vertices());
   std::vector<char> known(static_cast<std::size_t>(cut.num_vertices()), 0);
   std::vector<char> reached(static_cast<std::size_t>(nf), 0);

@@ -137,15 +137,16 @@ TEST_P(CutGraphOnMeshes, IsDeterministic) {
   for (std::size_t i = 0; i < again.paths.size(); ++i) EXPECT_EQ(again.paths[i].vertices, graph_.paths[i].vertices);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Meshes, CutGraphOnMeshes,
-    ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 4, 2}, Case{"eight_genus2", 0, 1},
-                      Case{"eight_genus2", 7, 3}, Case{"3holes_genus3", 0, 1}, Case{"fertility_genus4", 0, 1},
-                      Case{"couplingdown_genus9", 0, 1}, Case{"couplingdown_genus9", 5, 4}, Case{"bunny_3k", 0, 1},
-                      Case{"bunny_3k", 5, 5}, Case{"spot", 2, 6}, Case{"cow", 12, 7}, Case{"lilium_disk", 0, 1},
-                      Case{"lilium_disk", 3, 8}, Case{"camelhead_boundary", 4, 9}, Case{"mech_holes_shark", 0, 1},
-                      Case{"bunny_20k_holes", 6, 10}),
-    case_name);
+INSTANTIATE_TEST_SUITE_P(Meshes, CutGraphOnMeshes,
+                         ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 4, 2}, Case{"eight_genus2", 0, 1},
+                                           Case{"eight_genus2", 7, 3}, Case{"3holes_genus3", 0, 1},
+                                           Case{"fertility_genus4", 0, 1}, Case{"couplingdown_genus9", 0, 1},
+                                           Case{"couplingdown_genus9", 5, 4}, Case{"bunny_3k", 0, 1},
+                                           Case{"bunny_3k", 5, 5}, Case{"spot", 2, 6}, Case{"cow", 12, 7},
+                                           Case{"lilium_disk", 0, 1}, Case{"lilium_disk", 3, 8},
+                                           Case{"camelhead_boundary", 4, 9}, Case{"mech_holes_shark", 0, 1},
+                                           Case{"bunny_20k_holes", 6, 10}),
+                         case_name);
 
 // With one base vertex on a closed surface the output is a system of 2g loops (thesis 1.3): on a torus of revolution
 // the shortest loop is the meridian through the base vertex, n_minor chords of the tube circle.

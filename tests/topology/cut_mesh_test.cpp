@@ -28,8 +28,7 @@ void expect_disk(const Mesh& mesh, const Eigen::VectorXi& cut, const CutMesh& cm
     }
   // The boundary loop runs over both sides of every interior cut edge and over every mesh boundary edge.
   int expected_length = 0;
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    expected_length += mesh.is_boundary_edge(e) ? 1 : (cut[e] ? 2 : 0);
+  for (int e = 0; e < mesh.num_edges(); ++e) expected_length += mesh.is_boundary_edge(e) ? 1 : (cut[e] ? 2 : 0);
   std::size_t total = 0;
   for (const auto& loop : cm.boundary_loops) {
     total += loop.size();
@@ -102,6 +101,25 @@ TEST(CutMesh, UncutSurfacesKeepTheirTopology) {
   EXPECT_EQ(all.num_pieces, torus.num_faces());
   EXPECT_EQ(all.num_vertices(), 3 * torus.num_faces());
   EXPECT_EQ(all.boundary_loops.size(), static_cast<std::size_t>(torus.num_faces()));
+}
+
+// Several components are cut independently: a torus and a cylinder in one mesh give two disks.
+TEST(CutMesh, EveryComponentBecomesADisk) {
+  const Mesh torus = testing::make_torus(12, 8), cylinder = testing::make_cylinder(10, 4);
+  Eigen::MatrixX3d V(torus.num_vertices() + cylinder.num_vertices(), 3);
+  V << torus.V(), cylinder.V();
+  Eigen::MatrixX3i F(torus.num_faces() + cylinder.num_faces(), 3);
+  F << torus.F(), cylinder.F().array() + torus.num_vertices();
+  const Mesh both = Mesh::from_triangles(V, F);
+  ASSERT_EQ(both.num_components(), 2);
+  const CutGraph g = cut_graph(both);
+  EXPECT_EQ(g.paths.size(), 3u);  // 2g = 2 loops on the torus, b - 1 = 1 path on the cylinder
+  const CutMesh cm = cut_mesh(both, g.cut);
+  EXPECT_EQ(cm.num_pieces, 2);
+  EXPECT_EQ(cm.boundary_loops.size(), 2u);
+  EXPECT_EQ(cm.euler_characteristic(both), 2);
+  for (const auto& loop : cm.boundary_loops)  // one loop per piece
+    for (const auto& h : loop) EXPECT_EQ(cm.face_piece[h.face], cm.face_piece[loop[0].face]);
 }
 
 TEST(CutMesh, RejectsWrongSize) {

@@ -123,16 +123,17 @@ TEST_P(HomologyOnMeshes, GradientsHaveZeroPeriods) {
   for (int j = 0; j < b.size(); ++j) EXPECT_NEAR(b[j], 0, 1e-9 * u.cwiseAbs().maxCoeff());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Meshes, HomologyOnMeshes,
-    ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 5, 2}, Case{"eight_genus2", 0, 3},
-                      Case{"eight_genus2", 8, 4}, Case{"3holes_genus3", 3, 5}, Case{"fertility_genus4", 0, 6},
-                      Case{"couplingdown_genus9", 0, 7}, Case{"couplingdown_genus9", 6, 8}, Case{"bunny_3k", 4, 9},
-                      Case{"lilium_disk", 3, 10}, Case{"mech_holes_shark", 0, 11}, Case{"mech_holes_shark", 5, 12},
-                      Case{"bunny_20k_holes", 0, 13}, Case{"bunny_20k_holes", 4, 14}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-      return info.param.mesh + "_B" + std::to_string(info.param.num_base);
-    });
+INSTANTIATE_TEST_SUITE_P(Meshes, HomologyOnMeshes,
+                         ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 5, 2}, Case{"eight_genus2", 0, 3},
+                                           Case{"eight_genus2", 8, 4}, Case{"3holes_genus3", 3, 5},
+                                           Case{"fertility_genus4", 0, 6}, Case{"couplingdown_genus9", 0, 7},
+                                           Case{"couplingdown_genus9", 6, 8}, Case{"bunny_3k", 4, 9},
+                                           Case{"lilium_disk", 3, 10}, Case{"mech_holes_shark", 0, 11},
+                                           Case{"mech_holes_shark", 5, 12}, Case{"bunny_20k_holes", 0, 13},
+                                           Case{"bunny_20k_holes", 4, 14}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return info.param.mesh + "_B" + std::to_string(info.param.num_base);
+                         });
 
 // A cylinder has one relative generator (a path from the bottom to the top circle) whose dual cycle runs around.
 TEST(Homology, CylinderHasOneBoundaryToBoundaryGenerator) {
@@ -154,6 +155,25 @@ TEST(Homology, CylinderHasOneBoundaryToBoundaryGenerator) {
     turn += d;
   }
   EXPECT_NEAR(std::abs(turn), 2 * std::numbers::pi, 1e-9);
+}
+
+// Two components (a torus and a cylinder): generators and dual cycles stay within their component.
+TEST(Homology, ComponentsAreIndependent) {
+  const Mesh torus = testing::make_torus(12, 8), cylinder = testing::make_cylinder(10, 4);
+  Eigen::MatrixX3d V(torus.num_vertices() + cylinder.num_vertices(), 3);
+  V << torus.V(), cylinder.V();
+  Eigen::MatrixX3i F(torus.num_faces() + cylinder.num_faces(), 3);
+  F << torus.F(), cylinder.F().array() + torus.num_vertices();
+  const Mesh both = Mesh::from_triangles(V, F);
+  const HomologyBasis basis = homology_basis(both, cut_graph(both));
+  ASSERT_EQ(basis.size(), 3);
+  const Eigen::SparseMatrix<Complex> sigma = sigma_fields(both, basis);
+  for (int k = 0; k < 3; ++k) {
+    const int comp = both.vertex_component()[basis.generators[k].vertices[0]];
+    for (const int f : basis.dual_cycles[k].faces) EXPECT_EQ(both.face_component()[f], comp);
+    const Eigen::VectorXd b = periods(basis, sigma.col(k));
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(b[j], j == k ? 1.0 : 0.0, 1e-12);
+  }
 }
 
 }  // namespace

@@ -27,7 +27,8 @@ Eigen::VectorXd random_function(const Mesh& mesh, unsigned seed) {
 // Gradient of the per-corner values of face f: Σ_c φ_c ∇φ_c, ∇φ_c = (1/2A) J e_c.
 Complex corner_gradient(const Mesh& mesh, const Eigen::MatrixX3d& phi, int f) {
   Complex g = 0;
-  for (int c = 0; c < 3; ++c) g += phi(f, c) * Complex(0, 1) * mesh.edge_vector_local(f, c) / (2 * mesh.face_areas()[f]);
+  for (int c = 0; c < 3; ++c)
+    g += phi(f, c) * Complex(0, 1) * mesh.edge_vector_local(f, c) / (2 * mesh.face_areas()[f]);
   return g;
 }
 
