@@ -34,7 +34,8 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
     FrameSmoother smoother(mesh, r.field, r.stability, r.trusted, r.constrained, options.lambda);
     Eigen::VectorXd alpha = smoother.solve();
     for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
-      // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching.
+      // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching
+      // (θ_e - α_s + α_t is the smoothed frames' curvature).
       int changed = 0;
       const Eigen::VectorXd& theta = smoother.curvature();
       for (int e = 0; e < mesh.num_edges(); ++e) {

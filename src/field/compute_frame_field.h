@@ -19,7 +19,8 @@ struct FieldOptions {
   double trusted_fraction = 0.2;
   /// λ of (5.3) in (0, 1]: 1 ignores the curvature directions (only fixed faces anchor the field), small values
   /// keep trusted frames in place. 0.5 weighs the (scale-normalized) terms equally; on the test meshes it lowers
-  /// E_S of the propagated field by a large factor while trusted frames turn by a few degrees on average.
+  /// E_S of the propagated field 3-10× (bunny_3k 660 -> 213, fandisk 360 -> 48), within a few % of λ = 0.9,
+  /// while E_A stays about half as large as with λ = 0.9.
   double lambda = 0.5;
   /// Smoothing rounds. After each round but the last, the matching is re-chosen as the straightest one (5.1) for
   /// the smoothed frames (a right-hand-side update, no refactorization) and the system is solved again.

@@ -9,15 +9,19 @@
 //    transport of Mesh::edge_transport(); for a general frame, (X_t, Y_t) is matched with
 //    ρ_e · R'^{m_e}(X_s, Y_s), R'(X, Y) = (Y, -X), which is J applied to both vectors when Y = JX.
 //    (The thesis's R(X,Y) = (-Y,X) turns the other way, so its m_st is our -m_e.)
-//  - Curvature (3.4): θ_e = ∠_e - (π/2)·m_e with ∠_e = arg(X_t / (ρ_e X_s)) ∈ (-π, π] the intrinsic angle from X_s
-//    to X_t (for a general frame X is replaced by the first vector of the orthogonalized frame (X,Y)^⊥). θ_e is
-//    not wrapped: the initial matching (5.1) makes |θ_e| <= π/4, a later matching change by k adds -(π/2)k.
+//  - Curvature (3.4): θ_e = arg(X_t / (i^{m_e} ρ_e X_s)) ∈ (-π, π], the residual rotation from the matched vector
+//    of s to X_t (for a general frame X is replaced by the first vector of the orthogonalized frame (X,Y)^⊥).
+//    It equals the thesis's ∠(X_s,X_t) - (π/2)m_e whenever that lies in (-π, π], e.g. always for the straightest
+//    matching (5.1), which makes |θ_e| <= π/4. Unlike the unwrapped form it does not depend on which of the four
+//    cross vectors represents a face, and it changes continuously when frames rotate.
 //  - Indices are stored in quarters: quarter_index(p) = 4·ind_p ∈ Z. Boundary vertices have index 0.
 //    A branch point is a vertex with quarter_index ≠ 0 mod 4 (odd: ±1 mod 4, even: 2 mod 4).
 //    With our sign of m the matching index (Def. 3.2) is 4·ind_p(m) = -Σ m over the edges crossed counter-clockwise
 //    around p. It agrees with the cross-field index (Def. 3.3) modulo 4 quarters (same branch points, same
-//    even/odd class); exactly, ind^cross_p = ind_p(m) + ind_p(X), ind_p(X) the integer vector-field index of X
-//    itself (Def. 1.18 with zero matching). On a closed surface Σ_p ind^cross_p = χ, Σ_p ind_p(m) = 0.
+//    even/odd class). For the straightest matching (5.1), exactly ind^cross_p = ind_p(m) + ind_p(X), ind_p(X) the
+//    integer vector-field index of X itself (Def. 1.18 with zero matching). On a closed surface Σ_p ind^cross_p = χ
+//    for any field and matching, while Σ_p ind_p(m) = 0 (each edge is crossed once each way by the loops of its
+//    two endpoints): the integer part of a vertex's index is carried by θ, not by the matching.
 #include <Eigen/Core>
 #include <complex>
 #include <utility>

@@ -26,10 +26,16 @@ Eigen::VectorXi straightest_matching(const Mesh& mesh, const Eigen::VectorXcd& X
   return m;
 }
 
+double wrap_angle(double x) {
+  const double two_pi = 2 * std::numbers::pi;
+  x = std::remainder(x, two_pi);  // [-π, π]
+  return x <= -std::numbers::pi ? x + two_pi : x;
+}
+
 Eigen::VectorXd field_curvature(const Mesh& mesh, const FrameField& field) {
   Eigen::VectorXd theta = intrinsic_angles(mesh, orthogonalized_frames(field));
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e)) theta[e] -= 0.5 * std::numbers::pi * field.matching[e];  // (3.4)
+    if (!mesh.is_boundary_edge(e)) theta[e] = wrap_angle(theta[e] - 0.5 * std::numbers::pi * field.matching[e]);  // (3.4)
   return theta;
 }
 

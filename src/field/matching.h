@@ -15,9 +15,12 @@ Eigen::VectorXd intrinsic_angles(const Mesh& mesh, const Eigen::VectorXcd& X);
 /// Straightest matching (5.1): m_e = round(2∠_e/π), so that |θ_e| <= π/4. 0 on boundary edges. \return #E
 Eigen::VectorXi straightest_matching(const Mesh& mesh, const Eigen::VectorXcd& X);
 
-/// Curvature (3.4) of a frame field: θ_e = ∠_e - (π/2) m_e, computed with the orthogonalized frames.
-/// 0 on boundary edges. \return #E
+/// Curvature (3.4) of a frame field: θ_e = arg(X_t / (i^{m_e} ρ_e X_s)) ∈ (-π, π] with the orthogonalized frames
+/// (= ∠_e - (π/2) m_e whenever that lies in (-π, π]; see field/frame_field.h). 0 on boundary edges. \return #E
 Eigen::VectorXd field_curvature(const Mesh& mesh, const FrameField& field);
+
+/// x wrapped to (-π, π].
+double wrap_angle(double x);
 
 /// Cross field with first vectors X and the straightest matching (5.1).
 FrameField cross_field_with_straightest_matching(const Mesh& mesh, const Eigen::VectorXcd& X);

@@ -118,8 +118,9 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
 void FrameSmoother::change_matching(int e, int k) {
   if (k == 0 || mesh_->is_boundary_edge(e)) return;
   matching_[e] += k;
-  const double d = 0.5 * std::numbers::pi * k;  // θ_e -= (π/2)k
-  theta_[e] -= d;
+  const double updated = wrap_angle(theta_[e] - 0.5 * std::numbers::pi * k);  // θ_e - (π/2)k, as field_curvature
+  const double d = theta_[e] - updated;
+  theta_[e] = updated;
   const int s = unknown_of_face_[static_cast<std::size_t>(mesh_->EF()(e, 0))];
   const int t = unknown_of_face_[static_cast<std::size_t>(mesh_->EF()(e, 1))];
   if (s >= 0) b_[s] -= lambda_ * omega_[e] * d;  // (5.2.2)

@@ -35,7 +35,8 @@ class FrameSmoother {
   FrameSmoother(FrameSmoother&&) noexcept;
   FrameSmoother& operator=(FrameSmoother&&) noexcept;
 
-  /// m_e += k on interior edge e: θ_e -= (π/2)k and only b changes (5.2.2).
+  /// m_e += k on interior edge e: θ_e becomes wrap(θ_e - (π/2)k) and only the two entries b_s, b_t change
+  /// (5.2.2: by ∓λω_e(π/2)k when no wrap occurs). The result equals a smoother built from the new matching.
   void change_matching(int e, int k);
   /// The minimizer α of (5.3) for the current matching: #F, 0 at fixed faces.
   Eigen::VectorXd solve() const;

@@ -1,0 +1,93 @@
+// The whole frame-field stage (thesis Chapter 5) on real and generated meshes.
+#include "field/compute_frame_field.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "field/indices.h"
+#include "field/matching.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+class ClosedPipeline : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ClosedPipeline, IndicesEnergiesAndDeterminism) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  const FrameFieldResult r = compute_frame_field_detailed(mesh);
+  const int nf = mesh.num_faces();
+  ASSERT_EQ(r.field.X.size(), nf);
+  ASSERT_EQ(r.field.matching.size(), mesh.num_edges());
+  for (int t = 0; t < nf; ++t) {
+    ASSERT_NEAR(std::abs(r.field.X[t]), 1.0, 1e-12);
+    ASSERT_EQ(r.field.Y[t], Complex(0, 1) * r.field.X[t]);
+  }
+  // Poincaré–Hopf, and the branch points are exactly the fractional-index vertices.
+  const Eigen::VectorXi q = cross_field_quarter_index(mesh, r.field);
+  EXPECT_EQ(q.sum(), 4 * mesh.euler_characteristic());
+  std::size_t fractional = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v) fractional += q[v] % 4 != 0;
+  EXPECT_EQ(r.branch_points.size(), fractional);
+  // The result is smoother than the raw curvature frames, and smoothing at least halves E_S of the propagated
+  // field (propagation alone can be rougher than raw frames where those are already clean: seams, thesis 5.1.2).
+  const double raw = smoothing_energy(mesh, cross_field_with_straightest_matching(mesh, r.curvature.direction));
+  EXPECT_LT(r.energy_smooth, raw);
+  EXPECT_LT(r.energy_smooth, 0.5 * r.energy_smooth_initial);
+  EXPECT_NEAR(r.energy_smooth, smoothing_energy(mesh, r.field), 1e-9 * r.energy_smooth);
+  // At least the requested fraction is trusted.
+  EXPECT_GE(std::count(r.trusted.begin(), r.trusted.end(), 1), static_cast<long>(std::ceil(0.2 * nf)));
+  // Deterministic.
+  const FrameField again = compute_frame_field(mesh);
+  EXPECT_EQ(again.X, r.field.X);
+  EXPECT_EQ(again.matching, r.field.matching);
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ClosedPipeline, ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "fertility_genus4"),
+                         [](const auto& info) { return info.param; });
+
+// On a torus of revolution the principal directions are exact and regular (meridians and parallels):
+// no branch points, and almost no curvature left (the residual comes from the discrete transport).
+TEST(Pipeline, TorusOfRevolutionHasNoBranchPoints) {
+  const Mesh mesh = testing::make_torus(60, 24);
+  for (CurvatureMethod method : {CurvatureMethod::HildebrandtPolthier, CurvatureMethod::CohenSteinerMorvan}) {
+    FieldOptions options;
+    options.curvature.method = method;
+    const FrameFieldResult r = compute_frame_field_detailed(mesh, options);
+    EXPECT_TRUE(r.branch_points.empty());
+    EXPECT_LT(field_curvature(mesh, r.field).cwiseAbs().maxCoeff(), 0.2);
+  }
+}
+
+// A cylinder with feature alignment: boundary faces fix the circumferential direction, the curvature frames
+// agree, and the result is parallel: no branch points and θ ≈ 0 everywhere.
+TEST(Pipeline, CylinderAlignedToBoundary) {
+  const Mesh mesh = testing::make_cylinder(40, 12);
+  const FrameFieldResult r = compute_frame_field_detailed(mesh);
+  EXPECT_TRUE(r.branch_points.empty());
+  EXPECT_LT(field_curvature(mesh, r.field).cwiseAbs().maxCoeff(), 1e-9);
+  for (int t = 0; t < mesh.num_faces(); ++t) {
+    const Eigen::Vector3d u = mesh.to_world(t, r.field.X[t]);
+    EXPECT_LT(std::abs(u.z()) * std::sqrt(1 - u.z() * u.z()), 1e-9) << t;  // axial or circumferential
+  }
+}
+
+// Options are honoured: the trusted fraction, disabling features, and zero smoothing rounds.
+TEST(Pipeline, OptionsAreHonoured) {
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  FieldOptions options;
+  options.trusted_fraction = 0.5;
+  options.features.boundaries = false;
+  options.features.sharp_angle_degrees = 0;
+  options.smoothing_rounds = 0;
+  const FrameFieldResult r = compute_frame_field_detailed(mesh, options);
+  EXPECT_EQ(std::count(r.constrained.begin(), r.constrained.end(), 1), 0);
+  EXPECT_EQ(std::count(r.trusted.begin(), r.trusted.end(), 1), static_cast<long>(std::ceil(0.5 * mesh.num_faces())));
+  EXPECT_EQ(r.energy_smooth, r.energy_smooth_initial);
+  const FrameFieldResult with_features = compute_frame_field_detailed(mesh);
+  EXPECT_GT(std::count(with_features.constrained.begin(), with_features.constrained.end(), 1), 500);
+}
+
+}  // namespace
+}  // namespace quadcover
