@@ -1,18 +1,18 @@
 #include "field/smoothing.h"
 
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 #include "field/matching.h"
 
 namespace quadcover {
 
 struct FrameSmoother::Solver {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  SparseCholesky<double> cholesky;  // A = L Lᵀ, factored once; each solve is two triangular solves
 };
 
 FrameSmoother::~FrameSmoother() = default;
@@ -109,10 +109,7 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(entries.begin(), entries.end());
   solver_ = std::make_unique<Solver>();
-  solver_->ldlt.compute(A);
-  if (solver_->ldlt.info() != Eigen::Success)
-    throw NumericalError("field smoothing (5.4)", "factorization of the " + std::to_string(n) + "×" +
-                                                      std::to_string(n) + " system failed");
+  solver_->cholesky.compute(A, "field smoothing (5.4)");  // throws NumericalError if not positive definite
 }
 
 void FrameSmoother::change_matching(int e, int k) {
@@ -130,7 +127,7 @@ void FrameSmoother::change_matching(int e, int k) {
 Eigen::VectorXd FrameSmoother::solve() const {
   Eigen::VectorXd alpha = Eigen::VectorXd::Zero(mesh_->num_faces());
   if (unknowns_.empty()) return alpha;
-  const Eigen::VectorXd x = solver_->ldlt.solve(b_);
+  const Eigen::VectorXd x = solver_->cholesky.solve(b_);
   for (std::size_t i = 0; i < unknowns_.size(); ++i) alpha[unknowns_[i]] = x[static_cast<Eigen::Index>(i)];
   return alpha;
 }
