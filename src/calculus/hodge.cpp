@@ -21,8 +21,12 @@ class ReducedSystem {
  public:
   /// K: n by n stiffness; component: per element; has_kernel: per component; dirichlet: per element (1 = fixed).
   ReducedSystem(const Eigen::SparseMatrix<double>& K, std::vector<int> component, std::vector<char> has_kernel,
-                const std::vector<char>& dirichlet, Eigen::VectorXd weight, const char* stage)
-      : component_(std::move(component)), has_kernel_(std::move(has_kernel)), weight_(std::move(weight)) {
+                const std::vector<char>& dirichlet, Eigen::VectorXd weight, CholeskyBackend backend,
+                const char* stage)
+      : component_(std::move(component)),
+        has_kernel_(std::move(has_kernel)),
+        weight_(std::move(weight)),
+        chol_(backend) {
     const auto n = static_cast<int>(K.rows());
     index_.assign(static_cast<std::size_t>(n), -1);
     std::vector<char> pinned(has_kernel_.size(), 0);
@@ -89,18 +93,18 @@ class ReducedSystem {
   SparseCholesky<double> chol_;
 };
 
-ReducedSystem conforming_system(const Mesh& mesh) {
+ReducedSystem conforming_system(const Mesh& mesh, CholeskyBackend backend) {
   const int nv = mesh.num_vertices();
   std::vector<int> component(static_cast<std::size_t>(nv));
   for (int v = 0; v < nv; ++v) component[v] = mesh.vertex_component()[v];
   // Natural boundary conditions: every component has the constant kernel.
   std::vector<char> has_kernel(static_cast<std::size_t>(mesh.num_components()), 1);
   return ReducedSystem(conforming_stiffness(mesh), std::move(component), std::move(has_kernel),
-                       std::vector<char>(static_cast<std::size_t>(nv), 0), vertex_areas(mesh),
+                       std::vector<char>(static_cast<std::size_t>(nv), 0), vertex_areas(mesh), backend,
                        "Hodge decomposition: conforming stiffness");
 }
 
-ReducedSystem nonconforming_system(const Mesh& mesh) {
+ReducedSystem nonconforming_system(const Mesh& mesh, CholeskyBackend backend) {
   const int ne = mesh.num_edges();
   std::vector<int> component(static_cast<std::size_t>(ne));
   std::vector<char> dirichlet(static_cast<std::size_t>(ne), 0);
@@ -112,18 +116,20 @@ ReducedSystem nonconforming_system(const Mesh& mesh) {
   std::vector<char> has_kernel(static_cast<std::size_t>(mesh.num_components()));
   for (int c = 0; c < mesh.num_components(); ++c) has_kernel[c] = mesh.components()[c].boundary_loops == 0;
   return ReducedSystem(nonconforming_stiffness(mesh), std::move(component), std::move(has_kernel), dirichlet,
-                       edge_areas(mesh), "Hodge decomposition: nonconforming stiffness");
+                       edge_areas(mesh), backend, "Hodge decomposition: nonconforming stiffness");
 }
 
 }  // namespace
 
 struct HodgeDecomposer::Impl {
-  explicit Impl(const Mesh& m) : mesh(m), conforming(conforming_system(m)), nonconforming(nonconforming_system(m)) {}
+  Impl(const Mesh& m, CholeskyBackend backend)
+      : mesh(m), conforming(conforming_system(m, backend)), nonconforming(nonconforming_system(m, backend)) {}
   const Mesh& mesh;
   ReducedSystem conforming, nonconforming;
 };
 
-HodgeDecomposer::HodgeDecomposer(const Mesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
+HodgeDecomposer::HodgeDecomposer(const Mesh& mesh, const HodgeOptions& options)
+    : impl_(std::make_unique<Impl>(mesh, options.backend)) {}
 HodgeDecomposer::~HodgeDecomposer() = default;
 HodgeDecomposer::HodgeDecomposer(HodgeDecomposer&&) noexcept = default;
 

@@ -16,9 +16,15 @@
 //    ker div ∩ ker curl*(interior) has dimension 2g + b - 1 per component (b boundary loops; 2g when closed).
 #include <memory>
 
+#include "calculus/sparse_cholesky.h"
 #include "calculus/vector_field.h"
 
 namespace quadcover {
+
+struct HodgeOptions {
+  /// Factorization library for 𝔏 and 𝔏*; default Automatic (CHOLMOD when built with it, else Eigen).
+  CholeskyBackend backend = CholeskyBackend::Automatic;
+};
 
 struct HodgeParts {
   VectorField exact;     ///< X_P = ∇u, u ∈ S_h
@@ -32,7 +38,7 @@ class HodgeDecomposer {
  public:
   /// Factorizes the reduced 𝔏 and 𝔏* of the mesh (once). The mesh must outlive the decomposer.
   /// \pre mesh is a valid triangle mesh. \throw NumericalError if a factorization fails.
-  explicit HodgeDecomposer(const Mesh& mesh);
+  explicit HodgeDecomposer(const Mesh& mesh, const HodgeOptions& options = {});
   ~HodgeDecomposer();
   HodgeDecomposer(HodgeDecomposer&&) noexcept;
 

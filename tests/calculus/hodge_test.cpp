@@ -109,6 +109,21 @@ TEST_P(HodgeOnRealMeshes, PotentialsSolveTheLinearSystems) {
   EXPECT_EQ(&hodge.mesh(), &mesh);
 }
 
+// Every available factorization backend gives the same decomposition (CHOLMOD vs Eigen when both are built).
+TEST_P(HodgeOnRealMeshes, BackendsAgree) {
+  const Mesh& mesh = cached_mesh(GetParam());
+  const VectorField X = random_field(mesh, 76);
+  const HodgeParts reference = HodgeDecomposer(mesh, {CholeskyBackend::Eigen}).decompose(X);
+  std::vector<CholeskyBackend> others{CholeskyBackend::Automatic};
+  if (SparseCholesky<double>::cholmod_available()) others.push_back(CholeskyBackend::Cholmod);
+  for (const CholeskyBackend backend : others) {
+    const HodgeParts h = HodgeDecomposer(mesh, {backend}).decompose(X);
+    EXPECT_LT((h.potential - reference.potential).lpNorm<Eigen::Infinity>(), 1e-10);
+    EXPECT_LT((h.copotential - reference.copotential).lpNorm<Eigen::Infinity>(), 1e-10);
+    EXPECT_LT(l2_norm_squared(mesh, h.harmonic - reference.harmonic), 1e-20 * l2_norm_squared(mesh, X));
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Meshes, HodgeOnRealMeshes, ::testing::ValuesIn(testing::kCalculusMeshes));
 
 /// Numerical rank of the harmonic parts of `count` random fields: eigenvalues of their L² Gram matrix above
