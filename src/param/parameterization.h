@@ -1,6 +1,8 @@
 #pragma once
 // The result of the QuadCover parameterization (thesis Chapters 2 and 4): a seamless integer-grid map.
 #include <Eigen/Core>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "field/frame_field.h"
@@ -19,8 +21,30 @@ struct Parameterization {
   Eigen::VectorXi cut_edges;
   /// Branch points of the guiding field (vertices with non-integer index).
   std::vector<BranchPoint> branch_points;
-  /// Energies (thesis 6.1.1): E_D = ½‖X_C‖² (curl part removed), E_H (harmonic correction).
+  /// Energies (thesis 6.1.1), measured on the covering M̃ in grid units: E_D = ½‖X̃_C‖² (curl part removed),
+  /// E_H = ½‖H̃_d‖² (harmonic correction); E_D + E_H = ½‖X̃ - ∇φ̃‖². On M this is Σ_t A_t |·|² of both frame
+  /// vectors (layers 2 and 3 repeat layers 0 and 1 with opposite sign).
   double energy_curl = 0, energy_harmonic = 0;
+
+  /// #F: the quarter-turn gauge r_f of each face: on face f, ∇φ approximates scale · i^{r_f} Z_f (frame-complex i:
+  /// i(X, Y) = (-Y, X)), i.e. ∇φ⁰ ≈ the first and ∇φ¹ ≈ the second vector of the turned frame.
+  Eigen::VectorXi face_rotation;
+  /// Grid units per unit of |Z| per model length: the field is scaled by `scale` before integration.
+  double scale = 1;
+  /// Target quad edge length h in model units (scale = 1 / (h · RMS frame length)).
+  double edge_length = 0;
+  /// h_sym (4.1): the number of real symmetric periods that were rounded, and the complex periods b_j of the paths
+  /// before (after the constant gauge) and after rounding (one per path of the cut graph; the dependent path of each
+  /// component is made integral by the constant of φ at no cost).
+  int h_sym = 0;
+  std::vector<Complex> periods, rounded_periods;
+  /// Even branch points the fix-up could not move to an integer point (rotated lattice), normally empty.
+  std::vector<int> unfixed_even_branch_points;
+  /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration
+  /// (|two endpoint estimates of a translation| on the curl-free field): diagnostics, round-off sized.
+  double max_translation_residual = 0, integration_mismatch = 0;
+  /// Wall-clock seconds per stage, in pipeline order.
+  std::vector<std::pair<std::string, double>> stage_seconds;
 };
 
 }  // namespace quadcover

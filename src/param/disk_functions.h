@@ -1,0 +1,53 @@
+#pragma once
+// Functions on the cut disk of a CoverCut (thesis 1.2.5, 4.2.1): integration of curl*-free frame fields (1.12),
+// the transitions φ_t = i^{k_e} φ_s + c_e they have across the cut, the linear relations between the translations
+// (the composition of the transitions around every vertex off B is the identity), and functions with prescribed
+// jumps (the potentials of the Σ̃ fields (1.13) on the covering).
+#include <Eigen/Core>
+
+#include "param/cover_cut.h"
+
+namespace quadcover {
+
+/// A frame field as #F by 2 tangent vectors: column 0 the X-part (layer 0), column 1 the Y-part (layer 1).
+using FramePairs = Eigen::MatrixX2cd;
+
+/// ⟨w, Z⟩ = ⟨w, X⟩ + i⟨w, Y⟩ for a tangent vector w (frame-complex result).
+inline Complex frame_dot(Complex w, Complex X, Complex Y) {
+  return {std::real(std::conj(w) * X), std::real(std::conj(w) * Y)};
+}
+
+/// Integrates a curl*-free frame field over the cut disk (1.12), u_q = u_p + ⟨e, Z_t⟩, with value 0 at the first
+/// corner of each disk. \return per cut-vertex (CutMesh numbering) complex values.
+Eigen::VectorXcd integrate_on_disk(const Mesh& mesh, const CoverCut& cut, const FramePairs& Z);
+
+/// Per-corner values (#F by 3) of a function given per cut-vertex.
+Eigen::MatrixX3cd corner_values(const CoverCut& cut, const Eigen::VectorXcd& values);
+
+/// Gradient per face of a frame-complex function given per corner: (∇Re φ, ∇Im φ), ∇φ_c = J e_c / 2A.
+FramePairs corner_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi);
+
+/// Translations c_e (#E, 0 off the cut) of a disk function across the cut edges, averaged over the two endpoints;
+/// `mismatch` (if given) receives the largest difference between the two endpoint estimates.
+Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3cd& phi,
+                                  double* mismatch = nullptr);
+
+/// Completes translations given on the path edges (leftover edges e_j) to all cut edges so that the transitions
+/// compose to the identity around every vertex off B (processed from the leaves of the shortest-path forest to the
+/// roots). Entries of c on tree cut edges are overwritten.
+void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorXcd& c);
+
+/// The same relations over GF(2) for lattice parities: bit j of edge e is the parity of the coefficient of path j
+/// in c_e (i ≡ 1 mod 1+i). \return per edge a bitset of num_paths bits (words of 64).
+std::vector<std::vector<std::uint64_t>> path_parities(const Mesh& mesh, const CoverCut& cut);
+
+/// The function with jumps c across the cut (a potential of Σ̃_c): per corner values, 0 at vertices off the cut; at
+/// a branch point the value is the fixed point c/(1 - i^K) of the composed transition, elsewhere on the cut the first
+/// wedge of the fan has value 0.
+Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c);
+
+/// Composition of the transitions around vertex v (counter-clockwise, from its first fan face): the rotation power
+/// K and translation D of z ↦ i^K z + D.
+std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, int v);
+
+}  // namespace quadcover

@@ -1,0 +1,294 @@
+// The QuadCover pipeline on the covering (thesis 2.4, 4.1-4.2).
+#include "param/parameterize.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "calculus/sparse_cholesky.h"
+#include "common/errors.h"
+#include "cover/complex_stiffness.h"
+#include "field/indices.h"
+#include "param/cover_cut.h"
+#include "param/disk_functions.h"
+
+namespace quadcover {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double frame_norm2(const Mesh& mesh, const FramePairs& Z) {
+  double s = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) s += mesh.face_areas()[f] * (std::norm(Z(f, 0)) + std::norm(Z(f, 1)));
+  return s;
+}
+
+/// Per component of M: true iff the gauged matching is ≡ 0 mod 4 on all its interior edges (trivial holonomy, no
+/// branch points): then covering constants are in the kernel of 𝔏̄ and 𝔏̄*, and one value per component is pinned.
+std::vector<char> trivial_holonomy(const Mesh& mesh, const CoverCut& cc) {
+  std::vector<char> trivial(static_cast<std::size_t>(mesh.num_components()), 1);
+  for (int e = 0; e < mesh.num_edges(); ++e)
+    if (!mesh.is_boundary_edge(e) && ((cc.matching[e] % 4) + 4) % 4 != 0)
+      trivial[mesh.face_component()[mesh.EF()(e, 0)]] = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (cc.branch[v]) trivial[mesh.vertex_component()[v]] = 0;
+  return trivial;
+}
+
+/// Replaces row and column i of a Hermitian matrix by the unit vector (value pinned to 0).
+void pin(Eigen::SparseMatrix<Complex>& A, const std::vector<int>& rows) {
+  if (rows.empty()) return;
+  std::vector<char> pinned(static_cast<std::size_t>(A.rows()), 0);
+  for (int r : rows) pinned[r] = 1;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, c); it; ++it)
+      if (pinned[it.row()] || pinned[it.col()]) it.valueRef() = it.row() == it.col() ? Complex(1) : Complex(0);
+}
+
+/// J∇v per face for a covering nonconforming function v (reference gauge): J∇ψ_e = e / A.
+FramePairs rotated_gradient(const Mesh& mesh, const Eigen::MatrixX3i& mu, const Eigen::VectorXcd& v) {
+  FramePairs G = FramePairs::Zero(mesh.num_faces(), 2);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Complex w = ipow(mu(f, k)) * v[mesh.FE()(f, k)];
+      const Complex e = mesh.edge_vector_local(f, k) / mesh.face_areas()[f];
+      G(f, 0) += w.real() * e;
+      G(f, 1) += w.imag() * e;
+    }
+  return G;
+}
+
+/// GF(2) solve of A x = r (rows: even branch points, columns: paths); x minimal in the elimination sense.
+/// Returns false if inconsistent; `solvable_rows` flags rows whose condition could be met.
+bool solve_gf2(std::vector<std::vector<std::uint64_t>> A, std::vector<char> r, int ncols, std::vector<char>& x) {
+  const int nrows = static_cast<int>(A.size());
+  std::vector<int> pivot_col(static_cast<std::size_t>(nrows), -1);
+  int row = 0;
+  for (int col = 0; col < ncols && row < nrows; ++col) {
+    const std::size_t w = static_cast<std::size_t>(col) / 64;
+    const std::uint64_t bit = std::uint64_t{1} << (col % 64);
+    int p = row;
+    while (p < nrows && !(A[p][w] & bit)) ++p;
+    if (p == nrows) continue;
+    std::swap(A[p], A[row]);
+    std::swap(r[p], r[row]);
+    for (int q = 0; q < nrows; ++q)
+      if (q != row && (A[q][w] & bit)) {
+        for (std::size_t k = 0; k < A[q].size(); ++k) A[q][k] ^= A[row][k];
+        r[q] ^= r[row];
+      }
+    pivot_col[row] = col;
+    ++row;
+  }
+  bool ok = true;
+  x.assign(static_cast<std::size_t>(ncols), 0);
+  for (int q = 0; q < nrows; ++q) {
+    if (pivot_col[q] >= 0)
+      x[pivot_col[q]] = r[q];
+    else if (r[q])
+      ok = false;
+  }
+  return ok;
+}
+
+}  // namespace
+
+double target_edge_length(const Mesh& mesh, const ParamOptions& options) {
+  if (options.edge_length < 0 || options.target_quads < 0)
+    throw InputError("", 0, "the edge length and the number of quads must be positive");
+  if (options.edge_length > 0) return options.edge_length;
+  if (options.target_quads > 0) return std::sqrt(mesh.total_area() / options.target_quads);
+  return options.default_edge_factor * mesh.mean_edge_length();
+}
+
+Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
+                              ProgressSink& progress) {
+  const int nf = mesh.num_faces(), ne = mesh.num_edges(), nv = mesh.num_vertices();
+  if (field.X.size() != nf || field.Y.size() != nf || field.matching.size() != ne)
+    throw InputError("", 0, "parameterize: the frame field does not match the mesh");
+  Parameterization P;
+  auto t = Clock::now();
+  auto lap = [&](const char* stage) {
+    const auto now = Clock::now();
+    P.stage_seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
+    t = now;
+    progress.report("param", -1, stage);
+  };
+
+  // ---- 1. cut through B and gauge (4.2)
+  const CoverCut cc = build_cover_cut(mesh, field.matching);
+  P.cut_edges = cc.graph.cut;
+  P.face_rotation = cc.face_rotation;
+  for (int v = 0; v < nv; ++v)
+    if (cc.branch[v]) P.branch_points.push_back({v, cc.quarter_index[v]});
+  P.h_sym = cc.h_sym();
+  const std::vector<char> trivial = trivial_holonomy(mesh, cc);
+  lap("cut");
+
+  // Density: scale so that one grid unit is h along the RMS-normalized field.
+  double rms = 0;
+  for (int f = 0; f < nf; ++f)
+    rms += mesh.face_areas()[f] * 0.5 * (std::norm(field.X[f]) + std::norm(field.Y[f]));
+  rms = std::sqrt(rms / mesh.total_area());
+  if (!(rms > 0) || !std::isfinite(rms)) throw InputError("", 0, "parameterize: the frame field is zero or not finite");
+  P.edge_length = target_edge_length(mesh, options);
+  P.scale = 1.0 / (P.edge_length * rms);
+  FramePairs Z(nf, 2);
+  for (int f = 0; f < nf; ++f) {
+    const auto [x, y] = turn_frame(field.X[f], field.Y[f], cc.face_rotation[f]);
+    Z(f, 0) = P.scale * x;
+    Z(f, 1) = P.scale * y;
+  }
+
+  // ---- 2. curl removal on the covering: 𝔏̄* v = -curl* Z̃, X̂ = Z - J∇v
+  Eigen::SparseMatrix<Complex> Ls = complex_nonconforming_stiffness(mesh, cc.matching);
+  Eigen::VectorXcd rhs = -complex_curl_star(mesh, FrameField{Z.col(0), Z.col(1), cc.matching});
+  {
+    // Dirichlet condition v = 0 on boundary edges: {J∇v : v|∂M = 0} is exactly the orthogonal complement of the
+    // fields that are curl*-free at interior edges, so X̂ is their L²-closest element and J∇v ⟂ every gradient.
+    // On closed components with trivial holonomy one edge is pinned against the constant kernel.
+    std::vector<int> pinned;
+    std::vector<char> done(trivial.size(), 0);
+    for (int e = 0; e < ne; ++e) {
+      const int c = mesh.face_component()[mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1)];
+      if (mesh.is_boundary_edge(e) || (trivial[c] && !done[c] && mesh.components()[c].boundary_loops == 0)) {
+        done[c] = 1;
+        pinned.push_back(e);
+        rhs[e] = 0;
+      }
+    }
+    pin(Ls, pinned);
+  }
+  SparseCholesky<Complex> chol_s;
+  chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
+  const Eigen::VectorXcd v = chol_s.solve(rhs);
+  const FramePairs XC = rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
+  const FramePairs Xhat = Z - XC;
+  P.energy_curl = frame_norm2(mesh, XC);
+  lap("curl_removal");
+
+  // ---- 3. integration over the cut disk and the periods
+  Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
+  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.integration_mismatch);
+  lap("integrate");
+
+  // ---- 4. rounding (4.2.2). The constant of each component fixes its dependent path at no cost.
+  for (int comp = 0; comp < mesh.num_components(); ++comp) {
+    const int j0 = cc.dependent_path[comp];
+    if (j0 < 0) continue;
+    const int e0 = cc.path_edge[j0];
+    const Complex w = (round_to_lattice(c[e0], options.lattice) - c[e0]) / (Complex(1) - ipow(cc.rotation[e0]));
+    for (int i = 0; i < cc.disk.num_vertices(); ++i)
+      if (mesh.vertex_component()[cc.disk.original_vertex[i]] == comp) phi[i] += w;
+    for (int e = 0; e < ne; ++e)
+      if (cc.graph.cut[e] && mesh.face_component()[mesh.EF()(e, 0)] == comp)
+        c[e] += (Complex(1) - ipow(cc.rotation[e])) * w;
+  }
+  const int n = cc.num_paths();
+  P.periods.resize(n);
+  P.rounded_periods.resize(n);
+  for (int j = 0; j < n; ++j) {
+    P.periods[j] = c[cc.path_edge[j]];
+    P.rounded_periods[j] = round_to_lattice(P.periods[j], options.lattice);
+  }
+  if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
+    // Even branch point q sits at D_q / 2 (D_q the translation around q); it is integral iff D_q ∈ 2Z[i]. Over the
+    // rotated lattice D_q ∈ (1+i)Z[i]; flipping the parity of path periods (± (1±i)) fixes it: a GF(2) system.
+    Eigen::VectorXcd cr = Eigen::VectorXcd::Zero(ne);
+    for (int j = 0; j < n; ++j) cr[cc.path_edge[j]] = P.rounded_periods[j];
+    complete_translations(mesh, cc, cr);
+    const auto bits = path_parities(mesh, cc);
+    std::vector<int> evens;
+    std::vector<std::vector<std::uint64_t>> A;
+    std::vector<char> r;
+    for (int q = 0; q < nv; ++q) {
+      if (!cc.branch[q] || ((cc.quarter_index[q] % 4) + 4) % 4 != 2) continue;
+      const auto [K, D] = transition_around(mesh, cc, cr, q);
+      std::vector<std::uint64_t> row(bits.empty() ? 0 : bits[0].size(), 0);
+      for (const FanCrossing& x : fan_crossings(mesh, q))
+        if (cc.graph.cut[x.edge])
+          for (std::size_t w = 0; w < row.size(); ++w) row[w] ^= bits[x.edge][w];
+      evens.push_back(q);
+      A.push_back(row);
+      r.push_back(distance_to_gaussian_integers(0.5 * D) > 0.25 ? 1 : 0);
+    }
+    std::vector<char> x;
+    const bool ok = solve_gf2(A, r, n, x);
+    for (int j = 0; j < n; ++j) {
+      if (!x[j]) continue;
+      Complex best = 0;
+      double best_d = INFINITY;
+      for (const Complex delta : {Complex(1, 1), Complex(-1, -1), Complex(1, -1), Complex(-1, 1)}) {
+        const double d = std::abs(P.rounded_periods[j] + delta - P.periods[j]);
+        if (d < best_d) best_d = d, best = delta;
+      }
+      P.rounded_periods[j] += best;
+    }
+    if (!ok) {  // report the even points that stay at half-integers
+      for (int j = 0; j < n; ++j) cr[cc.path_edge[j]] = P.rounded_periods[j];
+      complete_translations(mesh, cc, cr);
+      for (int q : evens)
+        if (distance_to_gaussian_integers(0.5 * transition_around(mesh, cc, cr, q).second) > 0.25)
+          P.unfixed_even_branch_points.push_back(q);
+    }
+  }
+  Eigen::VectorXcd d = Eigen::VectorXcd::Zero(ne);
+  for (int j = 0; j < n; ++j) d[cc.path_edge[j]] = P.rounded_periods[j] - P.periods[j];
+  complete_translations(mesh, cc, d);
+  lap("round");
+
+  // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
+  const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
+  const FramePairs Sigma = corner_gradient(mesh, sigma);
+  const VertexLayers vl = vertex_layers(mesh, cc.matching);
+  Eigen::SparseMatrix<Complex> L = complex_conforming_stiffness(mesh, cc.matching);
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(nv);
+  for (int f = 0; f < nf; ++f)
+    for (int a = 0; a < 3; ++a) {
+      const int p = mesh.F()(f, a);
+      if (vl.branch[p]) continue;
+      // ∫⟨∇φ_p, Σ⟩ with ∇φ_p = J e_p / 2A, read in p's gauge.
+      b[p] += ipow(-vl.layer(f, a)) * 0.5 *
+              frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), Sigma(f, 0), Sigma(f, 1));
+    }
+  {
+    std::vector<int> pinned;
+    std::vector<char> done(trivial.size(), 0);
+    for (int p = 0; p < nv; ++p) {
+      const int comp = mesh.vertex_component()[p];
+      if (trivial[comp] && !done[comp]) {
+        done[comp] = 1;
+        pinned.push_back(p);
+        b[p] = 0;
+      }
+    }
+    pin(L, pinned);
+  }
+  SparseCholesky<Complex> chol;
+  chol.compute(L, "harmonic correction (complex conforming stiffness)");
+  const Eigen::VectorXcd u = chol.solve(b);
+  Eigen::MatrixX3cd ucorner(nf, 3);
+  for (int f = 0; f < nf; ++f)
+    for (int a = 0; a < 3; ++a)
+      ucorner(f, a) = vl.branch[mesh.F()(f, a)] ? Complex(0) : ipow(vl.layer(f, a)) * u[mesh.F()(f, a)];
+  const FramePairs H = Sigma - corner_gradient(mesh, ucorner);
+  P.energy_harmonic = frame_norm2(mesh, H);
+  lap("harmonic");
+
+  // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
+  P.uv = corner_values(cc, phi) + sigma - ucorner;
+  const Eigen::VectorXcd cfinal = cut_translations(mesh, cc, P.uv);
+  P.transition_rotation = Eigen::VectorXi::Zero(ne);
+  P.transition_translation = Eigen::VectorXcd::Zero(ne);
+  for (int e = 0; e < ne; ++e) {
+    if (!cc.graph.cut[e]) continue;
+    P.transition_rotation[e] = cc.rotation[e];
+    P.transition_translation[e] = round_to_lattice(cfinal[e], Lattice::Unit);
+    P.max_translation_residual =
+        std::max(P.max_translation_residual, std::abs(cfinal[e] - P.transition_translation[e]));
+  }
+  lap("assemble");
+  return P;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,38 @@
+#pragma once
+// QuadCover parameterization (thesis Chapters 2 and 4, Algorithm 2.1 on the covering M̃):
+//  1. cut M through B = branch points ∪ boundary and gauge the frames on the cut disk (4.2),
+//  2. curl removal on the covering: 𝔏̄* v = -curl* Z̃, X̂ = Z - J∇v (4.1, (2.1), (3.3), (3.8)),
+//  3. integrate X̂ over the cut disk (1.12) and read the complex periods b_j of the symmetric paths,
+//  4. round the periods to the lattice (4.2.2; fix-up of even branch points on the rotated lattice),
+//  5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P with the conforming 𝔏̄ (branch rows removed) ((1.14) on M̃),
+//  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units.
+#include "common/progress.h"
+#include "param/lattice.h"
+#include "param/parameterization.h"
+
+namespace quadcover {
+
+struct ParamOptions {
+  /// Rounding lattice of the periods (4.2.2). Default: rotated, (1+i)Z[i].
+  Lattice lattice = Lattice::Rotated;
+  /// Target quad edge length h in model units (> 0 to use). One grid unit = h along the (RMS-normalized) field.
+  double edge_length = 0;
+  /// Target number of quads N (> 0 to use, when edge_length is 0): h = sqrt(area / N).
+  int target_quads = 0;
+  /// Default density when neither is given: h = default_edge_factor × mean mesh edge length (≈ #F / 9 quads on
+  /// a regular mesh).
+  double default_edge_factor = 2.0;
+  /// Move even branch points to integer points by adjusting one period each (rotated lattice only).
+  bool fix_even_branch_points = true;
+};
+
+/// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.
+double target_edge_length(const Mesh& mesh, const ParamOptions& options);
+
+/// Seamless QuadCover parameterization of `mesh` guided by `field`.
+/// \pre mesh is a valid triangle mesh; field has #F frames (non-zero) and a #E matching.
+/// \throw InputError on size mismatches, NumericalError if a factorization fails.
+Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options = {},
+                              ProgressSink& progress = null_progress());
+
+}  // namespace quadcover

@@ -1,0 +1,77 @@
+// Seamlessness and flips measured from per-corner coordinates.
+#include "param/seams.h"
+
+#include <cmath>
+
+namespace quadcover {
+
+namespace {
+Complex ipow_local(int k) {
+  static const Complex p[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  return p[((k % 4) + 4) % 4];
+}
+Complex round_gauss(Complex z) { return {std::round(z.real()), std::round(z.imag())}; }
+int corner_of(const Mesh& mesh, int f, int v) {
+  for (int c = 0; c < 3; ++c)
+    if (mesh.F()(f, c) == v) return c;
+  return -1;
+}
+}  // namespace
+
+SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double relative_tolerance) {
+  SeamReport r;
+  double minx = INFINITY, maxx = -INFINITY, miny = INFINITY, maxy = -INFINITY;
+  for (Eigen::Index i = 0; i < uv.size(); ++i) {
+    minx = std::min(minx, uv(i).real()), maxx = std::max(maxx, uv(i).real());
+    miny = std::min(miny, uv(i).imag()), maxy = std::max(maxy, uv(i).imag());
+  }
+  r.parameter_extent = uv.size() ? std::hypot(maxx - minx, maxy - miny) : 0;
+  const double tol = relative_tolerance * std::max(r.parameter_extent, 1.0);
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
+    if (s < 0 || t < 0) continue;
+    const int a = mesh.E()(e, 0), b = mesh.E()(e, 1);
+    const Complex sa = uv(s, corner_of(mesh, s, a)), sb = uv(s, corner_of(mesh, s, b));
+    const Complex ta = uv(t, corner_of(mesh, t, a)), tb = uv(t, corner_of(mesh, t, b));
+    double best = INFINITY;
+    bool identity = false;
+    for (int k = 0; k < 4; ++k) {
+      const Complex ca = ta - ipow_local(k) * sa, cb = tb - ipow_local(k) * sb;
+      const Complex c = round_gauss(0.5 * (ca + cb));
+      const double err = std::max(std::abs(ca - c), std::abs(cb - c));
+      if (err < best) {
+        best = err;
+        identity = k == 0 && c == Complex(0);
+      }
+    }
+    if (!identity) ++r.cut_edges;
+    r.max_transition_error = std::max(r.max_transition_error, best);
+    if (best > tol) r.bad_edges.push_back(e);
+  }
+  r.seamless = r.bad_edges.empty();
+  return r;
+}
+
+FlipReport flipped_triangles(const Eigen::MatrixX3cd& uv) {
+  FlipReport r;
+  const Eigen::Index nf = uv.rows();
+  std::vector<double> area(static_cast<std::size_t>(nf));
+  double mean = 0;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    area[f] = 0.5 * std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0)));
+    mean += std::abs(area[f]);
+    r.parameter_area += area[f];
+  }
+  mean = nf ? mean / nf : 0;
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    if (std::abs(area[f]) <= 1e-12 * mean) {
+      ++r.degenerate;
+    } else if (area[f] < 0) {
+      ++r.flipped;
+      r.flipped_faces.push_back(static_cast<int>(f));
+    }
+  }
+  return r;
+}
+
+}  // namespace quadcover

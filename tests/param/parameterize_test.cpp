@@ -1,0 +1,180 @@
+// QuadCover parameterization (thesis 2.4, 4.1-4.2) on the test meshes, genus 0-4, with and without boundary.
+#include "param/parameterize.h"
+
+#include <gtest/gtest.h>
+
+#include "cover/complex_stiffness.h"
+#include "cover/field_helpers.h"
+#include "field/compute_frame_field.h"
+#include "param/cover_cut.h"
+#include "param/seams.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+using testing::load_test_mesh;
+
+Complex round_gauss(Complex z) { return {std::round(z.real()), std::round(z.imag())}; }
+
+// ‖Z' - ∇φ‖² on the covering (= Σ_t A_t |·|² of both frame vectors), Z' the scaled, gauged frames.
+double distortion(const Mesh& mesh, const FrameField& field, const Parameterization& P) {
+  double s = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    Complex g0 = 0, g1 = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Complex Je = Complex(0, 1) * mesh.edge_vector_local(f, c) / (2 * mesh.face_areas()[f]);
+      g0 += P.uv(f, c).real() * Je;
+      g1 += P.uv(f, c).imag() * Je;
+    }
+    const auto [x, y] = turn_frame(field.X[f], field.Y[f], P.face_rotation[f]);
+    s += mesh.face_areas()[f] * (std::norm(P.scale * x - g0) + std::norm(P.scale * y - g1));
+  }
+  return s;
+}
+
+// φ at every corner of vertex v.
+std::vector<Complex> values_at(const Mesh& mesh, const Parameterization& P, int v) {
+  std::vector<Complex> out;
+  for (const auto& fc : mesh.fan(v)) out.push_back(P.uv(fc.face, fc.corner));
+  return out;
+}
+
+struct Case {
+  const char* mesh;
+  bool curvature_field;  // compute_frame_field (field stage) or the generated smooth field
+};
+
+class OnTestMeshes : public ::testing::TestWithParam<Case> {
+ protected:
+  void SetUp() override {
+    mesh = load_test_mesh(GetParam().mesh);
+    field = GetParam().curvature_field ? compute_frame_field(mesh) : testing::smooth_cross_field(mesh);
+  }
+  Mesh mesh;
+  FrameField field;
+};
+
+// Seamless (transitions z ↦ i^k z + c, c ∈ Z[i], to 1e-9 of the parameter extent), the stored transitions are the
+// measured ones, branch points of odd index on integer points, even ones after the fix-up, and
+// E_D + E_H = ½‖X̃ - ∇φ̃‖² (6.1.1) to round-off — for every lattice.
+TEST_P(OnTestMeshes, SeamlessIntegerGridMap) {
+  for (const Lattice lattice : {Lattice::Rotated, Lattice::Coarse, Lattice::Unit}) {
+    ParamOptions opt;
+    opt.lattice = lattice;
+    const Parameterization P = parameterize(mesh, field, opt);
+    SCOPED_TRACE(std::string(GetParam().mesh) + " lattice " + to_string(lattice));
+    const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
+    EXPECT_TRUE(seams.seamless) << seams.max_transition_error << " extent " << seams.parameter_extent;
+    EXPECT_GT(seams.cut_edges, 0);
+    const double tol = 1e-9 * seams.parameter_extent;
+    for (int e = 0; e < mesh.num_edges(); ++e) {
+      const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
+      if (s < 0 || t < 0) continue;
+      EXPECT_EQ(P.transition_translation[e], round_gauss(P.transition_translation[e]));
+      for (int end = 0; end < 2; ++end) {
+        const int v = mesh.E()(e, end);
+        int cs = 0, ct = 0;
+        while (mesh.F()(s, cs) != v) ++cs;
+        while (mesh.F()(t, ct) != v) ++ct;
+        const Complex expect = ipow(P.transition_rotation[e]) * P.uv(s, cs) + P.transition_translation[e];
+        ASSERT_LT(std::abs(P.uv(t, ct) - expect), tol) << "edge " << e << " cut " << P.cut_edges[e];
+      }
+    }
+    for (const BranchPoint& bp : P.branch_points) {
+      const bool odd = ((bp.quarter_index % 4) + 4) % 4 != 2;
+      for (const Complex z : values_at(mesh, P, bp.vertex)) {
+        const double frac = std::abs(z - round_gauss(z));
+        if (lattice == Lattice::Coarse || (lattice == Lattice::Rotated && odd)) {
+          EXPECT_LT(frac, tol) << "branch point " << bp.vertex << " at " << z;
+        } else if (lattice == Lattice::Rotated) {
+          const bool unfixed = std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(),
+                                          bp.vertex) > 0;
+          if (!unfixed) EXPECT_LT(frac, tol) << "even branch point " << bp.vertex << " at " << z;
+        } else if (odd) {
+          // Z[i]: odd branch points have equal fractional parts in both coordinates, 0 or ½ (4.2.2).
+          const Complex h = 2.0 * z;
+          EXPECT_LT(std::abs(h - round_gauss(h)), tol);
+          const double fx = std::round(h.real()) - 2 * std::floor(std::round(h.real()) / 2);
+          const double fy = std::round(h.imag()) - 2 * std::floor(std::round(h.imag()) / 2);
+          EXPECT_EQ(fx, fy) << z;
+        }
+      }
+    }
+    EXPECT_TRUE(P.unfixed_even_branch_points.empty());
+    const double total = distortion(mesh, field, P);
+    EXPECT_NEAR(P.energy_curl + P.energy_harmonic, total, 1e-8 * total);
+    EXPECT_GT(P.energy_harmonic, 0);
+  }
+}
+
+// h_sym (4.1): the number of rounded real periods is 4g + 2(b_even + b_odd) - 4 on closed surfaces.
+TEST_P(OnTestMeshes, SymmetricPeriodCount) {
+  if (mesh.num_boundary_loops() > 0) GTEST_SKIP() << "(4.1) counts closed surfaces";
+  const Parameterization P = parameterize(mesh, field);
+  int b_even = 0, b_odd = 0;
+  for (const BranchPoint& bp : P.branch_points) (((bp.quarter_index % 4) + 4) % 4 == 2 ? b_even : b_odd) += 1;
+  EXPECT_EQ(P.h_sym, symmetric_period_count(mesh.genus(), b_even, b_odd))
+      << "b_even " << b_even << " b_odd " << b_odd << " paths " << P.periods.size();
+  // n paths; with branch points one of them is fixed by the constant of φ (4.2: n - 1 symmetric pairs).
+  EXPECT_EQ(2 * static_cast<int>(P.periods.size()), P.h_sym + (P.branch_points.empty() ? 0 : 2));
+}
+
+// Density: with --quads N the parameter area (number of unit squares) is N up to the field's area distortion.
+TEST_P(OnTestMeshes, DensityFollowsTargetQuadCount) {
+  ParamOptions opt;
+  opt.target_quads = 500;
+  const Parameterization P = parameterize(mesh, field, opt);
+  const FlipReport flips = flipped_triangles(P.uv);
+  EXPECT_GT(flips.parameter_area, 0.5 * 500);
+  EXPECT_LT(flips.parameter_area, 1.5 * 500);
+  EXPECT_LT(flips.flipped, mesh.num_faces() / 20);
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, OnTestMeshes,
+                         ::testing::Values(Case{"bunny_3k", true}, Case{"torus_5k", true},
+                                           Case{"eight_genus2", false}, Case{"eight_genus2", true},
+                                           Case{"3holes_genus3", true}, Case{"fertility_genus4", true},
+                                           Case{"lilium_disk", true}, Case{"camelhead_boundary", true},
+                                           Case{"mech_holes_shark", true}, Case{"spot", false}),
+                         [](const auto& info) {
+                           return std::string(info.param.mesh) + (info.param.curvature_field ? "_curv" : "_gen");
+                         });
+
+// Random fields with many (adjacent) branch points, both index classes: still seamless, branch points integral.
+TEST(Parameterize, RandomFieldsManyBranchPoints) {
+  const Mesh mesh = load_test_mesh("eight_genus2");
+  const FrameField field = testing::random_cross_field(mesh, 12);
+  const Parameterization P = parameterize(mesh, field);
+  EXPECT_GT(P.branch_points.size(), 20u);
+  const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
+  EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
+  for (const BranchPoint& bp : P.branch_points)
+    for (const Complex z : values_at(mesh, P, bp.vertex))
+      if (std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(), bp.vertex) == 0)
+        EXPECT_LT(std::abs(z - round_gauss(z)), 1e-9 * seams.parameter_extent);
+}
+
+// Without branch points (torus, field with trivial holonomy): 2g complex periods, h_sym = 4g, and a constant field
+// direction gives an exact grid map with E_H the only rounding error.
+TEST(Parameterize, TorusWithoutBranchPoints) {
+  const Mesh mesh = testing::make_torus(48, 16);
+  FrameField field;
+  field.X.resize(mesh.num_faces());
+  for (int f = 0; f < mesh.num_faces(); ++f) {  // the direction of the major circle
+    const Eigen::Vector3d c = (mesh.V().row(mesh.F()(f, 0)) + mesh.V().row(mesh.F()(f, 1)) +
+                               mesh.V().row(mesh.F()(f, 2))).transpose() / 3;
+    const Complex z = mesh.to_local(f, Eigen::Vector3d(-c.y(), c.x(), 0));
+    field.X[f] = z / std::abs(z);
+  }
+  field.Y = Complex(0, 1) * field.X;
+  field.matching = testing::matching_51(mesh, field.X);
+  const Parameterization P = parameterize(mesh, field);
+  EXPECT_TRUE(P.branch_points.empty());
+  EXPECT_EQ(P.h_sym, 4);
+  EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless);
+  EXPECT_EQ(flipped_triangles(P.uv).flipped, 0);
+}
+
+}  // namespace
+}  // namespace quadcover
