@@ -37,9 +37,12 @@ int CoverCut::h_sym() const {
   return 2 * (num_paths() - dep);
 }
 
-int symmetric_period_count(int genus, int b_even, int b_odd) {
-  if (b_even + b_odd == 0) return 4 * genus;
-  return 4 * genus + 2 * (b_even + b_odd) - 4;  // (4.1)
+int symmetric_period_count(int genus, int b_even, int b_odd, int boundary_loops) {
+  // n = 2g + b + L - 1 paths (Algorithm 1.16 with base set B and L boundary loops; a closed surface without base
+  // vertices gets one root: n = 2g); with branch points one path is fixed by the constant of φ.
+  const int b = b_even + b_odd;
+  if (b == 0) return boundary_loops == 0 ? 4 * genus : 2 * (2 * genus + boundary_loops - 1);
+  return 4 * genus + 2 * (b + boundary_loops) - 4;  // (4.1) for L = 0
 }
 
 CoverCut build_cover_cut(const Mesh& mesh, const Eigen::VectorXi& matching) {

@@ -50,9 +50,11 @@ struct CoverCut {
 /// \pre matching has #E entries. \throw NumericalError if the gauge does not close (inconsistent matching).
 CoverCut build_cover_cut(const Mesh& mesh, const Eigen::VectorXi& matching);
 
-/// h_sym of (4.1) for a closed connected surface: 4g + 2(b_even + b_odd) - 4 when there are branch points; 4g
-/// without branch points (the b_odd = b_even = 0 case: four copies of M, 2g complex periods).
-int symmetric_period_count(int genus, int b_even, int b_odd);
+/// h_sym of (4.1) for a connected surface: 4g + 2(b_even + b_odd) - 4 when there are branch points; 4g
+/// without branch points (the b_odd = b_even = 0 case: four copies of M, 2g complex periods). With L > 0 boundary
+/// loops (beyond the thesis), each loop acts like one more base point: 4g + 2(b + L) - 4, or 4g + 2L - 2 without
+/// branch points (trivial holonomy: no path is fixed by the constant).
+int symmetric_period_count(int genus, int b_even, int b_odd, int boundary_loops = 0);
 
 /// The frame Z = (X, Y) turned by the frame-complex i^k: i(X, Y) = (-Y, X).
 inline std::pair<Complex, Complex> turn_frame(Complex X, Complex Y, int k) {
