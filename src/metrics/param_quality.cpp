@@ -1,0 +1,112 @@
+#include "metrics/param_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "quad/transitions.h"
+
+namespace quadcover {
+
+double arap_density(const Eigen::Matrix2d& J) {
+  const double a = J(0, 0), b = J(0, 1), c = J(1, 0), d = J(1, 1);
+  // max_θ tr(R_θᵀ J) = |(a + d, c − b)|
+  const double v = J.squaredNorm() + 2 - 2 * std::hypot(a + d, c - b);
+  return 0.5 * std::max(0.0, v);
+}
+
+Eigen::Matrix2d map_jacobian(const Mesh& mesh, const Eigen::MatrixX3cd& uv, int f) {
+  const Complex p1 = mesh.corner_local()(f, 1) - mesh.corner_local()(f, 0);
+  const Complex p2 = mesh.corner_local()(f, 2) - mesh.corner_local()(f, 0);
+  const Complex u1 = uv(f, 1) - uv(f, 0), u2 = uv(f, 2) - uv(f, 0);
+  Eigen::Matrix2d P, U;
+  P << p1.real(), p2.real(), p1.imag(), p2.imag();
+  U << u1.real(), u2.real(), u1.imag(), u2.imag();
+  return U * P.inverse();  // J P = U
+}
+
+ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, const ParamQualityOptions& options) {
+  ParamQuality q;
+  const int nf = mesh.num_faces();
+  const Eigen::VectorXd& A = mesh.face_areas();
+  std::vector<Eigen::Matrix2d> J(nf);
+  for (int f = 0; f < nf; ++f) {
+    J[f] = map_jacobian(mesh, param.uv, f);
+    const double det = J[f].determinant();
+    q.uv_area += std::abs(det) * A[f];
+    if (det < 0) ++q.flipped_triangles;
+    if (det == 0) ++q.degenerate_triangles;
+  }
+  q.scale = q.uv_area > 0 ? std::sqrt(mesh.total_area() / q.uv_area) : 1.0;
+  q.arap_per_face.resize(nf);
+  double weighted = 0;
+  for (int f = 0; f < nf; ++f) {
+    q.arap_per_face[f] = arap_density(q.scale * J[f]);
+    weighted += A[f] * q.arap_per_face[f];
+    q.arap_max = std::max(q.arap_max, q.arap_per_face[f]);
+  }
+  q.arap = mesh.total_area() > 0 ? weighted / mesh.total_area() : 0;
+  // area-weighted 95th percentile
+  std::vector<int> order(nf);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return q.arap_per_face[x] < q.arap_per_face[y]; });
+  double acc = 0;
+  for (int f : order) {
+    acc += A[f];
+    q.arap_p95 = q.arap_per_face[f];
+    if (acc >= 0.95 * mesh.total_area()) break;
+  }
+  q.arap_bins = options.arap_bins;
+  q.arap_histogram.assign(options.arap_bins.size() + 1, 0);
+  for (double v : q.arap_per_face) {
+    const auto it = std::lower_bound(options.arap_bins.begin(), options.arap_bins.end(), v);
+    ++q.arap_histogram[it - options.arap_bins.begin()];
+  }
+  q.energy_curl = param.energy_curl;
+  q.energy_harmonic = param.energy_harmonic;
+
+  // Seamlessness over interior edges.
+  const bool has_rot = param.transition_rotation.size() == mesh.num_edges();
+  const bool has_trans = param.transition_translation.size() == mesh.num_edges();
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
+    if (s < 0 || t < 0) continue;
+    const Complex r = ipow(has_rot ? param.transition_rotation[e] : 0);
+    const Complex c = has_trans ? param.transition_translation[e] : Complex(0, 0);
+    q.max_translation_defect =
+        std::max(q.max_translation_defect, std::abs(c - Complex(std::round(c.real()), std::round(c.imag()))));
+    for (int j = 0; j < 2; ++j) {
+      const int v = mesh.E()(e, j);
+      int cs = 0, ct = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (mesh.F()(s, k) == v) cs = k;
+        if (mesh.F()(t, k) == v) ct = k;
+      }
+      q.max_transition_error = std::max(q.max_transition_error, std::abs(param.uv(t, ct) - (r * param.uv(s, cs) + c)));
+    }
+  }
+  // Cone points from the parameter angle sums.
+  std::vector<double> theta(mesh.num_vertices(), 0);
+  std::vector<int> corner_face(mesh.num_vertices(), -1), corner_idx(mesh.num_vertices(), -1);
+  for (int f = 0; f < nf; ++f)
+    for (int c = 0; c < 3; ++c) {
+      const Complex a = param.uv(f, (c + 1) % 3) - param.uv(f, c), b = param.uv(f, (c + 2) % 3) - param.uv(f, c);
+      theta[mesh.F()(f, c)] += std::abs(std::arg(b / a));
+      corner_face[mesh.F()(f, c)] = f;
+      corner_idx[mesh.F()(f, c)] = c;
+    }
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.is_boundary_vertex(v) || corner_face[v] < 0) continue;
+    const int qi = static_cast<int>(std::lround(4 - 2 * theta[v] / std::numbers::pi));
+    if (qi == 0) continue;
+    ++q.branch_points_by_index[qi];
+    ++q.branch_points;
+    const Complex z = param.uv(corner_face[v], corner_idx[v]);
+    q.max_branch_point_offset =
+        std::max(q.max_branch_point_offset, std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))));
+  }
+  return q;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,133 @@
+#include "metrics/report.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace quadcover {
+
+namespace {
+template <class M>
+nlohmann::json map_json(const M& m) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [k, v] : m) j[std::to_string(k)] = v;
+  return j;
+}
+}  // namespace
+
+nlohmann::json to_json(const ParamQuality& q) {
+  return {{"scale", q.scale},
+          {"arap", q.arap},
+          {"arap_max", q.arap_max},
+          {"arap_p95", q.arap_p95},
+          {"arap_histogram", {{"upper_bounds", q.arap_bins}, {"counts", q.arap_histogram}}},
+          {"flipped_triangles", q.flipped_triangles},
+          {"degenerate_triangles", q.degenerate_triangles},
+          {"uv_area", q.uv_area},
+          {"energy_curl", q.energy_curl},
+          {"energy_harmonic", q.energy_harmonic},
+          {"branch_points", q.branch_points},
+          {"branch_points_by_index", map_json(q.branch_points_by_index)},
+          {"max_transition_error", q.max_transition_error},
+          {"max_translation_defect", q.max_translation_defect},
+          {"max_branch_point_offset", q.max_branch_point_offset}};
+}
+
+nlohmann::json to_json(const QuadQuality& q) {
+  return {{"vertices", q.vertices},
+          {"faces", q.faces},
+          {"quads", q.quads},
+          {"non_quads", q.non_quads},
+          {"face_sizes", map_json(q.face_sizes)},
+          {"mean_edge_length", q.mean_edge_length},
+          {"rsd_edge_length", q.rsd_edge_length},
+          {"mean_corner_angle", q.mean_corner_angle},
+          {"rsd_corner_angle", q.rsd_corner_angle},
+          {"valence_histogram", map_json(q.valence_histogram)},
+          {"irregular_vertices", q.irregular_vertices},
+          {"boundary_vertices", q.boundary_vertices},
+          {"irregular_boundary_vertices", q.irregular_boundary_vertices},
+          {"manifold", q.topology.manifold()},
+          {"closed", q.topology.closed()},
+          {"euler_characteristic", q.topology.euler_characteristic},
+          {"boundary_edges", q.topology.boundary_edges},
+          {"non_manifold_edges", q.topology.non_manifold_edges},
+          {"non_manifold_vertices", q.topology.non_manifold_vertices}};
+}
+
+nlohmann::json to_json(const SurfaceDistance& d) {
+  return {{"bbox_diagonal", d.bbox_diagonal},         {"mean", d.mean},
+          {"max", d.max},                             {"mean_to_reference", d.mean_to_reference},
+          {"max_to_reference", d.max_to_reference},   {"mean_from_reference", d.mean_from_reference},
+          {"max_from_reference", d.max_from_reference}};
+}
+
+nlohmann::json to_json(const ExtractionReport& r) {
+  return {{"quads", r.quads},
+          {"non_quads", r.non_quads},
+          {"grid_vertices", r.grid_vertices},
+          {"boundary_vertices", r.boundary_vertices},
+          {"flipped_triangles", r.flipped_triangles},
+          {"degenerate_triangles", r.degenerate_triangles},
+          {"torn_seams", r.torn_seams},
+          {"non_integer_translations", r.non_integer_translations},
+          {"failed_traces", r.failed_traces},
+          {"dropped_faces", r.dropped_faces},
+          {"degenerate_faces", r.degenerate_faces}};
+}
+
+nlohmann::json to_json(const Report& r) {
+  nlohmann::json j;
+  j["input"] = r.input;
+  j["parameterization"] = r.parameterization ? to_json(*r.parameterization) : nlohmann::json();
+  j["extraction"] = r.extraction ? to_json(*r.extraction) : nlohmann::json();
+  j["quad_mesh"] = r.quad_mesh ? to_json(*r.quad_mesh) : nlohmann::json();
+  j["surface_distance"] = r.surface_distance ? to_json(*r.surface_distance) : nlohmann::json();
+  j["seconds"] = r.seconds;
+  j["values"] = r.values;
+  return j;
+}
+
+std::string to_text(const Report& r) {
+  std::ostringstream os;
+  char buf[256];
+  auto line = [&](const char* fmt, auto... v) {
+    std::snprintf(buf, sizeof buf, fmt, v...);
+    os << "  " << buf << "\n";
+  };
+  os << r.input << "\n";
+  if (r.parameterization) {
+    const auto& p = *r.parameterization;
+    os << " parameterization\n";
+    line("ARAP (normalized, area-weighted): %.5f  (max %.4f, 95%% below %.4f)", p.arap, p.arap_max, p.arap_p95);
+    line("flipped triangles: %d, degenerate: %d", p.flipped_triangles, p.degenerate_triangles);
+    line("branch points: %d", p.branch_points);
+    line("UV area (quad count of a closed map): %.2f", p.uv_area);
+    line("max transition error: %.3g, max translation defect: %.3g", p.max_transition_error, p.max_translation_defect);
+    line("E_D: %.6g, E_H: %.6g", p.energy_curl, p.energy_harmonic);
+  }
+  if (r.extraction) {
+    const auto& e = *r.extraction;
+    os << " extraction\n";
+    line("quads: %d, other polygons: %d, boundary vertices: %d", e.quads, e.non_quads, e.boundary_vertices);
+    line("repairs: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
+         e.flipped_triangles, e.degenerate_triangles, e.torn_seams, e.failed_traces, e.dropped_faces);
+  }
+  if (r.quad_mesh) {
+    const auto& q = *r.quad_mesh;
+    os << " quad mesh\n";
+    line("vertices: %d, faces: %d (quads %d, other %d)", q.vertices, q.faces, q.quads, q.non_quads);
+    line("RSD edge length: %.2f %%", q.rsd_edge_length);
+    line("RSD corner angle: %.2f %%", q.rsd_corner_angle);
+    line("irregular vertices: %d (interior), %d (boundary)", q.irregular_vertices, q.irregular_boundary_vertices);
+    line("manifold: %s, closed: %s, Euler characteristic: %d", q.topology.manifold() ? "yes" : "no",
+         q.topology.closed() ? "yes" : "no", q.topology.euler_characteristic);
+  }
+  if (r.surface_distance) {
+    const auto& d = *r.surface_distance;
+    os << " surface distance (relative to the bounding-box diagonal)\n";
+    line("mean: %.3g, max: %.3g", d.mean, d.max);
+  }
+  return os.str();
+}
+
+}  // namespace quadcover

@@ -1,0 +1,37 @@
+#pragma once
+// The metrics Report: one plain struct collecting every stage's numbers, serialized to JSON with fixed keys.
+// The CLI (`metrics`, `remesh`), benchmarks and the HTML report all print this same Report.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "metrics/param_quality.h"
+#include "metrics/quad_quality.h"
+#include "metrics/surface_distance.h"
+#include "quad/extract_quads.h"
+
+namespace quadcover {
+
+struct Report {
+  std::string input;                          ///< file the numbers are about
+  std::optional<ParamQuality> parameterization;
+  std::optional<ExtractionReport> extraction;
+  std::optional<QuadQuality> quad_mesh;
+  std::optional<SurfaceDistance> surface_distance;
+  std::map<std::string, double> seconds;      ///< wall time per stage
+  std::map<std::string, double> values;       ///< further named numbers (e.g. field energies, options used)
+};
+
+/// Keys (always present, null when absent): "input", "parameterization", "extraction", "quad_mesh",
+/// "surface_distance", "seconds", "values". Nested keys are the struct member names.
+nlohmann::json to_json(const Report& report);
+nlohmann::json to_json(const ParamQuality& q);  ///< without the per-face array
+nlohmann::json to_json(const QuadQuality& q);
+nlohmann::json to_json(const SurfaceDistance& d);
+nlohmann::json to_json(const ExtractionReport& r);
+
+/// Human-readable lines ("RSD edge length: 8.1 %"), one per key number, for the CLI.
+std::string to_text(const Report& report);
+
+}  // namespace quadcover
