@@ -217,9 +217,9 @@ Image render_uv_layout(const Eigen::MatrixX3cd& uv, const UvLayoutOptions& o) {
     lo_v = std::min(lo_v, uv.data()[i].imag());
     hi_v = std::max(hi_v, uv.data()[i].imag());
   }
-  const double span = std::max({hi_u - lo_u, hi_v - lo_v, 1e-300});
-  const double usable = std::min(o.width, o.height) * (1 - 2 * o.margin);
-  const double s = usable / span;
+  // Fit the layout's bounding box into the image with the margin on every side, keeping the aspect ratio.
+  const double s = std::min(o.width * (1 - 2 * o.margin) / std::max(hi_u - lo_u, 1e-300),
+                            o.height * (1 - 2 * o.margin) / std::max(hi_v - lo_v, 1e-300));
   const double cu = (lo_u + hi_u) / 2, cv = (lo_v + hi_v) / 2;
   const auto to_screen = [&](std::complex<double> z) {
     return Eigen::Vector3d(o.width / 2.0 + s * (z.real() - cu), o.height / 2.0 - s * (z.imag() - cv), 0);

@@ -1,0 +1,143 @@
+// `quadcover render MESH... -o OUT.png`: pictures of a parameterized OBJ (checkerboard from its `vt`, seams, cones),
+// of a quad/polygon mesh (wireframe over shading) or of the parameter domain (--uv-layout), rendered offscreen.
+#include <iostream>
+#include <sstream>
+
+#include "cli/common.h"
+#include "cli/registry.h"
+#include "common/errors.h"
+#include "io/read_mesh.h"
+#include "render/render_mesh.h"
+#include "render/scene.h"
+
+namespace quadcover::cli {
+
+namespace {
+
+struct RenderCmdOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string view = "front";
+  std::string size = "800x800";
+  std::string texture = "checker";
+  double period = 1.0;
+  int supersample = 3;
+  bool uv_layout = false;
+  bool wireframe = false;
+};
+
+std::pair<int, int> parse_size(const std::string& s) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(s);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
+    throw InputError("--size", 0, "expected WxH with 16 <= W, H <= 8192, got '" + s + "'");
+  return {w, h};
+}
+
+/// "front", "side", "top", ..., "all" (front, side and top side by side) or "AZ,EL" in degrees.
+std::vector<ViewCamera> parse_views(const std::string& s) {
+  if (s == "all") return {named_view("front"), named_view("side"), named_view("top")};
+  if (const auto comma = s.find(','); comma != std::string::npos) {
+    try {
+      std::size_t used_a = 0, used_e = 0;
+      const std::string a = s.substr(0, comma), e = s.substr(comma + 1);
+      const ViewCamera cam{std::stod(a, &used_a), std::stod(e, &used_e)};
+      if (used_a == a.size() && used_e == e.size()) return {cam};
+    } catch (const std::exception&) {
+    }
+    throw InputError("--view", 0, "expected AZIMUTH,ELEVATION in degrees, got '" + s + "'");
+  }
+  try {
+    return {named_view(s)};
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--view", 0, e.what());
+  }
+}
+
+nlohmann::json render_one(const std::string& input, const std::string& output, const RenderCmdOptions& opt) {
+  const auto [w, h] = parse_size(opt.size);
+  const std::vector<ViewCamera> views = parse_views(opt.view);
+  const MeshScene scene = scene_from_soup(read_mesh(input));
+  nlohmann::json j{{"file", input}, {"output", output}, {"faces", scene.polygons.size()}};
+  Image image;
+  if (opt.uv_layout) {
+    if (scene.uv.rows() == 0)
+      throw InputError(input, 0, "--uv-layout needs per-corner texture coordinates (`vt` on every face corner)");
+    UvLayoutOptions lo;
+    lo.width = w;
+    lo.height = h;
+    lo.supersample = opt.supersample;
+    image = render_uv_layout(scene.uv, lo);
+    j["flipped_triangles"] = count_flipped(scene.uv);
+  } else {
+    RenderOptions ro;
+    ro.width = w;
+    ro.height = h;
+    ro.supersample = opt.supersample;
+    ro.texture_period = opt.period;
+    ro.texture = opt.texture == "grid" ? SurfaceTexture::GridLines
+                 : opt.texture == "none" ? SurfaceTexture::None
+                                         : SurfaceTexture::Checkerboard;
+    const bool polygons = opt.wireframe || !scene.all_triangles;
+    std::vector<BranchPoint> cones;
+    if (!polygons && scene.uv.rows() > 0) {
+      cones = cones_from_uv(scene.F, scene.uv);
+      j["seam_edges"] = uv_seam_edges(scene.F, scene.uv).size();
+      j["cones"] = cones.size();
+    }
+    std::vector<Image> images;
+    for (const ViewCamera& cam : views) {
+      ro.camera = cam;
+      images.push_back(polygons ? render_polygon_mesh(scene.V, scene.polygons, ro)
+                                : render_textured_mesh(scene.V, scene.F, scene.uv, cones, ro));
+    }
+    image = images.size() == 1 ? std::move(images[0]) : tile_horizontally(images);
+    j["mode"] = polygons ? "wireframe" : (scene.uv.rows() > 0 ? "textured" : "shaded");
+  }
+  write_png(output, image);
+  j["width"] = image.width;
+  j["height"] = image.height;
+  return j;
+}
+
+void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
+  auto opt = std::make_shared<RenderCmdOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "render",
+      "Render PNG pictures offscreen: a parameterized OBJ with a checkerboard from its per-corner `vt`, seams "
+      "(orange) and cones (blue: index 1/4, red: -1/4); a quad/polygon mesh as wireframe; or the UV layout");
+  add_input_option(*cmd, opt->inputs, "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
+  cmd->add_option("-o,--output", opt->output,
+                  "Output PNG (one input) or folder (several inputs: <name>.png inside; default: next to each input)");
+  cmd->add_option("--view", opt->view,
+                  "Camera: front, side, top, back, bottom, iso, all (front+side+top side by side), or AZ,EL in "
+                  "degrees (default front)");
+  cmd->add_flag("--uv-layout", opt->uv_layout, "Draw the parameter domain instead (flipped triangles in red)");
+  cmd->add_flag("--wireframe", opt->wireframe, "Draw edges over flat shading (default for non-triangle meshes)");
+  cmd->add_option("--size", opt->size, "Image size WxH in pixels per view (default 800x800)");
+  cmd->add_option("--texture", opt->texture, "Surface texture from the UVs: checker, grid or none (default checker)")
+      ->check(CLI::IsMember({"checker", "grid", "none"}));
+  cmd->add_option("--period", opt->period, "UV units per checker square or grid cell (default 1: one quad)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--supersample", opt->supersample, "Antialiasing samples per pixel side (default 3)")
+      ->check(CLI::Range(1, 8));
+  add_global_options(*cmd, global);
+  cmd->callback([opt, &global, &exit_code] {
+    BatchSpec spec;
+    spec.inputs = opt->inputs;
+    spec.summary_columns = {"faces", "mode", "output"};
+    const bool batch = is_batch(opt->inputs);
+    if (!batch && opt->output.empty()) throw InputError("-o", 0, "an output PNG is required (-o OUT.png)");
+    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink&) {
+      const std::string out = batch ? batch_output_path(input, opt->output, ".png") : opt->output;
+      return render_one(input, out, *opt);
+    });
+  });
+}
+
+const CommandRegistrar registrar{60, "render", register_render};
+
+}  // namespace
+
+}  // namespace quadcover::cli
