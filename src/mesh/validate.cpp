@@ -205,7 +205,8 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
           if (bad_edge[e]) continue;
           for (const auto& h : edges.incidences(e)) {
             if (h.tri == vt[i]) continue;
-            const auto it = std::find(vt.begin(), vt.end(), h.tri);
+            // vt is sorted (triangles were appended in order): binary search keeps huge valences O(d log d).
+            const auto it = std::lower_bound(vt.begin(), vt.end(), h.tri);
             parent[find(static_cast<int>(i))] = find(static_cast<int>(it - vt.begin()));
           }
         }
