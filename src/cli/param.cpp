@@ -1,0 +1,182 @@
+// `quadcover param MESH -o OUT.obj`: the seamless QuadCover parameterization (thesis Chapters 2-4) guided by the
+// curvature frame field of Chapter 5, written as an OBJ with per-corner texture coordinates in grid units.
+#include <chrono>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "cli/registry.h"
+#include "common/errors.h"
+#include "field/compute_frame_field.h"
+#include "io/read_mesh.h"
+#include "io/write_mesh.h"
+#include "mesh/mesh.h"
+#include "param/parameterize.h"
+#include "param/seams.h"
+
+namespace quadcover::cli {
+
+namespace {
+
+struct ParamCmdOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string report;
+  double edge_length = 0;
+  int quads = 0;
+  std::string lattice = "rotated";
+  std::string rounding = "direct";
+  std::string optimize = "none";
+};
+
+/// Per-corner coordinates as OBJ texture vertices: corners of one mesh vertex with the same coordinates share a vt.
+void corner_uv_table(const Mesh& mesh, const Eigen::MatrixX3cd& uv, Eigen::MatrixX2d& UV, Eigen::MatrixX3i& FUV) {
+  std::vector<std::vector<std::pair<Complex, int>>> per_vertex(mesh.num_vertices());
+  std::vector<Complex> table;
+  FUV.resize(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      auto& list = per_vertex[mesh.F()(f, c)];
+      int id = -1;
+      for (const auto& [z, i] : list)
+        if (z == uv(f, c)) id = i;
+      if (id < 0) {
+        id = static_cast<int>(table.size());
+        table.push_back(uv(f, c));
+        list.emplace_back(uv(f, c), id);
+      }
+      FUV(f, c) = id;
+    }
+  UV.resize(static_cast<Eigen::Index>(table.size()), 2);
+  for (std::size_t i = 0; i < table.size(); ++i) UV.row(static_cast<Eigen::Index>(i)) << table[i].real(), table[i].imag();
+}
+
+nlohmann::json run_param(const std::string& input, const std::string& output, const std::string& report_path,
+                         const ParamCmdOptions& opt, ProgressSink& progress) {
+  if (opt.rounding != "direct")
+    throw InputError("--rounding", 0, "only 'direct' rounding is available in this version, got '" + opt.rounding + "'");
+  if (opt.optimize != "none")
+    throw InputError("--optimize", 0, "only 'none' is available in this version, got '" + opt.optimize + "'");
+  if (opt.edge_length > 0 && opt.quads > 0)
+    throw InputError("--edge-length/--quads", 0, "give either --edge-length or --quads, not both");
+  ParamOptions po;
+  po.lattice = parse_lattice(opt.lattice);
+  po.edge_length = opt.edge_length;
+  po.target_quads = opt.quads;
+
+  using Clock = std::chrono::steady_clock;
+  nlohmann::json seconds = nlohmann::json::object();
+  auto t = Clock::now();
+  auto lap = [&](const char* stage) {
+    const auto now = Clock::now();
+    seconds[stage] = std::chrono::duration<double>(now - t).count();
+    t = now;
+  };
+  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  lap("read");
+  const FrameField field = compute_frame_field(mesh, FieldOptions{}, progress);
+  lap("field");
+  const Parameterization P = parameterize(mesh, field, po, progress);
+  for (const auto& [stage, s] : P.stage_seconds) seconds["param_" + stage] = s;
+  t = Clock::now();
+
+  Eigen::MatrixX2d UV;
+  Eigen::MatrixX3i FUV;
+  corner_uv_table(mesh, P.uv, UV, FUV);
+  write_obj_with_uv(output, mesh.V(), mesh.F(), UV, FUV);
+  lap("write");
+
+  // Measured on the written data: the vt table and the face/vt indices.
+  Eigen::MatrixX3cd written(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) written(f, c) = Complex(UV(FUV(f, c), 0), UV(FUV(f, c), 1));
+  const SeamReport seams = measure_seams(mesh, written, 1e-9);
+  const FlipReport flips = flipped_triangles(written);
+
+  nlohmann::json bps = nlohmann::json::array();
+  int b_even = 0, b_odd = 0;
+  for (const BranchPoint& b : P.branch_points) {
+    const bool even = ((b.quarter_index % 4) + 4) % 4 == 2;
+    (even ? b_even : b_odd) += 1;
+    bps.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
+  }
+  nlohmann::json report = {{"file", input},
+                           {"output", output},
+                           {"vertices", mesh.num_vertices()},
+                           {"faces", mesh.num_faces()},
+                           {"genus", mesh.genus()},
+                           {"boundary_loops", mesh.num_boundary_loops()},
+                           {"lattice", to_string(po.lattice)},
+                           {"rounding", "direct"},
+                           {"optimize", "none"},
+                           {"edge_length", P.edge_length},
+                           {"parameter_area", flips.parameter_area},
+                           {"branch_points", bps},
+                           {"b_odd", b_odd},
+                           {"b_even", b_even},
+                           {"unfixed_even_branch_points", P.unfixed_even_branch_points},
+                           {"h_sym", P.h_sym},
+                           {"E_D", P.energy_curl},
+                           {"E_H", P.energy_harmonic},
+                           {"flipped_triangles", flips.flipped},
+                           {"flipped_faces", flips.flipped_faces},
+                           {"degenerate_triangles", flips.degenerate},
+                           {"seamless", seams.seamless},
+                           {"max_transition_error", seams.max_transition_error},
+                           {"parameter_extent", seams.parameter_extent},
+                           {"cut_edges", seams.cut_edges},
+                           {"seconds", seconds}};
+  if (!report_path.empty()) write_json_atomically(report_path, report);
+  nlohmann::json summary = report;
+  summary["branch_points"] = P.branch_points.size();
+  summary.erase("flipped_faces");
+  if (!seams.seamless)
+    throw NumericalError("param", "the written parameterization is not seamless (max transition error " +
+                                      std::to_string(seams.max_transition_error) + ")");
+  return summary;
+}
+
+void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
+  auto opt = std::make_shared<ParamCmdOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "param",
+      "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
+      "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
+      "--quads N; default h = 2 x the mean edge length (about #faces/9 quads)");
+  add_input_option(*cmd, opt->inputs);
+  cmd->add_option("-o,--output", opt->output,
+                  "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");
+  cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--quads", opt->quads, "Target number of quads N (h = sqrt(area / N))")->check(CLI::PositiveNumber);
+  cmd->add_option("--lattice", opt->lattice,
+                  "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
+                  "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
+      ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
+      ->capture_default_str();
+  cmd->add_option("--report", opt->report, "Write a JSON report (one input) or a folder for NAME.param.json files");
+  cmd->add_option("--rounding", opt->rounding, "Rounding of the periods: direct (nearest lattice point)")
+      ->capture_default_str();
+  cmd->add_option("--optimize", opt->optimize, "Distortion optimization (thesis ch. 6): none")->capture_default_str();
+  add_global_options(*cmd, global);
+  cmd->callback([opt, &global, &exit_code] {
+    BatchSpec spec;
+    spec.inputs = opt->inputs;
+    spec.summary_columns = {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "seamless"};
+    const bool batch = is_batch(opt->inputs);
+    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
+      const std::string output =
+          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".param.obj") : opt->output;
+      const std::string report = opt->report.empty() ? std::string()
+                                 : batch               ? batch_output_path(input, opt->report, ".param.json")
+                                                       : opt->report;
+      return run_param(input, output, report, *opt, progress);
+    });
+  });
+}
+
+const CommandRegistrar registrar{40, "param", register_param};
+
+}  // namespace
+
+}  // namespace quadcover::cli
