@@ -1,0 +1,214 @@
+// `quadcover field MESH... -o FIELD.json`: the guiding frame field of thesis Chapter 5 (principal curvature
+// frames, trusted regions, propagation, smoothing) with its matching and branch points.
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.h"
+#include "cli/registry.h"
+#include "common/errors.h"
+#include "field/compute_frame_field.h"
+#include "field/indices.h"
+#include "io/read_mesh.h"
+#include "mesh/mesh.h"
+
+namespace quadcover::cli {
+
+namespace {
+
+struct FieldCmdOptions {
+  std::vector<std::string> inputs;
+  std::string output;
+  std::string method = "hp";
+  double csm_radius = CurvatureOptions{}.csm_radius;
+  double trusted = FieldOptions{}.trusted_fraction;
+  double lambda = FieldOptions{}.lambda;
+  int rounds = FieldOptions{}.smoothing_rounds;
+  std::string features = "35";
+};
+
+FieldOptions to_field_options(const FieldCmdOptions& opt) {
+  FieldOptions o;
+  if (opt.method == "hp")
+    o.curvature.method = CurvatureMethod::HildebrandtPolthier;
+  else if (opt.method == "csm")
+    o.curvature.method = CurvatureMethod::CohenSteinerMorvan;
+  else
+    throw InputError("--method", 0, "expected hp or csm, got '" + opt.method + "'");
+  o.curvature.csm_radius = opt.csm_radius;
+  o.trusted_fraction = opt.trusted;
+  o.lambda = opt.lambda;
+  o.smoothing_rounds = opt.rounds;
+  if (opt.features == "off") {
+    o.features.boundaries = false;
+    o.features.sharp_angle_degrees = 0;
+  } else {
+    std::size_t used = 0;
+    double deg = -1;
+    try {
+      deg = std::stod(opt.features, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != opt.features.size() || !(deg > 0 && deg < 180))
+      throw InputError("--features", 0, "expected 'off' or an angle in degrees in (0, 180), got '" + opt.features + "'");
+    o.features.sharp_angle_degrees = deg;
+  }
+  return o;
+}
+
+nlohmann::json complex_array(const Eigen::VectorXcd& z) {
+  nlohmann::json a = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < z.size(); ++i) a.push_back({z[i].real(), z[i].imag()});
+  return a;
+}
+nlohmann::json rows_array(const Eigen::MatrixX3d& M) {
+  nlohmann::json a = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < M.rows(); ++i) a.push_back({M(i, 0), M(i, 1), M(i, 2)});
+  return a;
+}
+template <class V>
+nlohmann::json vector_array(const V& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
+}
+
+// The document written to FIELD.json: everything needed to draw the field or to reuse it with the same mesh.
+nlohmann::json field_document(const std::string& input, const Mesh& mesh, const FrameFieldResult& r,
+                              const FieldOptions& o) {
+  nlohmann::json j;
+  j["format"] = "quadcover-frame-field";
+  j["version"] = 1;
+  j["mesh"] = input;
+  j["vertices"] = mesh.num_vertices();
+  j["edges"] = mesh.num_edges();
+  j["faces"] = mesh.num_faces();
+  j["conventions"] =
+      "X, Y: complex [re, im] per face in the face basis b1 = unit(p1 - p0), b2 = n x b1; Y = iX. matching: per edge "
+      "(edge_vertices order, from face EF0 to EF1), counter-clockwise quarter turns, X_t ~ i^m rho_e X_s. "
+      "cross_u, cross_v: unit 3D cross directions per face. quarter_index = 4 * index.";
+  j["options"] = {{"method", o.curvature.method == CurvatureMethod::HildebrandtPolthier ? "hp" : "csm"},
+                  {"csm_radius", o.curvature.csm_radius},
+                  {"trusted_fraction", o.trusted_fraction},
+                  {"lambda", o.lambda},
+                  {"smoothing_rounds", o.smoothing_rounds},
+                  {"boundary_alignment", o.features.boundaries},
+                  {"sharp_angle_degrees", o.features.sharp_angle_degrees}};
+  j["X"] = complex_array(r.field.X);
+  j["Y"] = complex_array(r.field.Y);
+  const CrossDirections cross = cross_directions(mesh, r.field);
+  j["cross_u"] = rows_array(cross.u);
+  j["cross_v"] = rows_array(cross.v);
+  nlohmann::json edges = nlohmann::json::array();
+  for (int e = 0; e < mesh.num_edges(); ++e) edges.push_back({mesh.E()(e, 0), mesh.E()(e, 1)});
+  j["edge_vertices"] = std::move(edges);
+  j["matching"] = vector_array(r.field.matching);
+  j["kappa_max"] = vector_array(r.curvature.kappa_max);
+  j["kappa_min"] = vector_array(r.curvature.kappa_min);
+  j["stability"] = vector_array(r.stability);
+  nlohmann::json trusted = nlohmann::json::array(), constrained = nlohmann::json::array();
+  for (int t = 0; t < mesh.num_faces(); ++t) {
+    if (r.trusted[static_cast<std::size_t>(t)]) trusted.push_back(t);
+    if (r.constrained[static_cast<std::size_t>(t)]) constrained.push_back(t);
+  }
+  j["trusted_faces"] = std::move(trusted);
+  j["constrained_faces"] = std::move(constrained);
+  nlohmann::json bps = nlohmann::json::array();
+  for (const auto& b : r.branch_points)
+    bps.push_back({{"vertex", b.vertex},
+                   {"quarter_index", b.quarter_index},
+                   {"index", b.quarter_index / 4.0},
+                   {"position", {mesh.V()(b.vertex, 0), mesh.V()(b.vertex, 1), mesh.V()(b.vertex, 2)}}});
+  j["branch_points"] = std::move(bps);
+  j["energy_smooth"] = r.energy_smooth;
+  j["energy_smooth_initial"] = r.energy_smooth_initial;
+  j["energy_align"] = r.energy_align;
+  return j;
+}
+
+nlohmann::json run_field(const std::string& input, const std::string& output, const FieldCmdOptions& opt,
+                         ProgressSink& progress) {
+  const FieldOptions options = to_field_options(opt);
+  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const FrameFieldResult r = compute_frame_field_detailed(mesh, options, progress);
+  write_json_atomically(output, field_document(input, mesh, r, options));
+
+  const Eigen::VectorXi q = cross_field_quarter_index(mesh, r.field);
+  std::map<int, int> by_index;  // quarter index -> count
+  for (const auto& b : r.branch_points) ++by_index[b.quarter_index];
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& [quarter, n] : by_index) counts[std::to_string(quarter) + "/4"] = n;
+  int constrained = 0, trusted = 0;
+  for (int t = 0; t < mesh.num_faces(); ++t) {
+    constrained += r.constrained[static_cast<std::size_t>(t)];
+    trusted += r.trusted[static_cast<std::size_t>(t)];
+  }
+  return {{"file", input},
+          {"output", output},
+          {"faces", mesh.num_faces()},
+          {"branch_points", r.branch_points.size()},
+          {"branch_points_by_index", counts},
+          {"index_sum", q.sum() / 4.0},
+          {"euler_characteristic", mesh.euler_characteristic()},
+          {"boundary_loops", mesh.num_boundary_loops()},
+          {"energy_smooth", r.energy_smooth},
+          {"energy_smooth_initial", r.energy_smooth_initial},
+          {"trusted_faces", trusted},
+          {"constrained_faces", constrained}};
+}
+
+void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
+  auto opt = std::make_shared<FieldCmdOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "field", "Compute the guiding cross field (principal curvature, trusted regions, smoothing; thesis ch. 5), "
+               "its matching and branch points, and write them as JSON");
+  add_input_option(*cmd, opt->inputs);
+  cmd->add_option("-o,--output", opt->output,
+                  "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
+                  "NAME.field.json");
+  cmd->add_option("--method", opt->method, "Principal curvature estimator: hp (Hildebrandt-Polthier) or csm "
+                                           "(Cohen-Steiner-Morvan, robust on noisy meshes)")
+      ->capture_default_str();
+  cmd->add_option("--csm-radius", opt->csm_radius, "CSM disk radius in mean edge lengths")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--trusted", opt->trusted, "Fraction of most stable curvature frames to keep (5.1.2)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--lambda", opt->lambda, "Smoothing weight lambda of (5.3), in (0, 1]")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            try {
+              const double v = std::stod(s);
+              if (v > 0 && v <= 1) return std::string();
+            } catch (const std::exception&) {
+            }
+            return "expected a number in (0, 1], got " + s;
+          },
+          "in (0, 1]"))
+      ->capture_default_str();
+  cmd->add_option("--rounds", opt->rounds, "Smoothing rounds (re-matching between rounds); 0 disables smoothing")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--features", opt->features,
+                  "Align to boundaries and to sharp edges above DEG degrees, or 'off' to align to nothing")
+      ->capture_default_str();
+  add_global_options(*cmd, global);
+  cmd->callback([opt, &global, &exit_code] {
+    BatchSpec spec;
+    spec.inputs = opt->inputs;
+    spec.summary_columns = {"faces", "branch_points", "index_sum", "euler_characteristic", "energy_smooth"};
+    const bool batch = is_batch(opt->inputs);
+    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
+      const std::string output = batch || opt->output.empty() ? batch_output_path(input, opt->output, ".field.json")
+                                                              : opt->output;
+      return run_field(input, output, *opt, progress);
+    });
+  });
+}
+
+const CommandRegistrar registrar{30, "field", register_field};
+
+}  // namespace
+
+}  // namespace quadcover::cli
