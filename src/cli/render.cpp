@@ -7,6 +7,7 @@
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
+#include "render/html_report.h"
 #include "render/render_mesh.h"
 #include "render/scene.h"
 
@@ -24,6 +25,9 @@ struct RenderCmdOptions {
   int supersample = 3;
   bool uv_layout = false;
   bool wireframe = false;
+  std::string report_html;  // self-contained HTML page with an interactive view
+  std::string metrics;      // a JSON report (param/remesh/metrics --report) shown in the page
+  std::string quads;        // a quad mesh shown next to the input in the page
 };
 
 std::pair<int, int> parse_size(const std::string& s) {
@@ -60,6 +64,7 @@ nlohmann::json render_one(const std::string& input, const std::string& output, c
   const std::vector<ViewCamera> views = parse_views(opt.view);
   const MeshScene scene = scene_from_soup(read_mesh(input));
   nlohmann::json j{{"file", input}, {"output", output}, {"faces", scene.polygons.size()}};
+  if (output.empty()) return j;  // only the HTML page was asked for
   Image image;
   if (opt.uv_layout) {
     if (scene.uv.rows() == 0)
@@ -95,10 +100,36 @@ nlohmann::json render_one(const std::string& input, const std::string& output, c
     image = images.size() == 1 ? std::move(images[0]) : tile_horizontally(images);
     j["mode"] = polygons ? "wireframe" : (scene.uv.rows() > 0 ? "textured" : "shaded");
   }
-  write_png(output, image);
-  j["width"] = image.width;
-  j["height"] = image.height;
+  if (!output.empty()) {
+    write_png(output, image);
+    j["width"] = image.width;
+    j["height"] = image.height;
+  }
   return j;
+}
+
+void write_report_page(const std::string& input, const std::string& html, const RenderCmdOptions& opt) {
+  const MeshScene scene = scene_from_soup(read_mesh(input));
+  HtmlReport report;
+  report.title = "quadcover: " + input;
+  if (!opt.metrics.empty()) {
+    try {
+      report.metrics = nlohmann::json::parse(read_file_bytes(opt.metrics));
+    } catch (const nlohmann::json::parse_error& e) {
+      throw InputError(opt.metrics, 0, std::string("not a JSON report: ") + e.what());
+    }
+    report.figures = figures_from_report(report.metrics);
+  }
+  HtmlMesh surface{input, scene.V, scene.polygons, scene.uv, !scene.all_triangles || opt.wireframe};
+  report.meshes.push_back(std::move(surface));
+  if (!scene.all_triangles)
+    for (auto& fig : polygon_mesh_figures(scene.V, scene.polygons)) report.figures.push_back(std::move(fig));
+  if (!opt.quads.empty()) {
+    const MeshScene quads = scene_from_soup(read_mesh(opt.quads));
+    report.meshes.push_back({opt.quads, quads.V, quads.polygons, {}, true});
+    for (auto& fig : polygon_mesh_figures(quads.V, quads.polygons)) report.figures.push_back(std::move(fig));
+  }
+  write_html_report(html, report);
 }
 
 void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
@@ -122,16 +153,29 @@ void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--supersample", opt->supersample, "Antialiasing samples per pixel side (default 3)")
       ->check(CLI::Range(1, 8));
+  cmd->add_option("--report-html", opt->report_html,
+                  "Also write a self-contained HTML page: metrics, plots and interactive 3D views (opens offline)");
+  cmd->add_option("--metrics", opt->metrics, "JSON report (from param/remesh/metrics --report) to show in the page")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--quads", opt->quads, "Quad mesh to show next to the input in the page")->check(CLI::ExistingFile);
   add_global_options(*cmd, global);
   cmd->callback([opt, &global, &exit_code] {
     BatchSpec spec;
     spec.inputs = opt->inputs;
     spec.summary_columns = {"faces", "mode", "output"};
     const bool batch = is_batch(opt->inputs);
-    if (!batch && opt->output.empty()) throw InputError("-o", 0, "an output PNG is required (-o OUT.png)");
+    if (!batch && opt->output.empty() && opt->report_html.empty())
+      throw InputError("-o", 0, "an output is required (-o OUT.png and/or --report-html OUT.html)");
+    if (batch && !opt->report_html.empty())
+      throw InputError("--report-html", 0, "the HTML report takes a single input mesh");
     exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink&) {
       const std::string out = batch ? batch_output_path(input, opt->output, ".png") : opt->output;
-      return render_one(input, out, *opt);
+      nlohmann::json j = render_one(input, out, *opt);
+      if (!opt->report_html.empty()) {
+        write_report_page(input, opt->report_html, *opt);
+        j["report_html"] = opt->report_html;
+      }
+      return j;
     });
   });
 }

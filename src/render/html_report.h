@@ -1,0 +1,45 @@
+#pragma once
+// A self-contained HTML report: the metrics table (from a JSON report), plots as inline SVG, and interactive 3D
+// views of the textured mesh and the quad mesh (three.js bundled into the page: it opens from disk, offline).
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "render/plots.h"
+
+namespace quadcover {
+
+/// A mesh for an interactive view: triangles with optional per-corner UVs (checkerboard) or polygons (wireframe).
+struct HtmlMesh {
+  std::string name;
+  Eigen::MatrixX3d V;                       ///< #V by 3
+  std::vector<std::vector<int>> faces;      ///< polygons (triangles for a parameterized mesh)
+  Eigen::MatrixX3cd uv;                     ///< #faces by 3 per-corner u + iv (triangles only), or empty
+  bool wireframe = false;                   ///< draw every face edge
+};
+
+struct HtmlReport {
+  std::string title = "quadcover report";
+  nlohmann::json metrics;                   ///< shown as a table (nested objects flattened to "a.b" keys)
+  std::vector<std::pair<std::string, std::string>> figures;  ///< (caption, inline SVG)
+  std::vector<HtmlMesh> meshes;
+};
+
+/// Figures derived from a report JSON by convention, so every stage's data feeds in:
+///  - "history": array of {"iteration", "E_D", "E_H", "branch_points"} (Algorithm 6.1) -> E_D and branch points
+///    over iterations (Fig. 6.1) and E_D, E_H, E_D + E_H over the branch point count (Fig. 6.5);
+///  - "histograms": object of name -> array of numbers (e.g. "arap", "edge_length", "angle") -> histograms
+///    (Fig. 6.2, 7.1). Keys that are absent produce no figure.
+std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report);
+
+/// Edge-length and corner-angle (degrees) histograms of a polygon mesh (Fig. 7.1 style), as (caption, SVG).
+std::vector<std::pair<std::string, std::string>> polygon_mesh_figures(const Eigen::MatrixX3d& V,
+                                                                      const std::vector<std::vector<int>>& faces);
+
+/// The page as one string (UTF-8).
+std::string html_report(const HtmlReport& report);
+/// Writes the page atomically. \throw InputError naming the path on failure.
+void write_html_report(const std::string& path, const HtmlReport& report);
+
+}  // namespace quadcover
