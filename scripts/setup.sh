@@ -22,6 +22,8 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+# three.js for the HTML report is vendored in html/vendor (MIT); re-fetch it from npm if it is missing.
+[ -f html/vendor/three.module.min.js ] || bash html/update_three.sh
 JOBS=${JOBS:-$(nproc)}
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${QUADCOVER_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j"$JOBS"
