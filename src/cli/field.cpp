@@ -50,7 +50,8 @@ FieldOptions to_field_options(const FieldCmdOptions& opt) {
     } catch (const std::exception&) {
     }
     if (used != opt.features.size() || !(deg > 0 && deg < 180))
-      throw InputError("--features", 0, "expected 'off' or an angle in degrees in (0, 180), got '" + opt.features + "'");
+      throw InputError("--features", 0,
+                       "expected 'off' or an angle in degrees in (0, 180), got '" + opt.features + "'");
     o.features.sharp_angle_degrees = deg;
   }
   return o;
@@ -160,14 +161,16 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
 void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<FieldCmdOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "field", "Compute the guiding cross field (principal curvature, trusted regions, smoothing; thesis ch. 5), "
-               "its matching and branch points, and write them as JSON");
+      "field",
+      "Compute the guiding cross field (principal curvature, trusted regions, smoothing; thesis ch. 5), "
+      "its matching and branch points, and write them as JSON");
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
                   "NAME.field.json");
-  cmd->add_option("--method", opt->method, "Principal curvature estimator: hp (Hildebrandt-Polthier) or csm "
-                                           "(Cohen-Steiner-Morvan, robust on noisy meshes)")
+  cmd->add_option("--method", opt->method,
+                  "Principal curvature estimator: hp (Hildebrandt-Polthier) or csm "
+                  "(Cohen-Steiner-Morvan, robust on noisy meshes)")
       ->capture_default_str();
   cmd->add_option("--csm-radius", opt->csm_radius, "CSM disk radius in mean edge lengths")
       ->check(CLI::PositiveNumber)
@@ -200,8 +203,8 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
     spec.summary_columns = {"faces", "branch_points", "index_sum", "euler_characteristic", "energy_smooth"};
     const bool batch = is_batch(opt->inputs);
     exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
-      const std::string output = batch || opt->output.empty() ? batch_output_path(input, opt->output, ".field.json")
-                                                              : opt->output;
+      const std::string output =
+          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".field.json") : opt->output;
       return run_field(input, output, *opt, progress);
     });
   });

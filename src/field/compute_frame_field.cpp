@@ -14,9 +14,9 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
   FrameFieldResult r;
   const int nf = mesh.num_faces();
   progress.report("field", 0.0, "principal curvature frames");
-  r.curvature = principal_curvature_frames(mesh, options.curvature);  // 5.1.1
+  r.curvature = principal_curvature_frames(mesh, options.curvature);                                      // 5.1.1
   const FrameField curvature_field = cross_field_with_straightest_matching(mesh, r.curvature.direction);  // (5.1)
-  r.stability = stability_weights(mesh, r.curvature, field_curvature(mesh, curvature_field));            // (5.2)
+  r.stability = stability_weights(mesh, r.curvature, field_curvature(mesh, curvature_field));             // (5.2)
 
   progress.report("field", 0.3, "feature alignment and propagation");
   const FeatureConstraints features = feature_constraints(mesh, options.features);

@@ -29,11 +29,11 @@ struct FieldOptions {
 
 /// The frame field and what it was made from.
 struct FrameFieldResult {
-  FrameField field;                 ///< cross field (Y = iX) with its matching
-  CurvatureFrames curvature;        ///< principal curvature frames (5.1.1)
-  Eigen::VectorXd stability;        ///< #F, ω_t (5.2)
-  std::vector<char> trusted;        ///< #F, faces of the alignment term / propagation sources
-  std::vector<char> constrained;    ///< #F, feature-aligned faces (fixed during smoothing)
+  FrameField field;               ///< cross field (Y = iX) with its matching
+  CurvatureFrames curvature;      ///< principal curvature frames (5.1.1)
+  Eigen::VectorXd stability;      ///< #F, ω_t (5.2)
+  std::vector<char> trusted;      ///< #F, faces of the alignment term / propagation sources
+  std::vector<char> constrained;  ///< #F, feature-aligned faces (fixed during smoothing)
   std::vector<BranchPoint> branch_points;
   double energy_smooth_initial = 0;  ///< E_S of the propagated field with its straightest matching
   double energy_smooth = 0;          ///< E_S of the result

@@ -33,7 +33,8 @@ void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& shar
     const auto& edges = at[static_cast<std::size_t>(v)];
     for (std::size_t i = 0; i < edges.size(); ++i)
       for (std::size_t j = i + 1; j < edges.size(); ++j)
-        if (away(edges[i], v).dot(away(edges[j], v)) < continues) parent[static_cast<std::size_t>(find(edges[i]))] = find(edges[j]);
+        if (away(edges[i], v).dot(away(edges[j], v)) < continues)
+          parent[static_cast<std::size_t>(find(edges[i]))] = find(edges[j]);
   }
   std::vector<int> size(static_cast<std::size_t>(ne), 0);
   for (int e : sharp) ++size[static_cast<std::size_t>(find(e))];

@@ -20,10 +20,14 @@ Eigen::VectorXcd orthogonalized_frames(const FrameField& field) {
 
 std::pair<Complex, Complex> frame_switch(Complex X, Complex Y, int k) {
   switch (((k % 4) + 4) % 4) {
-    case 0: return {X, Y};
-    case 1: return {Y, -X};
-    case 2: return {-X, -Y};
-    default: return {-Y, X};
+    case 0:
+      return {X, Y};
+    case 1:
+      return {Y, -X};
+    case 2:
+      return {-X, -Y};
+    default:
+      return {-Y, X};
   }
 }
 

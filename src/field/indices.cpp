@@ -65,7 +65,8 @@ Eigen::VectorXi vector_field_index(const Mesh& mesh, const Eigen::VectorXcd& X) 
     for_each_loop_edge(mesh, v, [&](int e, int sign) { sum += sign * angle[e]; });
     const int q = quarters(sum, v);  // Def. 1.18: a multiple of 2π
     if (q % 4 != 0)
-      throw NumericalError("field index", "vertex " + std::to_string(v) + ": vector field angle sum is not a multiple of 2π");
+      throw NumericalError("field index",
+                           "vertex " + std::to_string(v) + ": vector field angle sum is not a multiple of 2π");
     ind[v] = q / 4;
   }
   return ind;

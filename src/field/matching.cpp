@@ -35,7 +35,8 @@ double wrap_angle(double x) {
 Eigen::VectorXd field_curvature(const Mesh& mesh, const FrameField& field) {
   Eigen::VectorXd theta = intrinsic_angles(mesh, orthogonalized_frames(field));
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e)) theta[e] = wrap_angle(theta[e] - 0.5 * std::numbers::pi * field.matching[e]);  // (3.4)
+    if (!mesh.is_boundary_edge(e))
+      theta[e] = wrap_angle(theta[e] - 0.5 * std::numbers::pi * field.matching[e]);  // (3.4)
   return theta;
 }
 

@@ -25,7 +25,8 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
   const int nf = mesh.num_faces(), ne = mesh.num_edges();
   if (!(lambda > 0 && lambda <= 1)) throw std::invalid_argument("FrameSmoother: λ must lie in (0, 1]");
   if (X0_.size() != nf || matching_.size() != ne || stability.size() != nf ||
-      trusted.size() != static_cast<std::size_t>(nf) || (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
+      trusted.size() != static_cast<std::size_t>(nf) ||
+      (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
     throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
   theta_ = field_curvature(mesh, make_cross_field(X0_, matching_));
   omega_ = smoothing_edge_weights(mesh);

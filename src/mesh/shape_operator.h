@@ -24,8 +24,8 @@ Eigen::VectorXd signed_dihedral_angles(const Mesh& mesh);
 Eigen::Matrix3d edge_shape_operator(const Mesh& mesh, int e);
 
 /// Vertex shape operators [HP04]: S(p) = ½ Σ_{e∋p} ⟨n_p, n_e⟩ · P_p S(e) P_p, P_p = I - n_p n_pᵀ the projection
-/// to the tangent plane of the area-weighted vertex normal n_p. Integrated over the vertex area (⅓ of the incident face areas).
-/// \return #V symmetric 3×3 matrices with n_p in their kernel.
+/// to the tangent plane of the area-weighted vertex normal n_p. Integrated over the vertex area (⅓ of the incident face
+/// areas). \return #V symmetric 3×3 matrices with n_p in their kernel.
 std::vector<Eigen::Matrix3d> vertex_shape_operators(const Mesh& mesh);
 
 /// Area-weighted unit vertex normals. \return #V by 3

@@ -44,7 +44,8 @@ TEST_P(ClosedPipeline, IndicesEnergiesAndDeterminism) {
   EXPECT_EQ(again.matching, r.field.matching);
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, ClosedPipeline, ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "fertility_genus4"),
+INSTANTIATE_TEST_SUITE_P(Meshes, ClosedPipeline,
+                         ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "fertility_genus4"),
                          [](const auto& info) { return info.param; });
 
 // On a torus of revolution the principal directions are exact and regular (meridians and parallels):

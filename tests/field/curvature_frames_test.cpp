@@ -8,14 +8,16 @@
 // the largest |κ| on the surface (away from umbilics) and away from the boundary. On these meshes (h ≈ 0.03-0.1)
 // that bound is a few degrees; we allow 2° on average and 5° for the worst face. Measured: cylinder and saddle
 // < 0.1° (their symmetric grids align with the principal directions), ellipsoid mean < 0.5°, max 0.8° (HP) and
-// 1.6° (CSM, near the valence-4 vertices of the subdivided octahedron). The cylinder's curvature is checked in magnitude as well (κ_max = 1/r, κ_min = 0).
+// 1.6° (CSM, near the valence-4 vertices of the subdivided octahedron). The cylinder's curvature is checked in
+// magnitude as well (κ_max = 1/r, κ_min = 0).
+#include "field/curvature_frames.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "field/analytic_surfaces.h"
-#include "field/curvature_frames.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {

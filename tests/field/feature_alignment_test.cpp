@@ -73,7 +73,8 @@ TEST(Features, CurveFilter) {
   FeatureOptions all;
   all.min_curve_edges = 1;
   const Mesh fandisk = testing::load_test_mesh("fandisk");
-  const auto f_all = feature_constraints(fandisk, all).feature_edges, f_kept = feature_constraints(fandisk).feature_edges;
+  const auto f_all = feature_constraints(fandisk, all).feature_edges,
+             f_kept = feature_constraints(fandisk).feature_edges;
   EXPECT_GT(f_kept.size(), 0.95 * f_all.size());
   const Mesh bunny = testing::load_test_mesh("bunny_3k");
   const auto b_all = feature_constraints(bunny, all).feature_edges, b_kept = feature_constraints(bunny).feature_edges;
@@ -81,7 +82,8 @@ TEST(Features, CurveFilter) {
   std::vector<int> count(static_cast<std::size_t>(bunny.num_vertices()), 0);
   for (int e : b_kept)
     for (int j = 0; j < 2; ++j) ++count[static_cast<std::size_t>(bunny.E()(e, j))];
-  for (int e : b_kept) EXPECT_GE(count[static_cast<std::size_t>(bunny.E()(e, 0))] + count[static_cast<std::size_t>(bunny.E()(e, 1))], 3);
+  for (int e : b_kept)
+    EXPECT_GE(count[static_cast<std::size_t>(bunny.E()(e, 0))] + count[static_cast<std::size_t>(bunny.E()(e, 1))], 3);
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(Trusted, FractionAlwaysAndComponents) {
   }
   const int top = static_cast<int>(std::ceil(0.1 * mesh.num_faces()));
   EXPECT_TRUE(trusted[5]);
-  EXPECT_EQ(in_torus, 1);  // the torus gets exactly one seed
+  EXPECT_EQ(in_torus, 1);     // the torus gets exactly one seed
   EXPECT_EQ(count, top + 2);  // the top faces are the last bunny faces; face 5 and the torus seed come on top
   for (int t = a.num_faces() - top; t < a.num_faces(); ++t) EXPECT_TRUE(trusted[static_cast<std::size_t>(t)]);
 }
@@ -91,8 +91,7 @@ TEST(Propagation, SingleSeedOnDevelopableSurfaceIsParallel) {
 TEST(Propagation, TrustedKeptOthersTransported) {
   const Mesh mesh = testing::load_test_mesh("fertility_genus4");
   const CurvatureFrames frames = principal_curvature_frames(mesh);
-  const Eigen::VectorXd theta =
-      field_curvature(mesh, cross_field_with_straightest_matching(mesh, frames.direction));
+  const Eigen::VectorXd theta = field_curvature(mesh, cross_field_with_straightest_matching(mesh, frames.direction));
   const Eigen::VectorXd w = stability_weights(mesh, frames, theta);
   const std::vector<char> trusted = select_trusted(mesh, w, 0.2);
   const Eigen::VectorXcd P = propagate_frames(mesh, frames.direction, trusted, w);

@@ -22,8 +22,7 @@ namespace {
 TEST(Relocation, MovesExactlyOneBranchPoint) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   const CurvatureFrames frames = principal_curvature_frames(mesh);
-  const Eigen::VectorXd theta =
-      field_curvature(mesh, cross_field_with_straightest_matching(mesh, frames.direction));
+  const Eigen::VectorXd theta = field_curvature(mesh, cross_field_with_straightest_matching(mesh, frames.direction));
   const Eigen::VectorXd w = stability_weights(mesh, frames, theta);
   const std::vector<char> trusted = select_trusted(mesh, w, 0.2);
   const FrameField start =

@@ -27,7 +27,8 @@ Propagated propagated(const std::string& name) {
       field_curvature(s.mesh, cross_field_with_straightest_matching(s.mesh, frames.direction));
   s.stability = stability_weights(s.mesh, frames, theta);
   s.trusted = select_trusted(s.mesh, s.stability, 0.2);
-  s.field = cross_field_with_straightest_matching(s.mesh, propagate_frames(s.mesh, frames.direction, s.trusted, s.stability));
+  s.field =
+      cross_field_with_straightest_matching(s.mesh, propagate_frames(s.mesh, frames.direction, s.trusted, s.stability));
   return s;
 }
 

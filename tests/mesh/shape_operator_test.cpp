@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <numbers>
 
@@ -20,7 +19,8 @@ TEST(ShapeOperator, EdgeOperatorStructureOnRealMesh) {
   for (int e = 0; e < mesh.num_edges(); ++e) {
     const Eigen::Matrix3d S = edge_shape_operator(mesh, e);
     const Eigen::Vector3d d = mesh.V().row(mesh.E()(e, 1)) - mesh.V().row(mesh.E()(e, 0));
-    const Eigen::Vector3d ne = (mesh.face_normals().row(mesh.EF()(e, 0)) + mesh.face_normals().row(mesh.EF()(e, 1))).normalized();
+    const Eigen::Vector3d ne =
+        (mesh.face_normals().row(mesh.EF()(e, 0)) + mesh.face_normals().row(mesh.EF()(e, 1))).normalized();
     const double scale = d.norm();
     ASSERT_LT((S - S.transpose()).norm(), 1e-14 * scale);
     ASSERT_LT((S * d).norm(), 1e-12 * scale * scale) << "edge " << e;
