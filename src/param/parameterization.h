@@ -43,6 +43,19 @@ struct Parameterization {
   /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration
   /// (|two endpoint estimates of a translation| on the curl-free field): diagnostics, round-off sized.
   double max_translation_residual = 0, integration_mismatch = 0;
+  /// Boundary / feature curves put on integer iso-lines (ParamOptions::align_curves), each with its largest
+  /// deviation; and the number of curve vertices whose two constraints disagreed (the first one was kept).
+  struct Curve {
+    std::vector<int> edges;
+    /// Per edge, the coordinate (0: φ⁰, 1: φ¹) constant along it in its face EF(e,0) (or the boundary edge's face),
+    /// and the integer it should equal there (the line seen through the cut's transitions).
+    std::vector<int> edge_coordinates;
+    std::vector<double> edge_values;
+    int coordinate = 0;  ///< of the first edge
+    double value = 0, max_deviation = 0;
+  };
+  std::vector<Curve> aligned_curves;
+  int alignment_conflicts = 0;
   /// Wall-clock seconds per stage, in pipeline order.
   std::vector<std::pair<std::string, double>> stage_seconds;
 };

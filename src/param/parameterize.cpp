@@ -10,6 +10,8 @@
 #include "field/indices.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
+#include "param/alignment.h"
+#include "field/feature_alignment.h"
 
 namespace quadcover {
 
@@ -251,22 +253,39 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
       b[p] += ipow(-vl.layer(f, a)) * 0.5 *
               frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), Sigma(f, 0), Sigma(f, 1));
     }
+  std::vector<int> kernel_pins;  // one vertex per component whose covering constants are harmonic
   {
-    std::vector<int> pinned;
     std::vector<char> done(trivial.size(), 0);
     for (int p = 0; p < nv; ++p) {
       const int comp = mesh.vertex_component()[p];
       if (trivial[comp] && !done[comp]) {
         done[comp] = 1;
-        pinned.push_back(p);
-        b[p] = 0;
+        kernel_pins.push_back(p);
       }
     }
-    pin(L, pinned);
   }
-  SparseCholesky<Complex> chol;
-  chol.compute(L, "harmonic correction (complex conforming stiffness)");
-  const Eigen::VectorXcd u = chol.solve(b);
+  Eigen::VectorXcd u;
+  {
+    Eigen::SparseMatrix<Complex> Lp = L;
+    Eigen::VectorXcd bp = b;
+    for (int p : kernel_pins) bp[p] = 0;
+    pin(Lp, kernel_pins);
+    SparseCholesky<Complex> chol;
+    chol.compute(Lp, "harmonic correction (complex conforming stiffness)");
+    u = chol.solve(bp);
+  }
+  if (options.align_curves) {
+    // Boundary and feature curves on integer iso-lines: the same correction with one real component of u fixed
+    // at every curve vertex (seams untouched: u is continuous on the covering).
+    const FeatureConstraints features = feature_constraints(mesh, options.features);
+    const std::vector<CurveSlot> slots =
+        aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
+    if (!slots.empty()) {
+      const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;
+      u = solve_aligned_correction(mesh, cc, L, b, vl.layer, known, u, kernel_pins, slots, P.aligned_curves,
+                                   P.alignment_conflicts);
+    }
+  }
   Eigen::MatrixX3cd ucorner(nf, 3);
   for (int f = 0; f < nf; ++f)
     for (int a = 0; a < 3; ++a)

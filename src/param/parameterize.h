@@ -7,6 +7,7 @@
 //  5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P with the conforming 𝔏̄ (branch rows removed) ((1.14) on M̃),
 //  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units.
 #include "common/progress.h"
+#include "field/feature_alignment.h"
 #include "param/lattice.h"
 #include "param/parameterization.h"
 
@@ -24,6 +25,12 @@ struct ParamOptions {
   double default_edge_factor = 2.0;
   /// Move even branch points to integer points by adjusting one period each (rotated lattice only).
   bool fix_even_branch_points = true;
+  /// Put boundary and sharp feature curves on integer iso-lines where the field is aligned with them (beyond the
+  /// thesis; param/alignment.h). Curves: boundary edges and the sharp edges of `features`.
+  bool align_curves = true;
+  FeatureOptions features;
+  /// A curve edge counts as aligned when a frame vector is within this angle of it.
+  double align_tolerance_degrees = 2.0;
 };
 
 /// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.

@@ -1,0 +1,82 @@
+// Parameterization timings (thesis 2.4, 4): the QuadCover pipeline per stage — cut through B and gauge, curl
+// removal (𝔏̄* assembly + complex Cholesky + solve), integration, rounding, harmonic correction (𝔏̄), assembly —
+// on a curvature field computed once. The field stage is timed separately for context.
+// Mesh: the first non-flag argument, else $QUADCOVER_BENCH_MESH, else tests/data/bunny_20k_holes.obj.
+//   bench_param [--benchmark_flags...] [mesh]        e.g. bench_param /work/shared/meshes/armadillo_86k.obj
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "field/compute_frame_field.h"
+#include "io/read_mesh.h"
+#include "mesh/mesh.h"
+#include "param/cover_cut.h"
+#include "param/parameterize.h"
+
+namespace {
+
+using namespace quadcover;
+
+std::string g_mesh_path;
+
+const Mesh& bench_mesh() {
+  static const Mesh mesh = build_mesh(read_mesh(g_mesh_path)).mesh;
+  return mesh;
+}
+const FrameField& bench_field() {
+  static const FrameField field = compute_frame_field(bench_mesh());
+  return field;
+}
+
+void BM_Field(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(compute_frame_field(bench_mesh()));
+  state.counters["faces"] = bench_mesh().num_faces();
+}
+
+void BM_CoverCut(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(build_cover_cut(bench_mesh(), bench_field().matching));
+}
+
+// The whole plain pipeline; each stage's mean wall time is reported as a counter (ms).
+void BM_Parameterize(benchmark::State& state) {
+  std::map<std::string, double> total;
+  Parameterization P;
+  for (auto _ : state) {
+    P = parameterize(bench_mesh(), bench_field());
+    for (const auto& [stage, s] : P.stage_seconds) total[stage] += s;
+  }
+  for (const auto& [stage, s] : total) state.counters[stage + "_ms"] = 1e3 * s / state.iterations();
+  state.counters["faces"] = bench_mesh().num_faces();
+  state.counters["branch_points"] = static_cast<double>(P.branch_points.size());
+  state.counters["h_sym"] = P.h_sym;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (argc > 1) {
+    g_mesh_path = argv[1];
+  } else if (const char* env = std::getenv("QUADCOVER_BENCH_MESH"); env && *env) {
+    g_mesh_path = env;
+  } else {
+    g_mesh_path = std::string(QUADCOVER_SOURCE_DIR) + "/tests/data/bunny_20k_holes.obj";
+  }
+  try {
+    benchmark::AddCustomContext("mesh", g_mesh_path);
+    benchmark::AddCustomContext("mesh_faces", std::to_string(bench_mesh().num_faces()));
+    bench_field();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_param: " << e.what() << "\n";
+    return 2;
+  }
+  benchmark::RegisterBenchmark("Field", BM_Field)->Unit(benchmark::kMillisecond)->Iterations(1);
+  benchmark::RegisterBenchmark("CoverCut", BM_CoverCut)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Parameterize", BM_Parameterize)->Unit(benchmark::kMillisecond);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

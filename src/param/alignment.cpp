@@ -1,0 +1,218 @@
+// Alignment of boundary and feature curves to integer iso-lines with a constrained harmonic correction.
+#include "param/alignment.h"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+#include "calculus/sparse_cholesky.h"
+#include "cover/complex_stiffness.h"
+
+namespace quadcover {
+
+namespace {
+
+int corner_of(const Mesh& mesh, int f, int v) {
+  for (int c = 0; c < 3; ++c)
+    if (mesh.F()(f, c) == v) return c;
+  return -1;
+}
+
+
+}  // namespace
+
+std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z, const std::vector<int>& feature_edges,
+                                           double tolerance_degrees) {
+  std::vector<int> candidates = feature_edges;
+  for (int e = 0; e < mesh.num_edges(); ++e)
+    if (mesh.is_boundary_edge(e)) candidates.push_back(e);
+  const double tol = std::sin(tolerance_degrees * std::numbers::pi / 180);
+  std::vector<CurveSlot> slots;
+  for (const int e : candidates) {
+    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    int k = 0;
+    while (mesh.FE()(f, k) != e) ++k;
+    const Complex d = mesh.edge_vector_local(f, k) / std::abs(mesh.edge_vector_local(f, k));
+    for (int a = 0; a < 2; ++a) {
+      const Complex along = Z(f, 1 - a);  // the frame vector that should run along the curve
+      if (std::abs(along) == 0) continue;
+      if (std::abs(std::imag(std::conj(d) * along)) < tol * std::abs(along)) {
+        slots.push_back({e, f, a});
+        break;
+      }
+    }
+  }
+  return slots;
+}
+
+Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
+                                          const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
+                                          const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
+                                          const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
+                                          std::vector<AlignedCurve>& curves, int& conflicts) {
+  const int nv = mesh.num_vertices();
+  conflicts = 0;
+  curves.clear();
+  auto phi_at = [&](const Eigen::VectorXcd& u, int f, int c) {
+    const int p = mesh.F()(f, c);
+    return known(f, c) - (cut.branch[p] ? Complex(0) : ipow(layer(f, c)) * u[p]);
+  };
+  // Each slot i (a curve edge) asks coordinate a_i = n_i at both endpoints; at a vertex p this fixes one real
+  // component of u_p: Re(i^{-s} u_p) = Re(i^{-a} known) - n, s = a - λ (s even: x = ±β, s odd: y = ±β).
+  // Slots fixing the same component of the same u_p lie on one iso-line seen through the transitions of the cut:
+  // n_j = σ n_i + τ with σ = ±1 and τ ∈ Z. A breadth-first search over these relations gives every slot its
+  // n = σ n_root + τ; the root value is the rounded mean of the unconstrained solution along the whole line.
+  const int ns = static_cast<int>(slots.size());
+  struct Use {
+    int slot, corner_face, corner;
+    int component;  // 0: x, 1: y of u_p
+    int sign;       // u-component = sign · β
+  };
+  std::vector<std::vector<Use>> uses(static_cast<std::size_t>(nv));
+  for (int i = 0; i < ns; ++i)
+    for (int end = 0; end < 2; ++end) {
+      const int f = slots[i].face, c = corner_of(mesh, f, mesh.E()(slots[i].edge, end)), p = mesh.F()(f, c);
+      if (cut.branch[p]) continue;  // pinned by the periods (integral on the rotated and coarse lattices)
+      const int s = ((slots[i].coordinate - layer(f, c)) % 4 + 4) % 4;
+      uses[p].push_back({i, f, c, s % 2, (s == 0 || s == 1) ? 1 : -1});
+    }
+  auto known_coord = [&](const Use& w) {
+    return std::real(ipow(-slots[w.slot].coordinate) * known(w.corner_face, w.corner));
+  };
+  // Relations: u-comp = sign_i (K_i - n_i) = sign_j (K_j - n_j)  =>  n_j = σ n_i + τ, σ = sign_i sign_j,
+  // τ = K_j - σ K_i.
+  struct Rel {
+    int to, sigma;
+    double tau;
+  };
+  std::vector<std::vector<Rel>> rel(static_cast<std::size_t>(ns));
+  for (int p = 0; p < nv; ++p)
+    for (std::size_t a = 0; a < uses[p].size(); ++a)
+      for (std::size_t b2 = a + 1; b2 < uses[p].size(); ++b2) {
+        const Use &wi = uses[p][a], &wj = uses[p][b2];
+        if (wi.component != wj.component || wi.slot == wj.slot) continue;
+        const int sigma = wi.sign * wj.sign;
+        const double tau = std::round(known_coord(wj) - sigma * known_coord(wi));
+        rel[wi.slot].push_back({wj.slot, sigma, tau});
+        rel[wj.slot].push_back({wi.slot, sigma, -sigma * tau});  // n_i = σ n_j - σ τ
+      }
+  std::vector<int> curve_of(static_cast<std::size_t>(ns), -1), sigma_of(ns, 1);
+  std::vector<double> tau_of(static_cast<std::size_t>(ns), 0);
+  std::vector<int> queue;
+  for (int root = 0; root < ns; ++root) {
+    if (curve_of[root] >= 0) continue;
+    const int k = static_cast<int>(curves.size());
+    curves.push_back({});
+    curves.back().coordinate = slots[root].coordinate;
+    curve_of[root] = k;
+    queue.assign(1, root);
+    double sum = 0, anchor = 0;
+    int count = 0;
+    bool anchored = false;  // a branch point on the line fixes its value (its position is set by the periods)
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int i = queue[q];
+      curves[k].edges.push_back(slots[i].edge);
+      for (int end = 0; end < 2; ++end) {  // estimate of n_root from slot i: σ_i (coordinate - τ_i)
+        const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
+        const double estimate =
+            sigma_of[i] * (std::real(ipow(-slots[i].coordinate) * phi_at(u0, slots[i].face, c)) - tau_of[i]);
+        sum += estimate;
+        ++count;
+        if (cut.branch[mesh.F()(slots[i].face, c)] && !anchored) anchored = true, anchor = estimate;
+      }
+      for (const Rel& r : rel[i]) {
+        if (curve_of[r.to] >= 0) continue;
+        curve_of[r.to] = k;
+        sigma_of[r.to] = r.sigma * sigma_of[i];
+        tau_of[r.to] = r.sigma * tau_of[i] + r.tau;
+        queue.push_back(r.to);
+      }
+    }
+    curves[k].value = std::round(anchored ? anchor : sum / count);
+  }
+  std::vector<double> n_of(static_cast<std::size_t>(ns));
+  for (auto& c : curves) c.edges.clear();
+  for (int i = 0; i < ns; ++i) {
+    n_of[i] = sigma_of[i] * curves[curve_of[i]].value + tau_of[i];
+    AlignedCurve& c = curves[curve_of[i]];
+    c.edges.push_back(slots[i].edge);
+    c.edge_coordinates.push_back(slots[i].coordinate);
+    c.edge_values.push_back(n_of[i]);
+  }
+
+  std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
+  Eigen::VectorXd value = Eigen::VectorXd::Zero(2 * nv);
+  for (int p = 0; p < nv; ++p)
+    for (const Use& w : uses[p]) {
+      const int idx = w.component * nv + p;
+      const double v = w.sign * (known_coord(w) - n_of[w.slot]);
+      if (fixed[idx]) {
+        if (std::abs(value[idx] - v) > 1e-9 * (1 + std::abs(v))) ++conflicts;  // an iso-line closing inconsistently
+        continue;
+      }
+      fixed[idx] = 1;
+      value[idx] = v;
+    }
+
+  // Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.
+  for (const int p : kernel_pins) {
+    const int comp = mesh.vertex_component()[p];
+    bool has[2] = {false, false};
+    for (int q = 0; q < nv; ++q)
+      if (mesh.vertex_component()[q] == comp) has[0] |= fixed[q] != 0, has[1] |= fixed[nv + q] != 0;
+    for (int part = 0; part < 2; ++part)
+      if (!has[part]) fixed[part * nv + p] = 1, value[part * nv + p] = 0;
+  }
+
+  // Real form of the Hermitian system: L = A + iB acts on [x; y] as [[A, -B], [B, A]].
+  std::vector<int> free_id(static_cast<std::size_t>(2 * nv), -1);
+  int nfree = 0;
+  for (int i = 0; i < 2 * nv; ++i)
+    if (!fixed[i]) free_id[i] = nfree++;
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(4 * L.nonZeros()));
+  Eigen::VectorXd rhs(nfree);
+  for (int i = 0; i < nv; ++i) {
+    if (free_id[i] >= 0) rhs[free_id[i]] = b[i].real();
+    if (free_id[nv + i] >= 0) rhs[free_id[nv + i]] = b[i].imag();
+  }
+  auto add = [&](int r, int c, double v) {
+    if (v == 0 || free_id[r] < 0) return;
+    if (free_id[c] >= 0)
+      trip.emplace_back(free_id[r], free_id[c], v);
+    else
+      rhs[free_id[r]] -= v * value[c];
+  };
+  for (int col = 0; col < L.outerSize(); ++col)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(L, col); it; ++it) {
+      const int p = static_cast<int>(it.row()), q = static_cast<int>(it.col());
+      const double A = it.value().real(), B = it.value().imag();
+      add(p, q, A);
+      add(p, nv + q, -B);
+      add(nv + p, q, B);
+      add(nv + p, nv + q, A);
+    }
+  Eigen::SparseMatrix<double> M(nfree, nfree);
+  M.setFromTriplets(trip.begin(), trip.end());
+  SparseCholesky<double> chol;
+  chol.compute(M, "aligned harmonic correction");
+  const Eigen::VectorXd sol = chol.solve(rhs);
+  Eigen::VectorXcd u(nv);
+  for (int p = 0; p < nv; ++p) {
+    const double x = free_id[p] >= 0 ? sol[free_id[p]] : value[p];
+    const double y = free_id[nv + p] >= 0 ? sol[free_id[nv + p]] : value[nv + p];
+    u[p] = Complex(x, y);
+  }
+  // Deviation of every curve from its iso-line on the result (all curve vertices, branch points included).
+  for (int i = 0; i < ns; ++i)
+    for (int end = 0; end < 2; ++end) {
+      const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
+      const double x = std::real(ipow(-slots[i].coordinate) * phi_at(u, slots[i].face, c));
+      AlignedCurve& curve = curves[curve_of[i]];
+      curve.max_deviation = std::max(curve.max_deviation, std::abs(x - n_of[i]));
+    }
+  return u;
+}
+
+}  // namespace quadcover
