@@ -162,6 +162,19 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
   }
   for (int e = 0; e < ne; ++e)
     if (g.cut[e]) g.total_length += w[e];
+  // Each component's source nodes (interior sources, plus one node for the whole boundary) are joined by
+  // nodes - 1 of its paths; every further path closes a loop.
+  std::vector<int> nodes(static_cast<std::size_t>(mesh.num_components()), 0);
+  std::vector<char> boundary_counted(static_cast<std::size_t>(mesh.num_components()), 0);
+  for (const int s : g.sources) {
+    const int c = mesh.vertex_component()[s];
+    if (!mesh.is_boundary_vertex(s))
+      ++nodes[c];
+    else if (!boundary_counted[c])
+      boundary_counted[c] = 1, ++nodes[c];
+  }
+  g.num_loops = static_cast<int>(g.paths.size());
+  for (const int n : nodes) g.num_loops -= n - 1;
   return g;
 }
 

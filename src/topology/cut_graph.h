@@ -44,6 +44,9 @@ struct CutGraph {
   Eigen::VectorXi cotree;
   /// Total weight of the cut graph (each cut edge counted once).
   double total_length = 0;
+  /// Number of homology generators the cut carries (see homology.h): per component 2g when closed, 2g + b - 1 with
+  /// b > 0 boundary loops. The other paths only join base vertices and boundary loops.
+  int num_loops = 0;
 };
 
 /// Shortest cut graph based at B ∪ ∂M (Algorithm 1.16 with [KNP10]); deterministic (ties broken by index).

@@ -41,6 +41,7 @@ TEST_P(HomologyOnMeshes, NumberOfGeneratorsIsDimensionOfHarmonicSpace) {
   const ComponentInfo& c = mesh_.components()[0];
   EXPECT_EQ(basis_.size(), 2 * c.genus + (c.boundary_loops > 0 ? c.boundary_loops - 1 : 0));
   EXPECT_EQ(basis_.dual_cycles.size(), basis_.generators.size());
+  EXPECT_EQ(graph_.num_loops, basis_.size());
 }
 
 // Generators are edge walks on the cut graph: closed loops away from the boundary, or boundary-to-boundary paths.
