@@ -1,0 +1,253 @@
+// The `quadcover` Python module: plain numpy arrays in and out (V #V×3 float, F #F×3 int, 0-based), results as
+// numpy arrays and dicts with the same keys as the CLI's JSON reports.
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <nlohmann/json.hpp>
+
+#include "common/errors.h"
+#include "field/compute_frame_field.h"
+#include "io/read_mesh.h"
+#include "mesh/mesh.h"
+#include "metrics/param_quality.h"
+#include "metrics/quad_quality.h"
+#include "metrics/report.h"
+#include "param/parameterize.h"
+#include "quad/extract_quads.h"
+
+namespace py = pybind11;
+using namespace quadcover;
+
+namespace {
+
+using RowMatrixX3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using RowMatrixX3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+Mesh make_mesh(const RowMatrixX3d& V, const RowMatrixX3i& F) {
+  return build_mesh(PolygonSoup::from_triangles(Eigen::MatrixX3d(V), Eigen::MatrixX3i(F))).mesh;
+}
+
+/// Lets Ctrl-C stop long stages from Python: checks for signals (with the GIL) when a stage asks cancelled().
+class PythonProgress final : public ProgressSink {
+ public:
+  void report(std::string_view, double, std::string_view) override {}
+  bool cancelled() const override {
+    if (interrupted_) return true;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) interrupted_ = true;
+    return interrupted_;
+  }
+  /// Re-raises the KeyboardInterrupt after the stage returned.
+  void raise_if_interrupted() const {
+    if (interrupted_) throw py::error_already_set();
+  }
+
+ private:
+  mutable std::atomic<bool> interrupted_{false};
+};
+
+FieldOptions field_options(double trusted_fraction, double lambda, int smoothing_rounds) {
+  FieldOptions o;
+  o.trusted_fraction = trusted_fraction;
+  o.lambda = lambda;
+  o.smoothing_rounds = smoothing_rounds;
+  return o;
+}
+
+ParamOptions param_options(double edge_length, int quads, const std::string& lattice) {
+  ParamOptions o;
+  o.edge_length = edge_length;
+  o.target_quads = quads;
+  o.lattice = parse_lattice(lattice);
+  return o;
+}
+
+py::dict info(const RowMatrixX3d& V, const RowMatrixX3i& F) {
+  const Mesh mesh = make_mesh(V, F);
+  py::dict d;
+  d["vertices"] = mesh.num_vertices();
+  d["edges"] = mesh.num_edges();
+  d["faces"] = mesh.num_faces();
+  d["components"] = mesh.num_components();
+  d["boundary_loops"] = mesh.num_boundary_loops();
+  d["genus"] = mesh.genus();
+  d["euler_characteristic"] = mesh.euler_characteristic();
+  d["area"] = mesh.total_area();
+  d["mean_edge_length"] = mesh.mean_edge_length();
+  d["bounding_box_diagonal"] = mesh.bounding_box_diagonal();
+  return d;
+}
+
+py::dict load(const std::string& path) {
+  const PolygonSoup soup = read_mesh(path);
+  py::dict d;
+  d["V"] = RowMatrixX3d(soup.positions);
+  bool triangles = true;
+  py::list faces;
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+    triangles = triangles && soup.face_size(f) == 3;
+    faces.append(std::vector<std::int64_t>(soup.face_begin(f), soup.face_begin(f) + soup.face_size(f)));
+  }
+  if (triangles) {
+    RowMatrixX3i F(static_cast<Eigen::Index>(soup.num_faces()), 3);
+    for (std::size_t f = 0; f < soup.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) F(static_cast<Eigen::Index>(f), k) = static_cast<int>(soup.face_begin(f)[k]);
+    d["F"] = F;
+  } else {
+    d["F"] = faces;
+  }
+  if (soup.has_uv()) {
+    d["uv"] = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>(soup.uv);
+    py::list fuv;
+    for (std::size_t f = 0; f < soup.num_faces(); ++f)
+      fuv.append(std::vector<std::int64_t>(soup.face_uv.begin() + soup.face_offsets[f],
+                                           soup.face_uv.begin() + soup.face_offsets[f + 1]));
+    d["face_uv"] = fuv;
+  } else {
+    d["uv"] = py::none();
+    d["face_uv"] = py::none();
+  }
+  return d;
+}
+
+py::list branch_list(const std::vector<BranchPoint>& bps) {
+  py::list l;
+  for (const auto& b : bps) l.append(py::make_tuple(b.vertex, b.quarter_index));
+  return l;
+}
+
+py::dict field(const RowMatrixX3d& V, const RowMatrixX3i& F, double trusted_fraction, double lambda,
+               int smoothing_rounds) {
+  const Mesh mesh = make_mesh(V, F);
+  PythonProgress progress;
+  FrameFieldResult r;
+  {
+    py::gil_scoped_release release;
+    r = compute_frame_field_detailed(mesh, field_options(trusted_fraction, lambda, smoothing_rounds), progress);
+  }
+  progress.raise_if_interrupted();
+  py::dict d;
+  d["X"] = Eigen::VectorXcd(r.field.X);
+  d["Y"] = Eigen::VectorXcd(r.field.Y);
+  d["matching"] = Eigen::VectorXi(r.field.matching);
+  d["edges"] = Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>(mesh.E());
+  d["branch_points"] = branch_list(r.branch_points);
+  // Tangent basis of each face, so X can be turned into 3D vectors: X3 = Re(X)·b1 + Im(X)·b2.
+  d["basis1"] = RowMatrixX3d(mesh.face_basis1());
+  d["basis2"] = RowMatrixX3d(mesh.face_basis2());
+  d["energy_smooth"] = r.energy_smooth;
+  d["energy_align"] = r.energy_align;
+  return d;
+}
+
+// Per-corner UVs as a #F×3×2 float array.
+py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
+  py::array_t<double> a({static_cast<py::ssize_t>(uv.rows()), py::ssize_t{3}, py::ssize_t{2}});
+  auto m = a.mutable_unchecked<3>();
+  for (Eigen::Index f = 0; f < uv.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      m(f, c, 0) = uv(f, c).real();
+      m(f, c, 1) = uv(f, c).imag();
+    }
+  return a;
+}
+
+py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
+                          const std::string& lattice) {
+  const Mesh mesh = make_mesh(V, F);
+  const ParamOptions popt = param_options(edge_length, quads, lattice);
+  PythonProgress progress;
+  Parameterization p;
+  ParamQuality q;
+  {
+    py::gil_scoped_release release;
+    const FrameField f = compute_frame_field(mesh, {}, progress);
+    p = parameterize(mesh, f, popt, progress);
+    q = param_quality(mesh, p);
+  }
+  progress.raise_if_interrupted();
+  nlohmann::json report = to_json(q);
+  report["faces"] = mesh.num_faces();
+  report["lattice"] = to_string(popt.lattice);
+  report["edge_length"] = target_edge_length(mesh, popt);
+  return py::make_tuple(corner_uv_array(p.uv), to_python(report));
+}
+
+py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
+                    const std::string& lattice) {
+  const Mesh mesh = make_mesh(V, F);
+  const ParamOptions popt = param_options(edge_length, quads, lattice);
+  PythonProgress progress;
+  ExtractionResult ex;
+  Report report;
+  {
+    py::gil_scoped_release release;
+    const FrameField f = compute_frame_field(mesh, {}, progress);
+    const Parameterization p = parameterize(mesh, f, popt, progress);
+    ex = extract_quads(mesh, p, {}, progress);
+    report.parameterization = param_quality(mesh, p);
+    report.extraction = ex.report;
+    report.quad_mesh = quad_quality(ex.mesh);
+  }
+  progress.raise_if_interrupted();
+  py::list faces;
+  bool all_quads = true;
+  for (const auto& face : ex.mesh.faces) {
+    all_quads = all_quads && face.size() == 4;
+    faces.append(face);
+  }
+  py::object Q = faces;
+  if (all_quads) {
+    Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor> M(static_cast<Eigen::Index>(ex.mesh.faces.size()), 4);
+    for (std::size_t i = 0; i < ex.mesh.faces.size(); ++i)
+      for (int k = 0; k < 4; ++k) M(static_cast<Eigen::Index>(i), k) = ex.mesh.faces[i][static_cast<std::size_t>(k)];
+    Q = py::cast(M);
+  }
+  return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(to_json(report)));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(quadcover, m) {
+  m.doc() = "quadcover: seamless quad-aligned parameterization (QuadCover) and quad remeshing";
+  m.attr("__version__") = QUADCOVER_PY_VERSION;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const TopologyError& e) {
+      std::string msg = e.what();
+      for (const auto& s : e.problems()) msg += "\n  " + s;
+      PyErr_SetString(PyExc_ValueError, msg.c_str());
+    } catch (const InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const NumericalError& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+  m.def("info", &info, py::arg("V"), py::arg("F"),
+        "Counts and topology of a triangle mesh: dict with vertices, edges, faces, components, boundary_loops, genus, "
+        "euler_characteristic, area, mean_edge_length, bounding_box_diagonal. Raises ValueError (listing every "
+        "problem) if the mesh is not a valid manifold triangle mesh.");
+  m.def("load", &load, py::arg("path"),
+        "Reads a mesh file (.obj .off .ply .stl): dict with V (#V×3), F (#F×3 int array for triangle meshes, else a "
+        "list of polygons), uv (#UV×2 or None) and face_uv (per-face lists of uv indices, -1 = none, or None).");
+  m.def("field", &field, py::arg("V"), py::arg("F"), py::arg("trusted_fraction") = 0.2, py::arg("lambda_") = 0.5,
+        py::arg("smoothing_rounds") = 2,
+        "Curvature-guided cross field (thesis Chapter 5): dict with X, Y (#F complex, face basis basis1/basis2), "
+        "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
+  m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
+        py::arg("quads") = 0, py::arg("lattice") = "rotated",
+        "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
+        "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
+        "Density: edge_length h, or quads N, or by default twice the mean edge length.");
+  m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
+        py::arg("lattice") = "rotated",
+        "Quad remeshing (field -> parameterization -> extraction): returns (QV #Q×3, faces, report) where faces is a "
+        "#faces×4 int array when every face is a quad, else a list of polygons.");
+}

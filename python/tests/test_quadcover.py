@@ -1,0 +1,127 @@
+"""Tests of the quadcover Python module: shapes and dtypes, topological invariants of real meshes, and the
+seamlessness of the returned UVs checked here independently of the C++ code."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import quadcover
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data")
+
+
+def mesh(name):
+    d = quadcover.load(os.path.join(DATA, name + ".obj"))
+    return d["V"], d["F"]
+
+
+def test_load_returns_arrays():
+    V, F = mesh("bunny_3k")
+    assert V.shape == (1839, 3) and V.dtype == np.float64
+    assert F.shape == (3674, 3) and np.issubdtype(F.dtype, np.integer)
+    assert F.min() == 0 and F.max() == V.shape[0] - 1
+
+
+@pytest.mark.parametrize("name,genus", [("bunny_3k", 0), ("torus_5k", 1), ("eight_genus2", 2), ("fertility_genus4", 4)])
+def test_info_topology(name, genus):
+    V, F = mesh(name)
+    info = quadcover.info(V, F)
+    assert info["genus"] == genus
+    assert info["faces"] == F.shape[0] and info["vertices"] == V.shape[0]
+    # Closed surfaces: V - E + F = 2 - 2g and every edge has two faces (3F = 2E).
+    assert info["euler_characteristic"] == 2 - 2 * genus
+    assert 3 * info["faces"] == 2 * info["edges"]
+
+
+def test_info_rejects_broken_mesh_with_a_clear_error():
+    d = quadcover.load(os.path.join(DATA, "bad", "fandisk_nonmanifold_edge_fin.obj"))
+    with pytest.raises(ValueError, match="non-manifold"):
+        quadcover.info(d["V"], d["F"])
+    with pytest.raises(ValueError):
+        quadcover.load(os.path.join(DATA, "no_such_file.obj"))
+
+
+def test_load_reads_per_corner_texture_coordinates(tmp_path):
+    p = tmp_path / "quad_uv.obj"
+    p.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    d = quadcover.load(str(p))
+    assert d["uv"].shape == (4, 2)
+    assert d["face_uv"] == [[0, 1, 2], [0, 2, 3]]
+    np.testing.assert_array_equal(d["F"], [[0, 1, 2], [0, 2, 3]])
+
+
+def test_field_has_a_frame_per_face_and_branch_points_on_a_sphere():
+    V, F = mesh("bunny_3k")
+    f = quadcover.field(V, F)
+    assert f["X"].shape == (F.shape[0],) and np.iscomplexobj(f["X"])
+    assert np.all(np.abs(f["X"]) > 0)
+    assert f["matching"].shape == (f["edges"].shape[0],)
+    # Poincaré-Hopf: a cross field on a sphere needs singularities; each has a fractional index.
+    assert len(f["branch_points"]) > 0
+    assert all(q % 4 != 0 for _, q in f["branch_points"])
+    # The frame vectors lie in the face planes: X3 = Re X b1 + Im X b2 is orthogonal to the face normal.
+    X3 = f["X"].real[:, None] * f["basis1"] + f["X"].imag[:, None] * f["basis2"]
+    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    assert np.max(np.abs(np.einsum("ij,ij->i", X3, n)) / np.linalg.norm(n, axis=1) / np.abs(f["X"])) < 1e-9
+
+
+def seam_defect(F, uv):
+    """Largest deviation from z -> i^k z + c with c in Z[i] across interior edges, and the number of cut edges."""
+    z = uv[..., 0] + 1j * uv[..., 1]
+    where = {}
+    for f in range(F.shape[0]):
+        for k in range(3):
+            where[(F[f, k], F[f, (k + 1) % 3])] = (f, k)
+    worst, cut = 0.0, 0
+    for (a, b), (f, k) in where.items():
+        if (b, a) not in where or a > b:
+            continue
+        g, l = where[(b, a)]
+        za, zb = z[f, k], z[f, (k + 1) % 3]
+        wb, wa = z[g, l], z[g, (l + 1) % 3]
+        best = min(range(4), key=lambda r: abs(1j ** r * (zb - za) - (wb - wa)))
+        rot = 1j ** best
+        c = wa - rot * za
+        err = max(abs(rot * (zb - za) - (wb - wa)), abs(c - complex(round(c.real), round(c.imag))))
+        worst = max(worst, err)
+        cut += abs(wa - za) > 1e-9 or abs(wb - zb) > 1e-9
+    return worst, cut
+
+
+@pytest.mark.parametrize("name", ["torus_5k", "bunny_3k"])
+def test_parameterize_is_seamless_with_integer_translations(name):
+    V, F = mesh(name)
+    uv, report = quadcover.parameterize(V, F)
+    assert uv.shape == (F.shape[0], 3, 2)
+    extent = np.ptp(uv.reshape(-1, 2), axis=0).max()
+    worst, cut = seam_defect(F, uv)
+    assert worst < 1e-6 * max(1.0, extent)
+    assert cut > 0  # a closed surface of genus >= 0 with cones (or a torus) needs a cut somewhere
+    assert report["energy_curl"] >= 0 and report["energy_harmonic"] >= 0
+    assert report["faces"] == F.shape[0]
+    # The report's flip count matches the signed areas of the returned UVs.
+    e1, e2 = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
+    assert report["flipped_triangles"] == int(np.sum(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0] < 0))
+
+
+def test_parameterize_density_follows_edge_length():
+    V, F = mesh("torus_5k")
+    uv1, r1 = quadcover.parameterize(V, F, edge_length=0.2)
+    uv2, r2 = quadcover.parameterize(V, F, edge_length=0.1)
+    # Halving h doubles the grid coordinates: four times the parameter area (the quad count).
+    assert r2["uv_area"] / r1["uv_area"] == pytest.approx(4.0, rel=0.1)
+    with pytest.raises(ValueError):
+        quadcover.parameterize(V, F, lattice="hexagonal")
+
+
+def test_remesh_torus_gives_a_closed_quad_mesh():
+    V, F = mesh("torus_5k")
+    QV, Q, report = quadcover.remesh(V, F)
+    assert isinstance(Q, np.ndarray) and Q.shape[1] == 4
+    assert QV.shape[1] == 3 and Q.max() < QV.shape[0]
+    # A closed all-quad mesh of genus 1: V - E + F = 0 with E = 2F, so V = F.
+    edges = {tuple(sorted((q[i], q[(i + 1) % 4]))) for q in Q.tolist() for i in range(4)}
+    assert len(edges) == 2 * Q.shape[0]
+    assert QV.shape[0] - len(edges) + Q.shape[0] == 0
+    assert report["quad_mesh"] is not None and report["extraction"]["quads"] == Q.shape[0]
