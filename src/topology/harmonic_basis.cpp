@@ -1,5 +1,6 @@
 #include "topology/harmonic_basis.h"
 
+#include <span>
 #include <string>
 
 #include "calculus/gradient.h"
@@ -24,7 +25,7 @@ void add_visit(const Mesh& mesh, int k, int p, int in, int out, std::vector<Eige
   if (out < 0) first = 0;
   if (in < 0) last = n - 1;
   if (first < 0 || last < 0 || ((in < 0 || out < 0) && !boundary) || (boundary && last < first))
-    throw TopologyError("sigma_fields: generator " + std::to_string(k) + " cannot pass vertex " + std::to_string(p) +
+    throw TopologyError("sigma_fields: walk " + std::to_string(k) + " cannot pass vertex " + std::to_string(p) +
                         " this way");
   for (int i = first;; i = (i + 1) % n) {
     const int f = fan[i].face, c = fan[i].corner;
@@ -34,24 +35,37 @@ void add_visit(const Mesh& mesh, int k, int p, int in, int out, std::vector<Eige
   }
 }
 
+// All visits of the walk v_0 … v_m, accumulated into column k.
+void add_walk(const Mesh& mesh, int k, std::span<const int> v, bool closed,
+              std::vector<Eigen::Triplet<Complex>>& entries) {
+  const int m = static_cast<int>(v.size()) - 1;
+  if (m < 1) throw InputError("", 0, "sigma_fields: walk " + std::to_string(k) + " has no edge");
+  if (closed) {
+    if (v.front() != v.back())
+      throw InputError("", 0, "sigma_fields: closed walk " + std::to_string(k) + " does not return to its start");
+    for (int i = 0; i < m; ++i) add_visit(mesh, k, v[i], v[(i + m - 1) % m], v[i + 1], entries);
+  } else {
+    for (int i = 0; i <= m; ++i) add_visit(mesh, k, v[i], i > 0 ? v[i - 1] : -1, i < m ? v[i + 1] : -1, entries);
+  }
+}
+
 }  // namespace
 
 Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis& basis) {
   std::vector<Eigen::Triplet<Complex>> entries;
-  for (int k = 0; k < basis.size(); ++k) {
-    const HomologyGenerator& g = basis.generators[k];
-    const int m = static_cast<int>(g.edges.size());
-    if (g.closed) {
-      for (int i = 0; i < m; ++i)
-        add_visit(mesh, k, g.vertices[i], g.vertices[(i + m - 1) % m], g.vertices[i + 1], entries);
-    } else {
-      for (int i = 0; i <= m; ++i)
-        add_visit(mesh, k, g.vertices[i], i > 0 ? g.vertices[i - 1] : -1, i < m ? g.vertices[i + 1] : -1, entries);
-    }
-  }
+  for (int k = 0; k < basis.size(); ++k)
+    add_walk(mesh, k, basis.generators[k].vertices, basis.generators[k].closed, entries);
   Eigen::SparseMatrix<Complex> sigma(mesh.num_faces(), basis.size());
   sigma.setFromTriplets(entries.begin(), entries.end());
   return sigma;
+}
+
+Eigen::SparseVector<Complex> walk_sigma_field(const Mesh& mesh, std::span<const int> vertices, bool closed) {
+  std::vector<Eigen::Triplet<Complex>> entries;
+  add_walk(mesh, 0, vertices, closed, entries);
+  Eigen::SparseMatrix<Complex> sigma(mesh.num_faces(), 1);
+  sigma.setFromTriplets(entries.begin(), entries.end());
+  return sigma.col(0);
 }
 
 VectorField sigma_field(const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b) {

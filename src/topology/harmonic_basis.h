@@ -2,6 +2,7 @@
 // Harmonic fields from homology generators (thesis 1.2.6): the cut fields Σ_k (1.13), the standard basis
 // H_k = Σ_k - (Σ_k)_P of the harmonic fields, and the harmonic field H_b with prescribed periods (1.14).
 #include <Eigen/SparseCore>
+#include <span>
 
 #include "calculus/hodge.h"
 #include "topology/homology.h"
@@ -13,6 +14,12 @@ namespace quadcover {
 /// the function that is 1 on the left bank of γ_k and 0 elsewhere, so curl* Σ_k = 0 on every interior edge and
 /// b_j(Σ_k) = δ_jk.
 Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis& basis);
+
+/// Σ of (1.13) for one edge walk v_0 … v_m (consecutive vertices adjacent): closed (v_m = v_0), or open from a
+/// boundary vertex to a boundary vertex. Visits are summed, so Σ(γ) + Σ(γ reversed) = ∇(visit count per vertex).
+/// \throw InputError for a walk without edges or a closed walk that does not close; TopologyError if the walk
+/// steps between non-adjacent vertices or ends at an interior vertex.
+Eigen::SparseVector<Complex> walk_sigma_field(const Mesh& mesh, std::span<const int> vertices, bool closed);
 
 /// Σ_b = Σ_k b_k Σ_k (dense #F).
 VectorField sigma_field(const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b);
