@@ -39,7 +39,9 @@ struct FrameField {
 
 struct BranchPoint {
   int vertex;
-  int quarter_index;  ///< 4·ind_p (Def. 3.2), never 0 mod 4
+  /// 4·ind_p, never 0 mod 4. branch_points() (field/indices.h) reports the cross-field index (Def. 3.3), whose
+  /// sum is χ; the covering works with the matching index (Def. 3.2). Both agree modulo 4 (see above).
+  int quarter_index;
 };
 
 /// A cross field (Y = iX) with the given first vectors and matching.
