@@ -106,5 +106,18 @@ TEST(Integrate, FrameOfGradients) {
     }
 }
 
+// A closed sphere needs no cut (simply connected): integrating ∇u over the uncut mesh gives u up to a constant.
+TEST(Integrate, UncutSphere) {
+  const Mesh mesh = testing::load_test_mesh("spot");
+  const CutGraph g = cut_graph(mesh);
+  ASSERT_EQ(g.paths.size(), 0u);
+  const CutMesh cut = cut_mesh(mesh, g.cut);
+  EXPECT_EQ(cut.num_vertices(), mesh.num_vertices());
+  const Eigen::VectorXd u = random_function(mesh, 11);
+  const Eigen::VectorXd w = integrate_cut_vertices(mesh, cut, gradient(mesh, u));
+  const double offset = w[cut.corner_vertex(0, 0)] - u[mesh.F()(0, 0)];
+  for (int v = 0; v < cut.num_vertices(); ++v) EXPECT_NEAR(w[v] - u[cut.original_vertex[v]], offset, 1e-9);
+}
+
 }  // namespace
 }  // namespace quadcover
