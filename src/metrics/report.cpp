@@ -66,6 +66,8 @@ nlohmann::json to_json(const ExtractionReport& r) {
           {"non_quads", r.non_quads},
           {"grid_vertices", r.grid_vertices},
           {"boundary_vertices", r.boundary_vertices},
+          {"unfolded_triangles", r.unfolded_triangles},
+          {"moved_vertices", r.moved_vertices},
           {"flipped_triangles", r.flipped_triangles},
           {"degenerate_triangles", r.degenerate_triangles},
           {"torn_seams", r.torn_seams},
@@ -109,7 +111,8 @@ std::string to_text(const Report& r) {
     const auto& e = *r.extraction;
     os << " extraction\n";
     line("quads: %d, other polygons: %d, boundary vertices: %d", e.quads, e.non_quads, e.boundary_vertices);
-    line("repairs: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
+    line("untangled: %d triangles (%d vertices moved)", e.unfolded_triangles, e.moved_vertices);
+    line("cut out: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
          e.flipped_triangles, e.degenerate_triangles, e.torn_seams, e.failed_traces, e.dropped_faces);
   }
   if (r.quad_mesh) {

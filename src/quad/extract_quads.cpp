@@ -7,6 +7,7 @@
 
 #include "common/errors.h"
 #include "quad/integer_grid_map.h"
+#include "quad/repair_folds.h"
 
 namespace quadcover {
 
@@ -553,9 +554,23 @@ ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, 
   if ((param.transition_rotation.size() && param.transition_rotation.size() != mesh.num_edges()) ||
       (param.transition_translation.size() && param.transition_translation.size() != mesh.num_edges()))
     throw InputError("", 0, "extract_quads: transitions must have one entry per edge");
-  const GridMap g = build_grid_map(mesh, param, options.snap, options.seam_tolerance);
+  FoldRepairResult repair;
+  const Parameterization* map = &param;
+  Parameterization repaired;
+  if (options.repair_folds) {
+    repair = repair_folds(mesh, param);
+    if (repair.moved_vertices > 0) {
+      repaired = param;
+      repaired.uv = repair.uv;
+      map = &repaired;
+    }
+  }
+  const GridMap g = build_grid_map(mesh, *map, options.snap, options.seam_tolerance);
   Extractor x(mesh, g, options);
-  return x.run(progress);
+  ExtractionResult r = x.run(progress);
+  r.report.unfolded_triangles = repair.bad_before - repair.bad_after;
+  r.report.moved_vertices = repair.moved_vertices;
+  return r;
 }
 
 double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {

@@ -19,6 +19,9 @@ struct ExtractOptions {
   double seam_tolerance = 1e-5;
   /// Faces with more corners than this are given up as broken (default 64).
   int max_face_size = 64;
+  /// Untangle folded / degenerate triangles first by moving non-cone interior vertices (see repair_folds.h);
+  /// what remains folded is cut out (default on).
+  bool repair_folds = true;
 };
 
 /// What extraction found and repaired. A valid seamless map on a closed surface with integer branch points gives
@@ -27,6 +30,8 @@ struct ExtractionReport {
   int quads = 0, non_quads = 0;
   int grid_vertices = 0;         ///< output vertices at integer points
   int boundary_vertices = 0;     ///< output vertices where an iso-line meets the boundary
+  int unfolded_triangles = 0;    ///< folded or degenerate triangles made valid by repair_folds
+  int moved_vertices = 0;        ///< vertices repair_folds moved
   int flipped_triangles = 0;     ///< input triangles with negative parameter area (cut out)
   int degenerate_triangles = 0;  ///< input triangles with zero parameter area (cut out)
   int torn_seams = 0;            ///< edges whose transition does not hold (treated as boundary)

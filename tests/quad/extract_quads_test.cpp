@@ -162,25 +162,49 @@ TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
   EXPECT_GE(unit, static_cast<int>(std::floor((scale - 2) * (scale - 2))));
 }
 
-// Folds: a displaced vertex flips triangles; those are cut out, the rest is extracted, the output stays manifold.
-TEST(ExtractQuads, SurvivesFoldsAndReportsThem) {
-  auto [mesh, param] = torus_map(24, 12, 17, 7);
-  const int v = mesh.F()(100, 0);
-  int flipped_expected = 0;
-  for (int f = 0; f < mesh.num_faces(); ++f)
+// A displaced vertex folds the triangles around it.
+testing::MeshAndMap folded_torus(int& flipped) {
+  auto m = torus_map(24, 12, 17, 7);
+  const int v = m.mesh.F()(100, 0);
+  for (int f = 0; f < m.mesh.num_faces(); ++f)
     for (int c = 0; c < 3; ++c)
-      if (mesh.F()(f, c) == v) param.uv(f, c) += Complex(1.7, 0.9);
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Complex e1 = param.uv(f, 1) - param.uv(f, 0), e2 = param.uv(f, 2) - param.uv(f, 0);
-    flipped_expected += (e1.real() * e2.imag() - e1.imag() * e2.real()) < 0;
+      if (m.mesh.F()(f, c) == v) m.param.uv(f, c) += Complex(1.7, 0.9);
+  flipped = 0;
+  for (int f = 0; f < m.mesh.num_faces(); ++f) {
+    const Complex e1 = m.param.uv(f, 1) - m.param.uv(f, 0), e2 = m.param.uv(f, 2) - m.param.uv(f, 0);
+    flipped += (e1.real() * e2.imag() - e1.imag() * e2.real()) < 0;
   }
+  return m;
+}
+
+// Without repair the folded triangles are cut out, the rest is extracted, and the output stays manifold.
+TEST(ExtractQuads, CutsOutFoldsAndReportsThem) {
+  int flipped_expected = 0;
+  const auto [mesh, param] = folded_torus(flipped_expected);
   ASSERT_GT(flipped_expected, 0);
-  const ExtractionResult res = extract_quads(mesh, param);
+  ExtractOptions opt;
+  opt.repair_folds = false;
+  const ExtractionResult res = extract_quads(mesh, param, opt);
   EXPECT_EQ(res.report.flipped_triangles, flipped_expected);
   const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
   EXPECT_EQ(t.non_manifold_edges, 0);
   EXPECT_EQ(t.degenerate_faces, 0);
+  EXPECT_FALSE(t.closed());
   EXPECT_GT(res.mesh.num_quads(), 17 * 7 - 20);  // only a neighbourhood of the fold is affected
+}
+
+// With repair the fold of a regular vertex is untangled and the exact quad mesh comes back.
+TEST(ExtractQuads, RepairsFoldsAtRegularVertices) {
+  int flipped_expected = 0;
+  const auto [mesh, param] = folded_torus(flipped_expected);
+  const ExtractionResult res = extract_quads(mesh, param);
+  EXPECT_EQ(res.report.unfolded_triangles, flipped_expected);
+  EXPECT_GE(res.report.moved_vertices, 1);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_quads(), 17 * 7);
+  EXPECT_EQ(res.mesh.num_faces(), 17 * 7);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.closed());
 }
 
 // A broken seam (translation off the lattice) is cut open and reported instead of producing garbage.
