@@ -100,6 +100,15 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
     (even ? b_even : b_odd) += 1;
     bps.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
   }
+  nlohmann::json curves = nlohmann::json::array();
+  double worst_curve = 0;
+  for (const auto& c : P.aligned_curves) {
+    curves.push_back({{"edges", c.edges.size()},
+                      {"coordinate", c.coordinate == 0 ? "u" : "v"},
+                      {"value", c.value},
+                      {"max_deviation", c.max_deviation}});
+    worst_curve = std::max(worst_curve, c.max_deviation);
+  }
   nlohmann::json report = {{"file", input},
                            {"output", output},
                            {"vertices", mesh.num_vertices()},
@@ -125,11 +134,15 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
                            {"max_transition_error", seams.max_transition_error},
                            {"parameter_extent", seams.parameter_extent},
                            {"cut_edges", seams.cut_edges},
+                           {"aligned_curves", curves},
+                           {"max_curve_deviation", worst_curve},
+                           {"alignment_conflicts", P.alignment_conflicts},
                            {"seconds", seconds}};
   if (!report_path.empty()) write_json_atomically(report_path, report);
   nlohmann::json summary = report;
   summary["branch_points"] = P.branch_points.size();
   summary.erase("flipped_faces");
+  summary["aligned_curves"] = P.aligned_curves.size();
   if (!seams.seamless)
     throw NumericalError("param", "the written parameterization is not seamless (max transition error " +
                                       std::to_string(seams.max_transition_error) + ")");
