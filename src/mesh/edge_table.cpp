@@ -19,36 +19,35 @@ EdgeTable::EdgeTable(std::size_t num_vertices, const std::vector<std::array<std:
     ++bucket[static_cast<std::size_t>(std::min(a, b)) + 1];
   }
   for (std::size_t v = 0; v < num_vertices; ++v) bucket[v + 1] += bucket[v];
-  std::vector<std::uint32_t> sorted(nh);
+  // Within a bucket, order half-edges by (larger endpoint, half-edge id): one packed 64-bit key each, so the
+  // sort compares integers instead of recomputing endpoints.
+  std::vector<std::uint64_t> sorted(nh);
   {
     std::vector<std::size_t> fill(bucket.begin(), bucket.end() - 1);
     for (std::size_t h = 0; h < nh; ++h) {
       const auto [a, b] = ends(h);
-      sorted[fill[static_cast<std::size_t>(std::min(a, b))]++] = static_cast<std::uint32_t>(h);
+      sorted[fill[static_cast<std::size_t>(std::min(a, b))]++] =
+          (static_cast<std::uint64_t>(std::max(a, b)) << 32) | static_cast<std::uint64_t>(h);
     }
   }
   halfedge_edge_.assign(nh, 0);
   incidences_.reserve(nh);
   begin_.reserve(nh / 2 + 2);
+  endpoints_.reserve(nh / 2 + 2);
   for (std::size_t v = 0; v < num_vertices; ++v) {
     auto first = sorted.begin() + static_cast<std::ptrdiff_t>(bucket[v]);
     auto last = sorted.begin() + static_cast<std::ptrdiff_t>(bucket[v + 1]);
-    std::sort(first, last, [&](std::uint32_t x, std::uint32_t y) {
-      const auto ex = ends(x), ey = ends(y);
-      const std::int64_t hx = std::max(ex[0], ex[1]), hy = std::max(ey[0], ey[1]);
-      return hx != hy ? hx < hy : x < y;
-    });
+    std::sort(first, last);
     for (auto it = first; it != last;) {
-      const auto e0 = ends(*it);
-      const std::int64_t hi = std::max(e0[0], e0[1]);
+      const std::uint64_t hi = *it >> 32;
       const auto id = static_cast<std::uint32_t>(endpoints_.size());
-      endpoints_.push_back({static_cast<std::int64_t>(v), hi});
+      endpoints_.push_back({static_cast<std::int64_t>(v), static_cast<std::int64_t>(hi)});
       begin_.push_back(incidences_.size());
-      for (; it != last; ++it) {
-        const auto e = ends(*it);
-        if (std::max(e[0], e[1]) != hi) break;
-        halfedge_edge_[*it] = id;
-        incidences_.push_back({*it / 3, static_cast<std::uint8_t>(*it % 3), e[0] < e[1]});
+      for (; it != last && (*it >> 32) == hi; ++it) {
+        const auto h = static_cast<std::uint32_t>(*it & 0xffffffffu);
+        const auto e = ends(h);
+        halfedge_edge_[h] = id;
+        incidences_.push_back({h / 3, static_cast<std::uint8_t>(h % 3), e[0] < e[1]});
       }
     }
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <span>
 #include <string>
 
 #include "mesh/mesh.h"
@@ -183,12 +184,20 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
   // Non-manifold vertices: the faces at v, linked through shared manifold edges at v, must form one fan.
   ProblemCollector nm_vertex(soup, options, ProblemKind::NonManifoldVertex, "non-manifold vertex", "non-manifold vertices");
   {
-    std::vector<std::vector<std::uint32_t>> vertex_tris(static_cast<std::size_t>(nv));
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int k = 0; k < 3; ++k) vertex_tris[static_cast<std::size_t>(tris[t][k])].push_back(static_cast<std::uint32_t>(t));
+    // Triangles per vertex in compressed rows (counting sort: one allocation, triangles in increasing order).
+    std::vector<std::uint32_t> tri_begin(static_cast<std::size_t>(nv) + 1, 0), tri_of(3 * tris.size());
+    for (const auto& t : tris)
+      for (int k = 0; k < 3; ++k) ++tri_begin[static_cast<std::size_t>(t[k]) + 1];
+    for (std::size_t v = 0; v < static_cast<std::size_t>(nv); ++v) tri_begin[v + 1] += tri_begin[v];
+    {
+      std::vector<std::uint32_t> fill(tri_begin.begin(), tri_begin.end() - 1);
+      for (std::size_t t = 0; t < tris.size(); ++t)
+        for (int k = 0; k < 3; ++k) tri_of[fill[static_cast<std::size_t>(tris[t][k])]++] = static_cast<std::uint32_t>(t);
+    }
     std::vector<int> parent;
     for (long v = 0; v < nv; ++v) {
-      const auto& vt = vertex_tris[static_cast<std::size_t>(v)];
+      const std::span<const std::uint32_t> vt(tri_of.data() + tri_begin[static_cast<std::size_t>(v)],
+                                              tri_of.data() + tri_begin[static_cast<std::size_t>(v) + 1]);
       if (vt.size() <= 1) continue;
       parent.resize(vt.size());
       std::iota(parent.begin(), parent.end(), 0);
