@@ -1,0 +1,91 @@
+// `quadcover param` end to end: the OBJ it writes is re-read here and checked independently (seamless transitions
+// across every interior edge, vt in grid units), and the JSON report carries the required keys.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/read_mesh.h"
+#include "mesh/mesh.h"
+#include "param/seams.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+namespace fs = std::filesystem;
+
+int run(const std::string& args) {
+  const std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Reads the v/vt/f v/vt lines of an OBJ: per-face corner coordinates.
+Eigen::MatrixX3cd read_corner_uv(const std::string& path, int faces) {
+  std::ifstream in(path);
+  std::vector<Complex> vt;
+  Eigen::MatrixX3cd uv(faces, 3);
+  std::string line;
+  int f = 0;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::string tag;
+    s >> tag;
+    if (tag == "vt") {
+      double x, y;
+      s >> x >> y;
+      vt.emplace_back(x, y);
+    } else if (tag == "f") {
+      for (int c = 0; c < 3; ++c) {
+        std::string corner;
+        s >> corner;
+        uv(f, c) = vt.at(std::stoul(corner.substr(corner.find('/') + 1)) - 1);
+      }
+      ++f;
+    }
+  }
+  EXPECT_EQ(f, faces);
+  return uv;
+}
+
+TEST(ParamCli, WritesSeamlessObjAndReport) {
+  ASSERT_TRUE(fs::exists(QUADCOVER_CLI)) << "build the quadcover target first";
+  const fs::path dir = fs::temp_directory_path() / ("qc_param_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* name : {"bunny_3k", "lilium_disk"}) {
+    const std::string obj = (dir / (std::string(name) + ".obj")).string();
+    const std::string json = (dir / (std::string(name) + ".json")).string();
+    ASSERT_EQ(run("param " + testing::data_path(name) + " -o " + obj + " --quads 400 --report " + json), 0) << name;
+    const Mesh mesh = testing::load_test_mesh(name);
+    const Eigen::MatrixX3cd uv = read_corner_uv(obj, mesh.num_faces());
+    const SeamReport seams = measure_seams(mesh, uv, 1e-9);
+    EXPECT_TRUE(seams.seamless) << name << " " << seams.max_transition_error;
+    EXPECT_GT(seams.cut_edges, 0);
+    std::ifstream in(json);
+    const nlohmann::json report = nlohmann::json::parse(in);
+    for (const char* key : {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "flipped_faces",
+                            "seamless", "max_transition_error", "seconds", "aligned_curves"})
+      EXPECT_TRUE(report.contains(key)) << key;
+    EXPECT_EQ(report["faces"], mesh.num_faces());
+    EXPECT_TRUE(report["seamless"].get<bool>());
+    EXPECT_EQ(report["flipped_triangles"].get<int>(), static_cast<int>(report["flipped_faces"].size()));
+    EXPECT_EQ(report["flipped_triangles"].get<int>(), flipped_triangles(uv).flipped);
+    // --quads 400: about 400 unit squares of parameter area.
+    EXPECT_NEAR(flipped_triangles(uv).parameter_area, 400, 200);
+  }
+  // Bad input and reserved options: exit status 2, no output file left behind.
+  const std::string out = (dir / "bad.obj").string();
+  EXPECT_EQ(run("param " + testing::data_path("bad/spot_duplicate_face.obj") + " -o " + out), 2);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run("param " + testing::data_path("bunny_3k") + " -o " + out + " --rounding search"), 2);
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace quadcover
