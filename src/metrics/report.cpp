@@ -74,7 +74,9 @@ nlohmann::json to_json(const ExtractionReport& r) {
           {"non_integer_translations", r.non_integer_translations},
           {"failed_traces", r.failed_traces},
           {"dropped_faces", r.dropped_faces},
-          {"degenerate_faces", r.degenerate_faces}};
+          {"degenerate_faces", r.degenerate_faces},
+          {"split_vertices", r.split_vertices},
+          {"active_parameter_area", r.active_parameter_area}};
 }
 
 nlohmann::json to_json(const Report& r) {

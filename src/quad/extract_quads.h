@@ -39,6 +39,9 @@ struct ExtractionReport {
   int failed_traces = 0;         ///< iso-line segments that could not be followed (e.g. into a non-integer branch point)
   int dropped_faces = 0;         ///< faces not emitted because a bounding segment failed
   int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
+  int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
+  /// Parameter area of the triangles that were extracted (not cut out): the quad count of a valid closed map.
+  double active_parameter_area = 0;
 };
 
 struct ExtractionResult {
