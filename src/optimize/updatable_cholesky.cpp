@@ -145,6 +145,7 @@ void FactorTrial::reset() {
   vals_.clear();
   valid_ = true;
   evaluated_ = false;
+  full_ = false;
 }
 
 void FactorTrial::touch_path(const UpdatableCholesky& F, int j) {
@@ -255,15 +256,41 @@ double FactorTrial::evaluate(const UpdatableCholesky& F) {
   return energy_;
 }
 
+double FactorTrial::evaluate_full(const UpdatableCholesky& F, const Eigen::VectorXcd& b_new) {
+  if (!valid_) throw NumericalError("cholesky update", "trial evaluated after a failed update");
+  const int n = F.size();
+  const int* Lp = F.col_ptr();
+  const int* Li = F.row_idx();
+  const Complex* Lx = F.values();
+  bfull_.resize(n);
+  for (int i = 0; i < n; ++i) bfull_[i] = b_new[F.perm()[i]];
+  xfull_ = bfull_;
+  Complex* x = xfull_.data();
+  for (int j = 0; j < n; ++j) {
+    const Complex* col = slot_[j] >= 0 ? vals_.data() + slot_[j] : Lx + Lp[j];
+    const Complex xj = x[j] / col[0].real();
+    x[j] = xj;
+    const int len = Lp[j + 1] - Lp[j];
+    const int* rows = Li + Lp[j];
+    for (int p = 1; p < len; ++p) x[rows[p]] -= col[p] * xj;
+  }
+  energy_ = xfull_.squaredNorm();
+  evaluated_ = full_ = true;
+  return energy_;
+}
+
 void FactorTrial::commit(UpdatableCholesky& F) const {
   if (!valid_ || !evaluated_) throw NumericalError("cholesky update", "commit of an invalid or unevaluated trial");
   const int* Lp = F.col_ptr();
   Complex* Lx = F.values();
   for (int j : touched_) {
     std::copy(vals_.begin() + slot_[j], vals_.begin() + slot_[j] + (Lp[j + 1] - Lp[j]), Lx + Lp[j]);
-    F.x_[j] = xnew_[j];
-    F.b_[j] += db_[j];
+    if (!full_) {
+      F.x_[j] = xnew_[j];
+      F.b_[j] += db_[j];
+    }
   }
+  if (full_) F.x_ = xfull_, F.b_ = bfull_;
   F.x_norm2_ = F.x_.squaredNorm();
 }
 

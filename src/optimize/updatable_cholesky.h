@@ -109,7 +109,10 @@ class FactorTrial {
   void add_rhs_change(const UpdatableCholesky& F, std::span<const SparseEntry> delta);
   /// Reach-limited forward solve on the touched paths. \return the new bᴴA⁻¹b = xᴴx.
   double evaluate(const UpdatableCholesky& F);
-  /// Writes the modified columns, b and x back into F (after evaluate()).
+  /// Full forward solve L̃x = P b_new through the modified factor (touched columns read from the trial): for a
+  /// right-hand side that changes everywhere (re-smoothed field, 6.2.1 / Table 6.1). \return the new xᴴx.
+  double evaluate_full(const UpdatableCholesky& F, const Eigen::VectorXcd& b_new);
+  /// Writes the modified columns, b and x back into F (after evaluate() or evaluate_full()).
   void commit(UpdatableCholesky& F) const;
   /// Number of columns of L touched (the reach of the change).
   int reach() const { return static_cast<int>(touched_.size()); }
@@ -121,8 +124,9 @@ class FactorTrial {
   std::vector<int> touched_;       // touched columns (permuted numbering)
   std::vector<Complex> vals_;      // private copies of the touched columns
   std::vector<Complex> w_, acc_, db_, xnew_;  // dense work arrays (zero outside touched)
+  Eigen::VectorXcd xfull_, bfull_;  // evaluate_full(): permuted b and x
   double energy_ = 0;
-  bool valid_ = true, evaluated_ = false;
+  bool valid_ = true, evaluated_ = false, full_ = false;
 };
 
 }  // namespace quadcover
