@@ -7,6 +7,7 @@
 //     curl* X(e) = ⟨X_t, e⟩ - ⟨X_s, e⟩,   s = EF(e,0) (e positively oriented in s), t = EF(e,1).
 // The explicit formula printed in (1.6), ⟨X_s, e⟩ - ⟨X_t, e⟩, has the opposite sign of its own "= -div* JX".
 // div* X(e) = ⟨X_s, Je⟩ - ⟨X_t, Je⟩ as printed. Both are independent of the orientation of e.
+// All four throw std::invalid_argument if X does not have #F entries.
 #include <Eigen/Core>
 
 #include "calculus/vector_field.h"

@@ -1,6 +1,8 @@
 // Gradients of conforming and nonconforming PL functions as complex per-face vectors (thesis 1.2).
 #include "calculus/gradient.h"
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace quadcover {
@@ -8,6 +10,12 @@ namespace quadcover {
 namespace {
 using CTriplet = Eigen::Triplet<Complex>;
 const Complex kJ{0.0, 1.0};  // J: 90° rotation in the face basis
+
+void check_size(Eigen::Index got, int expected, const char* fn, const char* what) {
+  if (got != expected)
+    throw std::invalid_argument(std::string(fn) + ": " + std::to_string(got) + " values for " +
+                                std::to_string(expected) + " " + what);
+}
 }  // namespace
 
 Eigen::SparseMatrix<Complex> conforming_gradient(const Mesh& mesh) {
@@ -39,6 +47,7 @@ Eigen::SparseMatrix<Complex> nonconforming_gradient(const Mesh& mesh) {
 }
 
 VectorField gradient(const Mesh& mesh, const Eigen::VectorXd& u) {
+  check_size(u.size(), mesh.num_vertices(), "gradient", "vertices");
   VectorField X(mesh.num_faces());
   for (int f = 0; f < mesh.num_faces(); ++f) {
     Complex g = 0;
@@ -49,6 +58,7 @@ VectorField gradient(const Mesh& mesh, const Eigen::VectorXd& u) {
 }
 
 VectorField nonconforming_gradient(const Mesh& mesh, const Eigen::VectorXd& v) {
+  check_size(v.size(), mesh.num_edges(), "nonconforming_gradient", "edges");
   VectorField X(mesh.num_faces());
   for (int f = 0; f < mesh.num_faces(); ++f) {
     Complex g = 0;

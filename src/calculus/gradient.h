@@ -12,7 +12,9 @@ Eigen::SparseMatrix<Complex> conforming_gradient(const Mesh& mesh);
 /// #F by #E complex: (G* v)_t = ∇v|_t for v ∈ S_h* given at the edge midpoints.
 Eigen::SparseMatrix<Complex> nonconforming_gradient(const Mesh& mesh);
 
-VectorField gradient(const Mesh& mesh, const Eigen::VectorXd& u);               ///< u: #V
-VectorField nonconforming_gradient(const Mesh& mesh, const Eigen::VectorXd& v);  ///< v: #E
+/// ∇u per face for u ∈ S_h given at the vertices (u: #V). \throw std::invalid_argument on a size mismatch.
+VectorField gradient(const Mesh& mesh, const Eigen::VectorXd& u);
+/// ∇v per face for v ∈ S_h* given at the edge midpoints (v: #E). \throw std::invalid_argument on a size mismatch.
+VectorField nonconforming_gradient(const Mesh& mesh, const Eigen::VectorXd& v);
 
 }  // namespace quadcover

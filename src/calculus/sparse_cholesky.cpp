@@ -2,9 +2,11 @@
 #include "calculus/sparse_cholesky.h"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "common/errors.h"
 
@@ -203,6 +205,8 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
   if (A.rows() != im.n || A.cols() != im.n || lower.nonZeros() != im.lower_nnz)
     throw NumericalError(im.stage, "refactorize(): the sparsity pattern differs from the analyzed one");
   if (im.n == 0) return;
+  const Eigen::Index n = im.n;
+  im.n = -1;  // a failed refactorization leaves no usable factor
 #ifdef QUADCOVER_HAVE_CHOLMOD
   if (im.backend == CholeskyBackend::Cholmod) im.cholmod->factorize(lower, im.stage);
 #endif
@@ -210,6 +214,7 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
     im.eigen.factorize(lower);
     im.check_posdef();
   }
+  im.n = n;
 }
 
 template <class Scalar>

@@ -153,6 +153,11 @@ TEST(SparseCholesky, RefactorizeReusesAnalysis) {
     other.coeffRef(0, A2.cols() - 1) = 1e-3;  // a new entry changes the pattern
     other.coeffRef(A2.cols() - 1, 0) = 1e-3;
     EXPECT_THROW(chol.refactorize(other), NumericalError);
+    // A failed numeric refactorization (indefinite values, same pattern) leaves no usable factor behind.
+    Eigen::SparseMatrix<double> indefinite = A2;
+    for (int p = 0; p < indefinite.rows(); ++p) indefinite.coeffRef(p, p) = -1.0;
+    EXPECT_THROW(chol.refactorize(indefinite), NumericalError);
+    EXPECT_THROW(chol.solve(b), NumericalError);
   }
 }
 
