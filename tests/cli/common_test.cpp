@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -228,6 +229,28 @@ TEST(Outputs, JsonIsWrittenAtomicallyAndFailureLeavesNoFile) {
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++count;
   EXPECT_EQ(count, 1u);  // no temporary left behind
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace quadcover::cli
+
+namespace quadcover::cli {
+namespace {
+
+TEST(Cancellation, SigintSetsTheFlagAndTheNextOneIsFatal) {
+  clear_interrupt();
+  install_interrupt_handler();
+  ASSERT_EQ(std::raise(SIGINT), 0);  // the handler runs synchronously in this thread
+  EXPECT_TRUE(interrupted());
+  std::ostringstream out;
+  ProgressStyle style;
+  TerminalProgress p(out, style);
+  EXPECT_TRUE(p.cancelled());
+  // The handler re-armed the default action so a second Ctrl-C kills a stuck process.
+  struct sigaction current{};
+  sigaction(SIGINT, nullptr, &current);
+  EXPECT_EQ(current.sa_handler, SIG_DFL);
+  clear_interrupt();
 }
 
 }  // namespace
