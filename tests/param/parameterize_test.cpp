@@ -148,6 +148,10 @@ TEST(Parameterize, RandomFieldsManyBranchPoints) {
   const FrameField field = testing::random_cross_field(mesh, 12);
   const Parameterization P = parameterize(mesh, field);
   EXPECT_GT(P.branch_points.size(), 20u);
+  int even = 0;
+  for (const BranchPoint& bp : P.branch_points) even += ((bp.quarter_index % 4) + 4) % 4 == 2;
+  EXPECT_GT(even, 0);  // the fix-up is exercised
+  EXPECT_TRUE(P.unfixed_even_branch_points.empty());
   const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
   EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
   for (const BranchPoint& bp : P.branch_points)
