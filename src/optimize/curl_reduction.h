@@ -1,0 +1,58 @@
+#pragma once
+// Curl reduction, Algorithm 6.1 (thesis 6.2.2): cancellation of misplaced branch point pairs, edges sorted by their
+// share of E_D, greedy matching changes m_e <- m_e - sign(θ_e) kept when E_D decreases (re-sorting after 1‰ of
+// the matchings changed), with or without creation of new branch points, and balancing (6.4): cancel pairs whose
+// E_D increase Δ_ED is below the expected continuity gain Δ_EH, then reduce again without creation.
+#include <string>
+#include <vector>
+
+#include "common/progress.h"
+#include "optimize/curl_energy.h"
+
+namespace quadcover {
+
+struct CurlReductionOptions {
+  /// Allow matching changes that create new branch point pairs in the first curl reduction (6.2.2: "very
+  /// important"); after a balancing round creation is always disallowed.
+  bool allow_creation = true;
+  /// k: nearest opposite-index branch points tried per branch point in cancellation and balancing (thesis: 3).
+  int cancellation_neighbours = 3;
+  /// Re-sort the edges once more than this fraction of the matchings changed in a reduction loop (thesis: 1‰).
+  double resort_fraction = 1e-3;
+  /// Δ_EH = E_H / (2 h_sym) (6.4), the expected continuity distortion per pair of rounding constraints. Balancing
+  /// runs only when it is > 0.
+  double delta_eh = 0;
+  /// Stop after this many E_D evaluations (0 = unlimited) or seconds (0 = unlimited), with the best state so far.
+  long max_evaluations = 0;
+  double time_limit_seconds = 0;
+};
+
+/// One line of the per-iteration log (enough for Figure 6.1 and 6.5).
+struct CurlReductionLogEntry {
+  long evaluation = 0;  ///< evaluations so far
+  double energy = 0;    ///< E_D after this iteration
+  int branch_points = 0;
+  long accepted = 0;  ///< accepted changes so far
+  std::string phase;  ///< "start", "cancellation", "reduction", "balancing"
+};
+
+struct CurlReductionResult {
+  double initial_energy = 0, final_energy = 0;
+  int initial_branch_points = 0, final_branch_points = 0;
+  long evaluations = 0, accepted = 0, cancelled_pairs = 0;
+  int balancing_rounds = 0;
+  double seconds = 0;
+  bool stopped_early = false;  ///< by max_evaluations, time_limit_seconds or progress.cancelled()
+  std::vector<CurlReductionLogEntry> log;  ///< one entry per accepted change plus phase boundaries
+};
+
+/// Runs Algorithm 6.1 on the state of `energy` (its matching and re-smoothed field are updated in place).
+/// E_D never increases except in balancing cancellations, each of which costs less than Δ_EH.
+CurlReductionResult reduce_curl(const Mesh& mesh, CurlEnergy& energy, const CurlReductionOptions& options = {},
+                                ProgressSink& progress = null_progress());
+
+/// 4·ind_p of the matching (Def. 3.2, field/indices.h) changes by +δ at E(e,0) and -δ at E(e,1) when m_e += δ.
+/// Branch points: interior vertices with quarter index ≠ 0 mod 4.
+int count_branch_points(const Mesh& mesh, const Eigen::VectorXi& quarter_index);
+
+}  // namespace quadcover

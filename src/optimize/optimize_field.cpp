@@ -1,0 +1,87 @@
+#include "optimize/optimize_field.h"
+
+#include <chrono>
+
+#include "common/errors.h"
+
+namespace quadcover {
+
+OptimizeMode parse_optimize_mode(std::string_view name) {
+  if (name == "none") return OptimizeMode::None;
+  if (name == "relocate") return OptimizeMode::Relocate;
+  if (name == "full") return OptimizeMode::Full;
+  throw InputError("", 0, "unknown optimization '" + std::string(name) + "' (expected none, relocate or full)");
+}
+
+namespace {
+const char* mode_name(OptimizeMode m) {
+  return m == OptimizeMode::None ? "none" : m == OptimizeMode::Relocate ? "relocate" : "full";
+}
+}  // namespace
+
+OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, const OptimizeOptions& options,
+                              ProgressSink& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  OptimizeResult out;
+  out.field = field.field;
+  if (options.mode == OptimizeMode::None) return out;
+  FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
+  CurlEnergy energy(mesh, smoother, options.energy);
+  CurlReductionOptions ro;
+  ro.allow_creation = options.mode == OptimizeMode::Full;
+  ro.cancellation_neighbours = options.cancellation_neighbours;
+  ro.max_evaluations = options.max_evaluations;
+  ro.time_limit_seconds = options.time_limit_seconds;
+  out.reduction = reduce_curl(mesh, energy, ro, progress);
+  long evaluations = out.reduction.evaluations;
+  if (options.mode == OptimizeMode::Full && !out.reduction.stopped_early) {
+    // 6.4: measure E_H once after curl reduction, Δ_EH = E_H / (2 h_sym), then balance without creation.
+    const Parameterization p = parameterize(mesh, energy.field(), options.param, progress);
+    out.energy_harmonic_estimate = p.energy_harmonic;
+    out.h_sym = p.h_sym;
+    out.delta_eh = p.h_sym > 0 ? p.energy_harmonic / (2.0 * p.h_sym) : 0;
+    if (out.delta_eh > 0) {
+      ro.allow_creation = false;
+      ro.delta_eh = out.delta_eh;
+      if (ro.max_evaluations > 0) ro.max_evaluations = std::max(1L, ro.max_evaluations - evaluations);
+      if (ro.time_limit_seconds > 0)
+        ro.time_limit_seconds = std::max(1e-3, ro.time_limit_seconds - out.reduction.seconds);
+      out.balancing = reduce_curl(mesh, energy, ro, progress);
+      evaluations += out.balancing.evaluations;
+    }
+  }
+  out.field = energy.field();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.evaluations_per_second = out.seconds > 0 ? evaluations / out.seconds : 0;
+  return out;
+}
+
+nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
+  nlohmann::json j;
+  j["mode"] = mode_name(mode);
+  const bool balanced = !r.balancing.log.empty();
+  const CurlReductionResult& last = balanced ? r.balancing : r.reduction;
+  j["E_D_before"] = r.reduction.initial_energy;
+  j["E_D_after_reduction"] = r.reduction.final_energy;
+  j["E_D_after"] = mode == OptimizeMode::None ? r.reduction.initial_energy : last.final_energy;
+  j["branch_points_before"] = r.reduction.initial_branch_points;
+  j["branch_points_after"] = last.final_branch_points;
+  j["evaluations"] = r.reduction.evaluations + r.balancing.evaluations;
+  j["accepted"] = r.reduction.accepted + r.balancing.accepted;
+  j["cancelled_pairs"] = r.balancing.cancelled_pairs;
+  j["E_H_estimate"] = r.energy_harmonic_estimate;
+  j["h_sym"] = r.h_sym;
+  j["delta_EH"] = r.delta_eh;
+  j["evaluations_per_second"] = r.evaluations_per_second;
+  j["seconds"] = r.seconds;
+  j["stopped_early"] = r.reduction.stopped_early || r.balancing.stopped_early;
+  nlohmann::json log = nlohmann::json::array();
+  for (const auto* part : {&r.reduction, &r.balancing})
+    for (const auto& e : part->log)
+      log.push_back({{"phase", e.phase}, {"evaluation", e.evaluation}, {"E_D", e.energy},
+                     {"branch_points", e.branch_points}, {"accepted", e.accepted}});
+  j["log"] = std::move(log);
+  return j;
+}
+
+}  // namespace quadcover

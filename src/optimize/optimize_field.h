@@ -1,0 +1,54 @@
+#pragma once
+// One call for the CLI and Python: low-distortion optimization of a frame field's matching (thesis Chapter 6).
+//   none      the field is returned unchanged;
+//   relocate  Algorithm 6.1 without creation of branch points (cancellation + sorted curl reduction: branch points
+//             only move or cancel, Figures 6.7c / 6.8c);
+//   full      Algorithm 6.1 with creation, then balancing (6.4): E_H and h_sym are measured by one parameterization
+//             of the reduced field, Δ_EH = E_H / (2 h_sym), and pairs are cancelled while Δ_ED < Δ_EH.
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "common/progress.h"
+#include "field/compute_frame_field.h"
+#include "optimize/curl_reduction.h"
+#include "param/parameterize.h"
+
+namespace quadcover {
+
+enum class OptimizeMode { None, Relocate, Full };
+/// Parses "none|relocate|full". \throw InputError otherwise.
+OptimizeMode parse_optimize_mode(std::string_view name);
+
+struct OptimizeOptions {
+  OptimizeMode mode = OptimizeMode::Relocate;
+  /// λ of the re-smoothing E(α) (5.3) after each matching change; the field stage's default.
+  double lambda = FieldOptions{}.lambda;
+  int cancellation_neighbours = 3;  ///< k of Algorithm 6.1
+  /// Budget: E_D evaluations (0 = unlimited) and seconds (0 = unlimited); the best state so far is returned.
+  long max_evaluations = 3000;
+  double time_limit_seconds = 0;
+  CurlEnergyOptions energy;
+  ParamOptions param;  ///< used by `full` to measure E_H for Δ_EH
+};
+
+struct OptimizeResult {
+  FrameField field;                 ///< optimized cross field with its matching
+  CurlReductionResult reduction;    ///< first curl reduction (with creation for `full`)
+  CurlReductionResult balancing;    ///< `full` only: the balancing run (creation disallowed)
+  double energy_harmonic_estimate = 0;  ///< `full`: E_H measured after the first reduction
+  int h_sym = 0;                    ///< `full`: h_sym of that parameterization
+  double delta_eh = 0;              ///< `full`: Δ_EH = E_H / (2 h_sym)
+  double evaluations_per_second = 0;
+  double seconds = 0;
+};
+
+/// \pre field came from compute_frame_field_detailed on `mesh`.
+/// \throw NumericalError if a factorization fails.
+OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, const OptimizeOptions& options = {},
+                              ProgressSink& progress = null_progress());
+
+/// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, accepted, cancelled_pairs,
+/// evaluations_per_second, seconds, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D, branch_points).
+nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
+
+}  // namespace quadcover
