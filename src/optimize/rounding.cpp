@@ -193,10 +193,24 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
     case RoundingStrategy::Greedy: out.c = round_greedy(P, b, out.moves); break;
     case RoundingStrategy::Search1: out.c = search(1, round_direct(b)); break;
     case RoundingStrategy::Search2: out.c = search(2, round_direct(b)); break;
-    case RoundingStrategy::Search3: out.c = search(3, round_direct(b)); break;
+    case RoundingStrategy::Search3: {
+      // Beyond the thesis: the r = 3 search is started from direct rounding (6.3.1) and from the greedy solution
+      // (when P is definite), and the better local minimum is kept.
+      out.c = search(3, round_direct(b));
+      if (options.search3_from_greedy && Eigen::LLT<Eigen::MatrixXd>(P).info() == Eigen::Success) {
+        int greedy_moves = 0;
+        const Eigen::VectorXi other = search(3, round_greedy(P, b, greedy_moves));
+        if (rounding_energy(P, b, other) < rounding_energy(P, b, out.c)) out.c = other;
+      }
+      break;
+    }
     case RoundingStrategy::Exact: {
       // The heuristic result guards against the (tiny) integer-scaling error of the exact solver.
-      const Eigen::VectorXi heuristic = search(3, round_direct(b));
+      RoundingOptions h = options;
+      h.strategy = RoundingStrategy::Search3;
+      const RoundingResult hr = round_periods(P, b, h);
+      out.candidates += hr.candidates;
+      const Eigen::VectorXi heuristic = hr.c;
       if (P.rows() > options.exact_max_dimension) {
         out.c = heuristic;
         out.used = RoundingStrategy::Search3;

@@ -13,7 +13,7 @@ enum class RoundingStrategy {
   Greedy,   ///< MIQ-style: fix one variable at a time, the one whose rounding raises the relaxed energy least
   Search1,  ///< from [b], change one entry by ±1 while E_H decreases (δ formula of 6.3.1)
   Search2,  ///< ... up to two entries at a time
-  Search3,  ///< ... up to three entries at a time (the thesis's method, r = 3)
+  Search3,  ///< ... up to three entries at a time (the thesis's method, r = 3); also from the greedy start
   Exact,    ///< exact closest vector (LLL + enumeration) when n <= exact_max_dimension, else Search3
 };
 
@@ -25,6 +25,8 @@ struct RoundingOptions {
   RoundingStrategy strategy = RoundingStrategy::Search3;
   /// Exact CVP only up to this dimension (enumeration is exponential); larger instances fall back to Search3.
   int exact_max_dimension = 48;
+  /// Search3 also runs from the Greedy solution and keeps the better result (beyond the thesis).
+  bool search3_from_greedy = true;
   /// Exact: enumeration node budget; when exhausted the best vector found is returned, not proven optimal.
   long long exact_max_nodes = 200'000'000;
   /// Search: a move must lower dᵀPd by more than this times tr(P) (prevents cycling on round-off).

@@ -72,6 +72,7 @@ TEST(Rounding, EveryStrategyLiesBetweenExactAndDirect) {
     }
     const double greedy = energy_of(P, b, RoundingStrategy::Greedy);
     EXPECT_GE(greedy, exact - 1e-9);
+    EXPECT_LE(energy_of(P, b, RoundingStrategy::Search3), greedy + 1e-12);  // also started from the greedy result
     sum_direct += direct, sum_greedy += greedy, sum_s3 += energy_of(P, b, RoundingStrategy::Search3);
     sum_exact += exact;
   }
