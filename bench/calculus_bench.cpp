@@ -28,8 +28,8 @@ const Mesh& bench_mesh() {
 VectorField bench_field(const Mesh& mesh) {  // deterministic, smooth-ish: the tangential part of a rotating field
   VectorField X(mesh.num_faces());
   for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Eigen::Vector3d c = (mesh.V().row(mesh.F()(f, 0)) + mesh.V().row(mesh.F()(f, 1)) +
-                               mesh.V().row(mesh.F()(f, 2))).transpose() / 3.0;
+    const Eigen::Vector3d c =
+        (mesh.V().row(mesh.F()(f, 0)) + mesh.V().row(mesh.F()(f, 1)) + mesh.V().row(mesh.F()(f, 2))).transpose() / 3.0;
     X[f] = mesh.to_local(f, Eigen::Vector3d(-c.y(), c.x(), 0.3) + Eigen::Vector3d(std::sin(7 * c.z()), 0, 0));
   }
   return X;

@@ -21,8 +21,7 @@ class ReducedSystem {
  public:
   /// K: n by n stiffness; component: per element; has_kernel: per component; dirichlet: per element (1 = fixed).
   ReducedSystem(const Eigen::SparseMatrix<double>& K, std::vector<int> component, std::vector<char> has_kernel,
-                const std::vector<char>& dirichlet, Eigen::VectorXd weight, CholeskyBackend backend,
-                const char* stage)
+                const std::vector<char>& dirichlet, Eigen::VectorXd weight, CholeskyBackend backend, const char* stage)
       : component_(std::move(component)),
         has_kernel_(std::move(has_kernel)),
         weight_(std::move(weight)),

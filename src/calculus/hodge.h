@@ -27,9 +27,9 @@ struct HodgeOptions {
 };
 
 struct HodgeParts {
-  VectorField exact;     ///< X_P = ∇u, u ∈ S_h
-  VectorField coexact;   ///< X_C = J∇v, v ∈ S_h* (v = 0 on boundary edges)
-  VectorField harmonic;  ///< X_H = X - X_P - X_C
+  VectorField exact;            ///< X_P = ∇u, u ∈ S_h
+  VectorField coexact;          ///< X_C = J∇v, v ∈ S_h* (v = 0 on boundary edges)
+  VectorField harmonic;         ///< X_H = X - X_P - X_C
   Eigen::VectorXd potential;    ///< u, #V, ∫u dA = 0 per component
   Eigen::VectorXd copotential;  ///< v, #E, ∫v dA = 0 per closed component, 0 on boundary edges
 };

@@ -72,7 +72,8 @@ class CholmodBackend {
     for (int s = 0; s < count; ++s) {
       cholmod_dense in = view(X);
       cholmod_dense* out = cholmod_solve(systems[s], factor_, &in, &common_);
-      if (!out) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")");
+      if (!out)
+        throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")");
       std::copy_n(static_cast<const Scalar*>(out->x), X.size(), X.data());
       cholmod_free_dense(&out, &common_);
     }
@@ -174,8 +175,8 @@ void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage) {
   Impl& im = *impl_;
   im.stage = stage ? stage : "cholesky";
   if (A.rows() != A.cols())
-    throw NumericalError(im.stage, "matrix is " + std::to_string(A.rows()) + " by " + std::to_string(A.cols()) +
-                                       ", not square");
+    throw NumericalError(im.stage,
+                         "matrix is " + std::to_string(A.rows()) + " by " + std::to_string(A.cols()) + ", not square");
   im.n = -1;
   Matrix lower = A.template triangularView<Eigen::Lower>();
   lower.makeCompressed();
@@ -222,8 +223,8 @@ typename SparseCholesky<Scalar>::Dense SparseCholesky<Scalar>::solve(const Dense
   const Impl& im = *impl_;
   if (im.n < 0) throw NumericalError(im.stage, "solve() called before compute()");
   if (B.rows() != im.n)
-    throw NumericalError(im.stage, "solve(): right-hand side has " + std::to_string(B.rows()) + " rows, matrix " +
-                                       std::to_string(im.n));
+    throw NumericalError(
+        im.stage, "solve(): right-hand side has " + std::to_string(B.rows()) + " rows, matrix " + std::to_string(im.n));
   if (im.n == 0 || B.cols() == 0) return Dense(B.rows(), B.cols());
 #ifdef QUADCOVER_HAVE_CHOLMOD
   if (im.backend == CholeskyBackend::Cholmod) return im.cholmod->solve(B, false);

@@ -32,7 +32,8 @@ TEST_P(StiffnessOnRealMeshes, ConformingMatchesCotanFormula) {
   for (int e = 0; e < mesh.num_edges(); ++e) {
     double expected = 0;
     for (int side = 0; side < 2; ++side)
-      if (mesh.EF()(e, side) >= 0) expected -= 0.5 * mesh.corner_cotangents()(mesh.EF()(e, side), mesh.EF_corner()(e, side));
+      if (mesh.EF()(e, side) >= 0)
+        expected -= 0.5 * mesh.corner_cotangents()(mesh.EF()(e, side), mesh.EF_corner()(e, side));
     const int p = mesh.E()(e, 0), q = mesh.E()(e, 1);
     ASSERT_NEAR(L.coeff(p, q), expected, 1e-10 * (1 + std::abs(expected))) << "edge " << e;
     ASSERT_NEAR(L.coeff(q, p), expected, 1e-10 * (1 + std::abs(expected))) << "edge " << e;
@@ -82,7 +83,8 @@ TEST_P(StiffnessOnRealMeshes, DirichletEnergyAndKernel) {
   const double energy = 0.5 * u.dot(L * u);
   EXPECT_GT(energy, 0);
   EXPECT_NEAR(energy, -0.5 * edge_sum, 1e-10 * energy);
-  EXPECT_LT((L * Eigen::VectorXd::Ones(mesh.num_vertices())).lpNorm<Eigen::Infinity>(), 1e-10 * L.diagonal().maxCoeff());
+  EXPECT_LT((L * Eigen::VectorXd::Ones(mesh.num_vertices())).lpNorm<Eigen::Infinity>(),
+            1e-10 * L.diagonal().maxCoeff());
   EXPECT_LT((Ls * Eigen::VectorXd::Ones(mesh.num_edges())).lpNorm<Eigen::Infinity>(), 1e-10 * Ls.diagonal().maxCoeff());
 }
 
