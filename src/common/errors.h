@@ -3,6 +3,7 @@
 // and NumericalError / anything else to 1 (internal failure).
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace quadcover {
@@ -17,9 +18,11 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& file, long line, const std::string& what) {
-    std::string s = file.empty() ? std::string("<input>") : file;
-    if (line > 0) s += ":" + std::to_string(line);
-    return s + ": " + what;
+    std::string s;
+    s.append(file.empty() ? std::string_view("<input>") : std::string_view(file));
+    if (line > 0) s.append(":").append(std::to_string(line));
+    s.append(": ").append(what);
+    return s;
   }
   std::string file_;
   long line_;
