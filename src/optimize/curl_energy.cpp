@@ -35,6 +35,10 @@ Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
 
 double CurlEnergy::recompute_from_scratch() {
   mu_ = edge_layers(*mesh_, smoother_->matching());
+  X0_ = smoother_->rotated(Eigen::VectorXd::Zero(mesh_->num_faces())).X;
+  edge_vec_.resize(mesh_->num_faces(), 3);
+  for (int f = 0; f < mesh_->num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) edge_vec_(f, k) = mesh_->edge_vector_local(f, k);
   alpha_ = smoother_->solve();
   field_ = smoother_->rotated(alpha_);
   factor_ = UpdatableCholesky(shifted_stiffness());
@@ -83,14 +87,8 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   // min E(α) with the new matching (5.2.2), then the rotated field; the smoother is restored afterwards.
   for (const auto& c : changes) smoother_->change_matching(c.edge, c.delta);
   pending_alpha_ = smoother_->solve();
-  timings_.smoothing += seconds_since(t0);
-  t0 = Clock::now();
-  const FrameField rotated = smoother_->rotated(pending_alpha_);
-  const Eigen::VectorXcd b = -complex_curl_star(*mesh_, rotated);
-  timings_.curl += seconds_since(t0);
-  t0 = Clock::now();
   for (auto it = changes.rbegin(); it != changes.rend(); ++it) smoother_->change_matching(it->edge, -it->delta);
-  timings_.other += seconds_since(t0);
+  timings_.smoothing += seconds_since(t0);
   // Star changes one edge at a time (a path may cross the same face twice: layers are updated as we go).
   t0 = Clock::now();
   trial_.reset();
@@ -107,10 +105,13 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
     field_.matching[c.edge] += c.delta;
     mu_(g, a) = layer_after(c.edge, field_.matching[c.edge]);
   }
+  timings_.update += seconds_since(t0);
+  t0 = Clock::now();
+  const Eigen::VectorXcd b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
+  timings_.curl += seconds_since(t0);
   for (auto it = saved.rbegin(); it != saved.rend(); ++it) mu_(std::get<0>(*it), std::get<1>(*it)) = std::get<2>(*it);
   for (const auto& c : changes)
     if (!mesh_->is_boundary_edge(c.edge)) field_.matching[c.edge] -= c.delta;
-  timings_.update += seconds_since(t0);
   if (!ok) return std::numeric_limits<double>::infinity();
   t0 = Clock::now();
   const double e = 0.5 * trial_.evaluate_full(factor_, b);
@@ -134,6 +135,21 @@ void CurlEnergy::commit() {
   trial_.commit(factor_);
   trial_.reset();
   pending_valid_ = false;
+}
+
+// -curl* (3.3) of X_f = e^{iα_f} X⁰_f (Y = iX) with the layers μ: b_e = Σ_f conj(i^{μ(f,k)}) ⟨Z_f, e_f⟩, the same
+// sum as cover/complex_stiffness.cpp but with cached edge vectors and layers (no global layer recomputation).
+Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
+  for (int f = 0; f < mesh_->num_faces(); ++f) {
+    const Complex X = std::polar(1.0, alpha[f]) * X0_[f];
+    for (int k = 0; k < 3; ++k) {
+      const Complex ce = std::conj(edge_vec_(f, k));
+      const Complex ez(std::real(ce * X), std::real(ce * Complex(-X.imag(), X.real())));
+      b[mesh_->FE()(f, k)] += ipow(-mu_(f, k)) * ez;
+    }
+  }
+  return b;
 }
 
 Eigen::VectorXd CurlEnergy::distortion_shares() const {

@@ -69,12 +69,15 @@ class CurlEnergy {
  private:
   int layer_after(int e, int new_matching) const;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
+  Eigen::VectorXcd rhs(const Eigen::VectorXd& alpha) const;
 
   const Mesh* mesh_;
   FrameSmoother* smoother_;
   CurlEnergyOptions options_;
   double shift_ = 0;
   Eigen::MatrixX3i mu_;  // edge layers (cover/complex_stiffness.h) of the current matching
+  Eigen::VectorXcd X0_;  // unrotated first frame vectors of the smoother
+  Eigen::MatrixX3cd edge_vec_;  // face edge vectors in the face basis
   Eigen::VectorXd alpha_;
   FrameField field_;
   UpdatableCholesky factor_;
