@@ -320,9 +320,13 @@ class Extractor {
     int f = slots_[h].face, d = slots_[h].dir;
     IPt t;
     switch (X.type) {
-      case GVType::Vertex:
-        t = g_.corner(f, local_corner(mesh_, f, g_.sectors[X.sector].vertex)) + dir_vec(d, S());
+      case GVType::Vertex: {
+        // the next grid point along the line (a non-integer vertex on an iso-line: the next grid value beyond it)
+        const IPt p = g_.corner(f, local_corner(mesh_, f, g_.sectors[X.sector].vertex));
+        auto next = [&](I64 a, bool up) { return up ? (floor_div(a, S()) + 1) * S() : -(floor_div(-a, S()) + 1) * S(); };
+        t = (d % 2 == 0) ? IPt{next(p.x, d == 0), p.y} : IPt{p.x, next(p.y, d == 1)};
         break;
+      }
       case GVType::Edge:
         t = (f == X.face ? X.p : g_.to_neighbor(X.face, X.k, X.p)) + dir_vec(d, S());
         break;

@@ -162,6 +162,29 @@ TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
   EXPECT_GE(unit, static_cast<int>(std::floor((scale - 2) * (scale - 2))));
 }
 
+// Boundary on iso-lines at non-grid vertices: the square [0,6]² shifted to [0.5,6.5]×[0,6]. The bottom and top
+// run along grid lines from the non-integer corners (0.5, 0) and (6.5, 6) whose iso-lines must end at the next
+// grid point; the left and right sides cut the rows into half cells. 6 rows × (5 unit cells + 2 half cells).
+TEST(ExtractQuads, ShiftedSquareWithBoundaryCornersOffTheGrid) {
+  const auto [mesh, param] = square_map(4, 6.0, 0.0, {0.5, 0});
+  const ExtractionResult res = extract_quads(mesh, param);
+  expect_clean(res.report);
+  EXPECT_EQ(res.mesh.num_faces(), 42);
+  EXPECT_EQ(res.mesh.num_quads(), 42);
+  double total = 0;
+  int unit = 0;
+  for (const auto& f : res.mesh.faces) {
+    const double a = uv_area(res.mesh, f);
+    total += a;
+    unit += std::abs(a - 1) < 1e-12;
+  }
+  EXPECT_NEAR(total, 36.0, 1e-9);
+  EXPECT_EQ(unit, 30);
+  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold());
+  EXPECT_EQ(t.euler_characteristic, 1);
+}
+
 // A displaced vertex folds the triangles around it.
 testing::MeshAndMap folded_torus(int& flipped) {
   auto m = torus_map(24, 12, 17, 7);
