@@ -25,6 +25,10 @@ struct FieldCmdOptions {
   double lambda = FieldOptions{}.lambda;
   int rounds = FieldOptions{}.smoothing_rounds;
   std::string features = "35";
+  std::string fill = "smooth";
+  double fill_alignment = FieldOptions{}.fill_alignment;
+  double fill_unit_weight = FieldOptions{}.fill_unit_weight;
+  int fill_iterations = FieldOptions{}.fill_iterations;
 };
 
 FieldOptions to_field_options(const FieldCmdOptions& opt) {
@@ -39,6 +43,15 @@ FieldOptions to_field_options(const FieldCmdOptions& opt) {
   o.trusted_fraction = opt.trusted;
   o.lambda = opt.lambda;
   o.smoothing_rounds = opt.rounds;
+  if (opt.fill == "propagate")
+    o.fill = Fill::Propagate;
+  else if (opt.fill == "smooth")
+    o.fill = Fill::Smooth;
+  else
+    throw InputError("--fill", 0, "expected propagate or smooth, got '" + opt.fill + "'");
+  o.fill_alignment = opt.fill_alignment;
+  o.fill_unit_weight = opt.fill_unit_weight;
+  o.fill_iterations = opt.fill_iterations;
   if (opt.features == "off") {
     o.features.boundaries = false;
     o.features.sharp_angle_degrees = 0;
@@ -93,6 +106,10 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
                   {"trusted_fraction", o.trusted_fraction},
                   {"lambda", o.lambda},
                   {"smoothing_rounds", o.smoothing_rounds},
+                  {"fill", o.fill == Fill::Propagate ? "propagate" : "smooth"},
+                  {"fill_alignment", o.fill_alignment},
+                  {"fill_unit_weight", o.fill_unit_weight},
+                  {"fill_iterations", o.fill_iterations},
                   {"boundary_alignment", o.features.boundaries},
                   {"sharp_angle_degrees", o.features.sharp_angle_degrees}};
   j["X"] = complex_array(r.field.X);
@@ -195,6 +212,22 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--features", opt->features,
                   "Align to boundaries and to sharp edges above DEG degrees, or 'off' to align to nothing")
+      ->capture_default_str();
+  cmd->add_option("--fill", opt->fill,
+                  "Frames of the untrusted faces: smooth (global power-field solve, few branch points) or "
+                  "propagate (thesis 5.1.2 breadth-first parallel transport)")
+      ->capture_default_str();
+  cmd->add_option("--fill-alignment", opt->fill_alignment,
+                  "Smooth fill: strength mu of the alignment to the trusted curvature frames")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--fill-unit-weight", opt->fill_unit_weight,
+                  "Smooth fill: Ginzburg-Landau weight sigma of the unit-length penalty (0: linear solve only)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--fill-iterations", opt->fill_iterations,
+                  "Smooth fill: majorize-minimize steps for the unit-length penalty")
+      ->check(CLI::Range(0, 10000))
       ->capture_default_str();
   add_global_options(*cmd, global);
   cmd->callback([opt, &global, &exit_code] {

@@ -5,6 +5,7 @@
 
 #include "field/indices.h"
 #include "field/matching.h"
+#include "field/power_field.h"
 #include "field/propagation.h"
 #include "field/smoothing.h"
 
@@ -25,7 +26,30 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
   for (int t = 0; t < nf; ++t)
     if (r.constrained[static_cast<std::size_t>(t)]) X[t] = features.direction[t];
   r.trusted = select_trusted(mesh, r.stability, options.trusted_fraction, r.constrained);
-  X = propagate_frames(mesh, X, r.trusted, r.stability);  // 5.1.2
+  if (options.fill == Fill::Propagate) {
+    X = propagate_frames(mesh, X, r.trusted, r.stability);  // 5.1.2
+  } else {
+    // Power field aligned to the trusted frames with weight ω_t^stable (5.2), normalized to mean 1 over them.
+    PowerFieldProblem problem;
+    problem.target = X;
+    problem.weight = Eigen::VectorXd::Zero(nf);
+    double sum = 0;
+    int count = 0;
+    for (int t = 0; t < nf; ++t)
+      if (r.trusted[static_cast<std::size_t>(t)] && !r.constrained[static_cast<std::size_t>(t)]) {
+        problem.weight[t] = r.stability[t];
+        sum += r.stability[t];
+        ++count;
+      }
+    if (sum > 0) problem.weight *= count / sum;
+    problem.fixed = r.constrained;
+    problem.alignment = options.fill_alignment;
+    problem.unit_weight = options.fill_unit_weight;
+    problem.iterations = options.fill_iterations;
+    X = smooth_power_field(mesh, problem).X;
+    for (int t = 0; t < nf; ++t)  // bit-exact curve directions (the solve returns them normalized once more)
+      if (r.constrained[static_cast<std::size_t>(t)]) X[t] = features.direction[t];
+  }
   r.field = cross_field_with_straightest_matching(mesh, X);
   r.energy_smooth_initial = r.energy_smooth = smoothing_energy(mesh, r.field);
 

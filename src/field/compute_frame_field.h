@@ -12,11 +12,35 @@
 
 namespace quadcover {
 
+/// How the frames of the untrusted faces are obtained before smoothing.
+enum class Fill {
+  /// Thesis 5.1.2: breadth-first parallel transport from the trusted faces. Seams where propagated regions meet
+  /// leave spurious branch points that the fixed-matching smoothing (5.3) cannot remove.
+  Propagate,
+  /// Global smooth solve of the power field u = X^4 (field/power_field.h) aligned to the trusted curvature
+  /// directions with weight ω_t^stable (5.2) and exactly to the constrained faces; its matching is then the
+  /// straightest one (5.1) and the thesis smoothing (5.3) runs on top.
+  Smooth,
+};
+
 struct FieldOptions {
   CurvatureOptions curvature;  ///< estimator of the principal curvature frames (default HP)
   FeatureOptions features;     ///< boundary / sharp-edge alignment (default on, 35°)
   /// Fraction of faces whose curvature frames are trusted (5.1.2); the thesis recommends 10-30%.
   double trusted_fraction = 0.2;
+  /// Default Smooth: on bunny_3k / cow / bunny_20k_holes it leaves 42 / 182 / 66 branch points where
+  /// propagation leaves 77 / 259 / 251 (BENCHMARKS.md, "Frame field").
+  Fill fill = Fill::Smooth;
+  /// Fill::Smooth: alignment strength μ of PowerFieldProblem. Larger values follow the curvature frames more
+  /// closely at the price of curl (E_D) and eventually branch points. Mean deviation from the principal
+  /// directions on the 5% most stable faces of bunny_3k / bunny_20k_holes: 13° / 19° at μ = 100, 11° / 15° at
+  /// 1000, 8° / 12° at 3000 (propagation: 6° / 4°, with 2-4× the branch points).
+  double fill_alignment = 1000.0;
+  /// Fill::Smooth: Ginzburg–Landau weight σ and majorize-minimize steps of PowerFieldProblem. σ = 1000 (core
+  /// radius ≈ 3% of √area) with 10 steps removes a few more close ± pairs and lowers E_D of the parameterization
+  /// by 10-40% on the test meshes, for about one extra factorization and 10 triangular solve pairs.
+  double fill_unit_weight = 1000.0;
+  int fill_iterations = 10;
   /// λ of (5.3) in (0, 1]: 1 ignores the curvature directions (only fixed faces anchor the field), small values
   /// keep trusted frames in place. 0.5 weighs the (scale-normalized) terms equally; on the test meshes it lowers
   /// E_S of the propagated field 3-10× (bunny_3k 660 -> 213, fandisk 360 -> 48), within a few % of λ = 0.9,

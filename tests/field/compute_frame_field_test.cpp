@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "field/indices.h"
@@ -30,11 +31,10 @@ TEST_P(ClosedPipeline, IndicesEnergiesAndDeterminism) {
   std::size_t fractional = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v) fractional += q[v] % 4 != 0;
   EXPECT_EQ(r.branch_points.size(), fractional);
-  // The result is smoother than the raw curvature frames, and smoothing at least halves E_S of the propagated
-  // field (propagation alone can be rougher than raw frames where those are already clean: seams, thesis 5.1.2).
+  // The result is smoother than the raw curvature frames, and smoothing (5.3) lowers E_S of the filled field.
   const double raw = smoothing_energy(mesh, cross_field_with_straightest_matching(mesh, r.curvature.direction));
   EXPECT_LT(r.energy_smooth, raw);
-  EXPECT_LT(r.energy_smooth, 0.5 * r.energy_smooth_initial);
+  EXPECT_LT(r.energy_smooth, r.energy_smooth_initial);
   EXPECT_NEAR(r.energy_smooth, smoothing_energy(mesh, r.field), 1e-9 * r.energy_smooth);
   // At least the requested fraction is trusted.
   EXPECT_GE(std::count(r.trusted.begin(), r.trusted.end(), 1), static_cast<long>(std::ceil(0.2 * nf)));
@@ -42,6 +42,20 @@ TEST_P(ClosedPipeline, IndicesEnergiesAndDeterminism) {
   const FrameField again = compute_frame_field(mesh);
   EXPECT_EQ(again.X, r.field.X);
   EXPECT_EQ(again.matching, r.field.matching);
+}
+
+// The thesis fill (5.1.2): smoothing at least halves E_S of the propagated field (propagation alone can be rougher
+// than raw frames where those are already clean: seams, thesis 5.1.2), and the power fill starts much smoother.
+TEST_P(ClosedPipeline, PropagationSeamsAreSmoothedAndAvoidedByTheSmoothFill) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  FieldOptions options;
+  options.fill = Fill::Propagate;
+  const FrameFieldResult r = compute_frame_field_detailed(mesh, options);
+  EXPECT_EQ(cross_field_quarter_index(mesh, r.field).sum(), 4 * mesh.euler_characteristic());
+  EXPECT_LT(r.energy_smooth, 0.5 * r.energy_smooth_initial);
+  const FrameFieldResult smooth = compute_frame_field_detailed(mesh);
+  EXPECT_LT(smooth.energy_smooth_initial, 0.5 * r.energy_smooth_initial);
+  EXPECT_LE(smooth.branch_points.size(), r.branch_points.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ClosedPipeline,
@@ -70,7 +84,7 @@ TEST(Pipeline, CylinderAlignedToBoundary) {
   EXPECT_LT(field_curvature(mesh, r.field).cwiseAbs().maxCoeff(), 1e-9);
   for (int t = 0; t < mesh.num_faces(); ++t) {
     const Eigen::Vector3d u = mesh.to_world(t, r.field.X[t]);
-    EXPECT_LT(std::abs(u.z()) * std::sqrt(1 - u.z() * u.z()), 1e-9) << t;  // axial or circumferential
+    EXPECT_LT(std::min(std::abs(u.z()), std::hypot(u.x(), u.y())), 1e-9) << t;  // axial or circumferential
   }
 }
 
@@ -89,6 +103,47 @@ TEST(Pipeline, OptionsAreHonoured) {
   const FrameFieldResult with_features = compute_frame_field_detailed(mesh);
   EXPECT_GT(std::count(with_features.constrained.begin(), with_features.constrained.end(), 1), 500);
 }
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// Regression bounds on the number of branch points of the default (smooth-fill) field, about 15% above the
+// counts measured when the fill was introduced (bunny_3k 42, cow 182, bunny_20k_holes 66; thesis Table 7.1:
+// 37 on the bunny), and on the mean deviation from the principal directions on the most stable faces (measured
+// 11.2°, 7.2°, 14.9°). Breadth-first propagation leaves 77 / 259 / 251 branch points on the same meshes. Poincaré–Hopf with
+// boundaries (boundary vertices have index 0, so the interior sum is not χ there) is checked on closed meshes.
+struct BranchBound {
+  const char* mesh;
+  std::size_t max_branch_points;
+  double max_deviation_degrees;
+};
+class BranchPointRegression : public ::testing::TestWithParam<BranchBound> {};
+
+TEST_P(BranchPointRegression, FewBranchPoints) {
+  const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
+  const FrameFieldResult r = compute_frame_field_detailed(mesh);
+  EXPECT_LE(r.branch_points.size(), GetParam().max_branch_points);
+  if (mesh.num_boundary_loops() == 0)
+    EXPECT_EQ(cross_field_quarter_index(mesh, r.field).sum(), 4 * mesh.euler_characteristic());
+  // Still curvature-aligned where curvature is stable: mean deviation of the cross from the principal
+  // directions over the 5% most stable unconstrained faces (constrained ones follow their curve instead).
+  std::vector<int> faces;
+  for (int t = 0; t < mesh.num_faces(); ++t)
+    if (!r.constrained[static_cast<std::size_t>(t)]) faces.push_back(t);
+  std::sort(faces.begin(), faces.end(), [&](int a, int b) { return r.stability[a] > r.stability[b]; });
+  faces.resize(faces.size() / 20);
+  double deviation = 0;
+  for (int t : faces) deviation += std::abs(std::arg(std::pow(r.field.X[t] / r.curvature.direction[t], 4))) / 4;
+  EXPECT_LT(deviation / static_cast<double>(faces.size()), GetParam().max_deviation_degrees * M_PI / 180);
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, BranchPointRegression,
+                         ::testing::Values(BranchBound{"bunny_3k", 48, 13}, BranchBound{"cow", 207, 9},
+                                           BranchBound{"bunny_20k_holes", 76, 17}),
+                         [](const auto& info) { return std::string(info.param.mesh); });
 
 }  // namespace
 }  // namespace quadcover
