@@ -1,11 +1,13 @@
 // Frame field timings (thesis Chapter 5): principal curvature frames (HP, CSM), stability + trusted selection +
 // propagation, assembling and factoring the smoothing system (5.4), one solve, one re-solve after a matching
-// change (5.2.2: a right-hand-side update and two triangular solves, no factorization), and the whole pipeline.
+// change (5.2.2: a right-hand-side update and two triangular solves, no factorization), the power-field fill
+// (linear solve alone and with the default Ginzburg–Landau steps), and the whole pipeline with either fill.
 // Meshes: the non-flag arguments, else the ':'-separated list in $QUADCOVER_BENCH_MESHES, else
 // tests/data/bunny_20k_holes.obj plus $QUADCOVER_BENCH_MESH if set (e.g. /work/shared/meshes/armadillo_86k.obj).
 //   bench_field [--benchmark_flags...] [mesh...]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +17,7 @@
 
 #include "field/compute_frame_field.h"
 #include "field/matching.h"
+#include "field/power_field.h"
 #include "field/propagation.h"
 #include "field/smoothing.h"
 #include "io/read_mesh.h"
@@ -105,9 +108,31 @@ void BM_ResolveAfterMatchingChange(benchmark::State& state, const BenchMesh* b) 
   counters(state, *b);
 }
 
-void BM_Pipeline(benchmark::State& state, const BenchMesh* b) {
+// The smooth fill: assembly, factorization and solve of the power-field system with the default options of
+// compute_frame_field (trusted faces aligned with weight ω^stable, no feature constraints here); `steps`
+// Ginzburg–Landau steps on top (one refactorization, then two triangular solves each).
+void BM_PowerFill(benchmark::State& state, const BenchMesh* b, int steps) {
+  PowerFieldProblem p;
+  p.target = b->frames.direction;
+  p.weight = Eigen::VectorXd::Zero(b->mesh.num_faces());
+  for (int t = 0; t < b->mesh.num_faces(); ++t)
+    if (b->trusted[static_cast<std::size_t>(t)]) p.weight[t] = b->stability[t];
+  p.weight /= p.weight.sum() / static_cast<double>(std::count(b->trusted.begin(), b->trusted.end(), 1));
+  p.alignment = FieldOptions{}.fill_alignment;
+  p.unit_weight = FieldOptions{}.fill_unit_weight;
+  p.iterations = steps;
   for (auto _ : state) {
-    FrameFieldResult r = compute_frame_field_detailed(b->mesh);
+    PowerFieldResult r = smooth_power_field(b->mesh, p);
+    benchmark::DoNotOptimize(r.X.data());
+  }
+  counters(state, *b);
+}
+
+void BM_Pipeline(benchmark::State& state, const BenchMesh* b, Fill fill) {
+  FieldOptions options;
+  options.fill = fill;
+  for (auto _ : state) {
+    FrameFieldResult r = compute_frame_field_detailed(b->mesh, options);
     benchmark::DoNotOptimize(r.field.X.data());
   }
   counters(state, *b);
@@ -125,7 +150,10 @@ void register_benchmarks() {
     reg("SmoothingFactor", BM_SmoothingFactor);
     reg("SmoothingSolve", BM_SmoothingSolve);
     reg("ResolveAfterMatchingChange", BM_ResolveAfterMatchingChange);
-    reg("Pipeline", BM_Pipeline);
+    reg("PowerFillLinear", BM_PowerFill, 0);
+    reg("PowerFillGL", BM_PowerFill, FieldOptions{}.fill_iterations);
+    reg("PipelinePropagate", BM_Pipeline, Fill::Propagate);
+    reg("PipelineSmooth", BM_Pipeline, Fill::Smooth);
   }
 }
 

@@ -37,6 +37,19 @@ check torus_5k --method csm
 check eight_genus2 --trusted 0.3 --lambda 0.9 --rounds 1
 check fandisk --features 50
 check camelhead_boundary --features off
+check bunny_3k --fill propagate
+check spot --fill smooth --fill-alignment 100 --fill-unit-weight 0 --fill-iterations 0
+
+# The default smooth fill leaves far fewer branch points than the thesis propagation (bunny_3k: 42 vs 77).
+"$BIN" field tests/data/bunny_3k.obj -o "$OUT/p.json" --json --fill propagate >"$OUT/p.report.json"
+"$BIN" field tests/data/bunny_3k.obj -o "$OUT/s.json" --json >"$OUT/s.report.json"
+python3 - "$OUT/s.report.json" "$OUT/p.report.json" "$OUT/s.json" <<'PY'
+import json, sys
+s, p, doc = (json.load(open(f)) for f in sys.argv[1:4])
+assert doc["options"]["fill"] == "smooth", doc["options"]
+assert s["branch_points"] <= 48 and s["branch_points"] < 0.75 * p["branch_points"], (s, p)
+print(f"  bunny_3k fill smooth {s['branch_points']} vs propagate {p['branch_points']} branch points")
+PY
 
 # Bad input: exit status 2, message on stderr, no output file.
 for bad in tests/data/bad/beetle_nonmanifold_edges.obj tests/data/bad/spot_quads_nontriangle.obj; do
@@ -52,4 +65,8 @@ set +e
 "$BIN" field tests/data/bunny_3k.obj -o "$OUT/x.json" --method nope 2>/dev/null; rc=$?
 set -e
 [ "$rc" -eq 2 ] || { echo "expected exit 2 for --method nope, got $rc"; exit 1; }
+set +e
+"$BIN" field tests/data/bunny_3k.obj -o "$OUT/x.json" --fill nope 2>/dev/null; rc=$?
+set -e
+[ "$rc" -eq 2 ] || { echo "expected exit 2 for --fill nope, got $rc"; exit 1; }
 echo "field CLI: ok"
