@@ -8,11 +8,11 @@ namespace quadcover::cli {
 
 /// Options every subcommand shares (added to a subcommand by add_global_options() in cli/common.h).
 struct GlobalOptions {
-  bool json = false;        ///< --json: machine-readable result on stdout
-  bool quiet = false;       ///< -q: nothing but errors
-  bool verbose = false;     ///< -v: every progress report as its own line, extra detail
-  double time_limit = 0;    ///< --time-limit SECONDS: ask long stages to stop after this long (0 = none)
-  int jobs = 0;             ///< -j: files processed at once in batch mode (0 = all cores)
+  bool json = false;      ///< --json: machine-readable result on stdout
+  bool quiet = false;     ///< -q: nothing but errors
+  bool verbose = false;   ///< -v: every progress report as its own line, extra detail
+  double time_limit = 0;  ///< --time-limit SECONDS: ask long stages to stop after this long (0 = none)
+  int jobs = 0;           ///< -j: files processed at once in batch mode (0 = all cores)
 };
 
 /// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage.

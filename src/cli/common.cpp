@@ -1,7 +1,9 @@
 #include "cli/common.h"
 
+#include <sys/ioctl.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -11,9 +13,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
-#include <sys/ioctl.h>
 #include <thread>
-#include <unistd.h>
 
 #include "common/errors.h"
 #include "io/atomic_file.h"
@@ -51,7 +51,7 @@ extern "C" void on_sigint(int) {
 }  // namespace
 
 void install_interrupt_handler() {
-  struct sigaction sa{};
+  struct sigaction sa {};
   sa.sa_handler = on_sigint;
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = SA_RESTART;
@@ -89,7 +89,11 @@ ProgressStyle stderr_progress_style(const GlobalOptions& global) {
 }
 
 TerminalProgress::TerminalProgress(std::ostream& out, ProgressStyle style, Clock::time_point deadline)
-    : out_(out), style_(std::move(style)), deadline_(deadline), start_(Clock::now()), stage_start_(start_),
+    : out_(out),
+      style_(std::move(style)),
+      deadline_(deadline),
+      start_(Clock::now()),
+      stage_start_(start_),
       last_print_(start_ - std::chrono::hours(1)) {}
 
 namespace {
@@ -160,8 +164,7 @@ void TerminalProgress::report(std::string_view stage, double fraction, std::stri
   const double since_print = std::chrono::duration<double>(now - last_print_).count();
   const double interval = style_.live ? 0.1 : style_.interval;
   const bool stage_done = fraction >= 1;
-  if (!style_.verbose && since_print < interval && !(new_stage && style_.live) && !(stage_done && style_.live))
-    return;
+  if (!style_.verbose && since_print < interval && !(new_stage && style_.live) && !(stage_done && style_.live)) return;
   last_print_ = now;
   const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
   const double eta = fraction > 0 && fraction < 1 ? elapsed * (1 - fraction) / fraction : -1;
@@ -184,8 +187,8 @@ bool TerminalProgress::cancelled() const {
     if (!announced_stop_) {
       announced_stop_ = true;
       std::lock_guard err_lock(stderr_mutex());
-      out_ << (live_dirty_ ? "\n" : "") << style_.prefix
-           << (by_signal ? "interrupted" : "time limit reached") << ": stopping with the best result so far\n"
+      out_ << (live_dirty_ ? "\n" : "") << style_.prefix << (by_signal ? "interrupted" : "time limit reached")
+           << ": stopping with the best result so far\n"
            << std::flush;
     }
   }
@@ -257,7 +260,8 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
                                       const FileJob& job, std::ostream& log) {
   std::vector<FileResult> results(files.size());
   std::atomic<int> done{0};
-  const int threads = global.jobs > 0 ? global.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads =
+      global.jobs > 0 ? global.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::size_t width = [&] {
     std::size_t w = 0;
     for (const auto& f : files) w = std::max(w, f.size());
@@ -300,8 +304,8 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
   };
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, files.size(), [&](std::size_t i) { run_one(i); },
-                      tbb::simple_partitioner());
+    tbb::parallel_for(
+        std::size_t{0}, files.size(), [&](std::size_t i) { run_one(i); }, tbb::simple_partitioner());
   });
   return results;
 }
@@ -326,8 +330,8 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
   if (global.json) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& r : results) {
-      nlohmann::json j{{"file", r.input}, {"ok", r.exit_code == kOk}, {"exit_code", r.exit_code},
-                       {"seconds", r.seconds}};
+      nlohmann::json j{
+          {"file", r.input}, {"ok", r.exit_code == kOk}, {"exit_code", r.exit_code}, {"seconds", r.seconds}};
       if (r.exit_code == kOk)
         j["result"] = r.result;
       else
@@ -348,8 +352,8 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
   for (const auto& r : results) {
     std::ostringstream secs;
     secs << std::fixed << std::setprecision(2) << r.seconds;
-    std::vector<std::string> row{r.input, r.exit_code == kOk ? "ok" : (r.exit_code == kBadInput ? "bad input" : "failed"),
-                                 secs.str()};
+    std::vector<std::string> row{
+        r.input, r.exit_code == kOk ? "ok" : (r.exit_code == kBadInput ? "bad input" : "failed"), secs.str()};
     for (const auto& c : columns)
       row.push_back(r.exit_code == kOk && r.result.is_object() && r.result.contains(c) ? cell(r.result[c]) : "-");
     rows.push_back(std::move(row));

@@ -75,13 +75,13 @@ std::chrono::steady_clock::time_point run_start_time();
 
 /// How a TerminalProgress writes.
 struct ProgressStyle {
-  bool live = false;          ///< redraw one line with a bar (\r) instead of printing plain lines
-  bool quiet = false;         ///< print nothing (cancellation still works)
-  bool verbose = false;       ///< plain mode: print every report
-  std::string prefix;         ///< put in front of every line (batch mode: the file name)
-  double delay = 1.0;         ///< seconds before anything is shown: quick commands stay silent
-  double interval = 1.0;      ///< plain mode: at most one line per interval (live mode redraws every 0.1 s)
-  int width = 100;            ///< live mode: columns of the terminal
+  bool live = false;      ///< redraw one line with a bar (\r) instead of printing plain lines
+  bool quiet = false;     ///< print nothing (cancellation still works)
+  bool verbose = false;   ///< plain mode: print every report
+  std::string prefix;     ///< put in front of every line (batch mode: the file name)
+  double delay = 1.0;     ///< seconds before anything is shown: quick commands stay silent
+  double interval = 1.0;  ///< plain mode: at most one line per interval (live mode redraws every 0.1 s)
+  int width = 100;        ///< live mode: columns of the terminal
 };
 
 /// The style for stderr: live bar when stderr is a terminal, plain lines otherwise, per the global options.
@@ -137,18 +137,18 @@ std::string batch_output_path(const std::string& input, const std::string& outpu
 /// What one file of a batch produced.
 struct FileResult {
   std::string input;
-  int exit_code = kOk;   ///< 0 ok, 1 internal, 2 bad input
-  std::string error;     ///< empty on success; otherwise the message main() would print (several lines allowed)
+  int exit_code = kOk;  ///< 0 ok, 1 internal, 2 bad input
+  std::string error;    ///< empty on success; otherwise the message main() would print (several lines allowed)
   double seconds = 0;
-  nlohmann::json result; ///< what the job returned (null on failure)
+  nlohmann::json result;  ///< what the job returned (null on failure)
 };
 
 /// The work done for one input file; returns a JSON summary of the result.
 using FileJob = std::function<nlohmann::json(const std::string& input, ProgressSink& progress)>;
 
 struct BatchSpec {
-  std::vector<std::string> inputs;            ///< as given: files and/or folders
-  std::vector<std::string> summary_columns;   ///< keys of the job results shown in the summary table
+  std::vector<std::string> inputs;           ///< as given: files and/or folders
+  std::vector<std::string> summary_columns;  ///< keys of the job results shown in the summary table
 };
 
 /// Runs the job on every file, `jobs` at a time (0 = all cores) with TBB; exceptions are caught per file and turned

@@ -36,8 +36,11 @@ InfoResult inspect(const std::string& input, const InfoOptions& opt) {
   j["valid"] = report.valid();
   nlohmann::json problems = nlohmann::json::array();
   for (const auto& p : report.problems)
-    problems.push_back({{"kind", to_string(p.kind)}, {"fatal", p.fatal}, {"message", p.message},
-                        {"faces", p.faces}, {"vertices", p.vertices}});
+    problems.push_back({{"kind", to_string(p.kind)},
+                        {"fatal", p.fatal},
+                        {"message", p.message},
+                        {"faces", p.faces},
+                        {"vertices", p.vertices}});
   j["problems"] = problems;
   const bool manifold = !report.has(ProblemKind::NonManifoldEdge) && !report.has(ProblemKind::NonManifoldVertex);
   const bool orientable = !report.has(ProblemKind::NonOrientable);
@@ -75,8 +78,7 @@ int run_single(const std::string& input, const InfoOptions& opt, const GlobalOpt
                             "euler_characteristic", "manifold", "orientable"})
       if (r.json.contains(key)) std::cout << "  " << key << ": " << r.json[key].dump() << "\n";
   }
-  for (const auto& p : r.report.problems)
-    std::cerr << (p.fatal ? "error: " : "warning: ") << p.message << "\n";
+  for (const auto& p : r.report.problems) std::cerr << (p.fatal ? "error: " : "warning: ") << p.message << "\n";
   return r.report.valid() ? kOk : kBadInput;
 }
 

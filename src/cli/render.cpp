@@ -81,7 +81,7 @@ nlohmann::json render_one(const std::string& input, const std::string& output, c
     ro.height = h;
     ro.supersample = opt.supersample;
     ro.texture_period = opt.period;
-    ro.texture = opt.texture == "grid" ? SurfaceTexture::GridLines
+    ro.texture = opt.texture == "grid"   ? SurfaceTexture::GridLines
                  : opt.texture == "none" ? SurfaceTexture::None
                                          : SurfaceTexture::Checkerboard;
     const bool polygons = opt.wireframe || !scene.all_triangles;

@@ -4,6 +4,7 @@ namespace quadcover {
 
 std::array<std::uint8_t, 7> glyph_5x7(char c) {
   if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  // clang-format off
   switch (c) {
     case '0': return {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E};
     case '1': return {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E};
@@ -60,6 +61,7 @@ std::array<std::uint8_t, 7> glyph_5x7(char c) {
     case '#': return {0x0A, 0x0A, 0x1F, 0x0A, 0x1F, 0x0A, 0x0A};
     default: return {0, 0, 0, 0, 0, 0, 0};
   }
+  // clang-format on
 }
 
 }  // namespace quadcover

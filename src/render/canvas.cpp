@@ -1,7 +1,6 @@
 #include "render/canvas.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -11,9 +10,13 @@
 namespace quadcover {
 
 Canvas::Canvas(int width, int height, int supersample, Rgb background)
-    : width_(width), height_(height), ss_(std::max(1, supersample)), sw_(width * ss_), sh_(height * ss_),
-      color_(static_cast<std::size_t>(sw_) * sh_ * 3), depth_(static_cast<std::size_t>(sw_) * sh_,
-                                                              std::numeric_limits<double>::infinity()) {
+    : width_(width),
+      height_(height),
+      ss_(std::max(1, supersample)),
+      sw_(width * ss_),
+      sh_(height * ss_),
+      color_(static_cast<std::size_t>(sw_) * sh_ * 3),
+      depth_(static_cast<std::size_t>(sw_) * sh_, std::numeric_limits<double>::infinity()) {
   for (std::size_t i = 0; i < color_.size(); i += 3) {
     color_[i] = static_cast<float>(background.r);
     color_[i + 1] = static_cast<float>(background.g);

@@ -22,17 +22,27 @@ std::string escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-void flatten(const nlohmann::json& j, const std::string& prefix, std::vector<std::pair<std::string, std::string>>& rows) {
+void flatten(const nlohmann::json& j, const std::string& prefix,
+             std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) {
       if (k == "history" || k == "histograms") continue;  // drawn as figures
@@ -71,14 +81,21 @@ std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohm
     const auto& h = report["history"];
     const std::vector<double> it = column(h, "iteration"), ed = column(h, "E_D"), eh = column(h, "E_H"),
                               bp = column(h, "branch_points");
-    LinePlot over_iterations{"E_D and branch points over the iterations (Fig. 6.1)", "iteration", "E_D", "branch points",
+    LinePlot over_iterations{"E_D and branch points over the iterations (Fig. 6.1)",
+                             "iteration",
+                             "E_D",
+                             "branch points",
                              {{"E_D", it, ed}, {"branch points", it, bp, true}}};
     figures.emplace_back("Energy and branch point count during the optimization (thesis Fig. 6.1)",
                          line_plot_svg(over_iterations));
     std::vector<double> sum(ed.size());
     for (std::size_t i = 0; i < ed.size(); ++i) sum[i] = ed[i] + eh[i];
-    LinePlot over_count{"E_D, E_H and E_D + E_H over the branch point count (Fig. 6.5)", "branch points", "energy", "",
-                        {{"E_D", bp, ed, false, true}, {"E_H", bp, eh, false, true}, {"E_D + E_H", bp, sum, false, true}}};
+    LinePlot over_count{
+        "E_D, E_H and E_D + E_H over the branch point count (Fig. 6.5)",
+        "branch points",
+        "energy",
+        "",
+        {{"E_D", bp, ed, false, true}, {"E_H", bp, eh, false, true}, {"E_D + E_H", bp, sum, false, true}}};
     figures.emplace_back("Energies over the number of branch points (thesis Fig. 6.5)", line_plot_svg(over_count));
   }
   if (report.contains("histograms") && report["histograms"].is_object())
@@ -141,7 +158,8 @@ std::string html_report(const HtmlReport& r) {
   if (!r.metrics.is_null()) flatten(r.metrics, "", rows);
   if (!rows.empty()) {
     h << "<h2>Metrics</h2>\n<table id=\"qc-metrics\">\n<tr><th>quantity</th><th>value</th></tr>\n";
-    for (const auto& [k, v] : rows) h << "<tr><td>" << escape(k) << "</td><td class=\"v\">" << escape(v) << "</td></tr>\n";
+    for (const auto& [k, v] : rows)
+      h << "<tr><td>" << escape(k) << "</td><td class=\"v\">" << escape(v) << "</td></tr>\n";
     h << "</table>\n";
   }
   nlohmann::json data{{"meshes", nlohmann::json::array()}};
@@ -194,7 +212,8 @@ std::string html_report(const HtmlReport& r) {
   if (!r.meshes.empty()) {
     // three.js (MIT licence, html/vendor/LICENSE-three.txt) is inlined as text and imported from a blob URL.
     h << "<script type=\"text/plain\" id=\"qc-three\">" << html_assets::three_js() << "</script>\n"
-      << "<script type=\"module\">\n" << html_assets::viewer_js() << "</script>\n";
+      << "<script type=\"module\">\n"
+      << html_assets::viewer_js() << "</script>\n";
   } else {
     h << "<script>document.getElementById('qc-status').textContent='ok';"
          "document.getElementById('qc-status').dataset.state='ok';</script>\n";

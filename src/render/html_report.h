@@ -13,15 +13,15 @@ namespace quadcover {
 /// A mesh for an interactive view: triangles with optional per-corner UVs (checkerboard) or polygons (wireframe).
 struct HtmlMesh {
   std::string name;
-  Eigen::MatrixX3d V;                       ///< #V by 3
-  std::vector<std::vector<int>> faces;      ///< polygons (triangles for a parameterized mesh)
-  Eigen::MatrixX3cd uv;                     ///< #faces by 3 per-corner u + iv (triangles only), or empty
-  bool wireframe = false;                   ///< draw every face edge
+  Eigen::MatrixX3d V;                   ///< #V by 3
+  std::vector<std::vector<int>> faces;  ///< polygons (triangles for a parameterized mesh)
+  Eigen::MatrixX3cd uv;                 ///< #faces by 3 per-corner u + iv (triangles only), or empty
+  bool wireframe = false;               ///< draw every face edge
 };
 
 struct HtmlReport {
   std::string title = "quadcover report";
-  nlohmann::json metrics;                   ///< shown as a table (nested objects flattened to "a.b" keys)
+  nlohmann::json metrics;  ///< shown as a table (nested objects flattened to "a.b" keys)
   std::vector<std::pair<std::string, std::string>> figures;  ///< (caption, inline SVG)
   std::vector<HtmlMesh> meshes;
 };

@@ -71,8 +71,7 @@ std::string encode_png(const Image& image) {
   png_set_IHDR(g.png, g.info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(g.png, g.info);
-  for (int y = 0; y < image.height; ++y)
-    png_write_row(g.png, const_cast<png_bytep>(image.pixel(0, y)));
+  for (int y = 0; y < image.height; ++y) png_write_row(g.png, const_cast<png_bytep>(image.pixel(0, y)));
   png_write_end(g.png, nullptr);
   return out;
 }
@@ -111,7 +110,8 @@ Image decode_png(const std::string& bytes, const std::string& name) {
 
 void write_png(const std::string& path, const Image& image) {
   const std::string bytes = encode_png(image);
-  write_file_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+  write_file_atomically(
+      path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 Image read_png(const std::string& path) { return decode_png(read_file_bytes(path), path); }

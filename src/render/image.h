@@ -21,7 +21,9 @@ struct Image {
   Image(int w, int h, Rgb fill = {1, 1, 1});
   void set(int x, int y, Rgb c);
   Rgb at(int x, int y) const;
-  const std::uint8_t* pixel(int x, int y) const { return pixels.data() + 3 * (static_cast<std::size_t>(y) * width + x); }
+  const std::uint8_t* pixel(int x, int y) const {
+    return pixels.data() + 3 * (static_cast<std::size_t>(y) * width + x);
+  }
 };
 
 /// The image as PNG file bytes (8-bit RGB, no interlace).

@@ -24,7 +24,8 @@ void write_parameterization_png(const std::string& path, const Mesh& mesh, const
 
 void write_quad_mesh_png(const std::string& path, const QuadMesh& quads, const std::vector<ViewCamera>& views,
                          RenderOptions options) {
-  write_png(path, tiled(views, options, [&](const RenderOptions& o) { return render_polygon_mesh(quads.V, quads.faces, o); }));
+  write_png(path, tiled(views, options,
+                        [&](const RenderOptions& o) { return render_polygon_mesh(quads.V, quads.faces, o); }));
 }
 
 void write_pipeline_report(const std::string& path, const std::string& title, const Mesh& mesh,
@@ -35,7 +36,8 @@ void write_pipeline_report(const std::string& path, const std::string& title, co
   page.metrics = report;
   page.figures = figures_from_report(report);
   std::vector<std::vector<int>> triangles(static_cast<std::size_t>(mesh.num_faces()));
-  for (int f = 0; f < mesh.num_faces(); ++f) triangles[static_cast<std::size_t>(f)] = {mesh.F()(f, 0), mesh.F()(f, 1), mesh.F()(f, 2)};
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    triangles[static_cast<std::size_t>(f)] = {mesh.F()(f, 0), mesh.F()(f, 1), mesh.F()(f, 2)};
   page.meshes.push_back({param ? "parameterization (checkerboard: one square = one quad)" : "input mesh", mesh.V(),
                          std::move(triangles), param ? param->uv : Eigen::MatrixX3cd(), false});
   if (quality && !quality->arap_per_face.empty()) {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "metrics/param_quality.h"
 #include "mesh/mesh.h"
+#include "metrics/param_quality.h"
 #include "param/parameterization.h"
 #include "quad/quad_mesh.h"
 #include "render/render_mesh.h"

@@ -34,11 +34,20 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -94,7 +103,8 @@ class RasterPainter final : public Painter {
     canvas_.draw_line({x0, y0, 0}, {x1, y1, 0}, w, parse_hex(c));
   }
   void polyline(const std::vector<std::pair<double, double>>& pts, const std::string& c, double w) override {
-    for (std::size_t i = 0; i + 1 < pts.size(); ++i) line(pts[i].first, pts[i].second, pts[i + 1].first, pts[i + 1].second, c, w);
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i)
+      line(pts[i].first, pts[i].second, pts[i + 1].first, pts[i + 1].second, c, w);
   }
   void rect(double x, double y, double w, double h, const std::string& fill) override {
     const Rgb c = parse_hex(fill);
@@ -180,16 +190,18 @@ void draw_axes(Painter& p, const Frame& f, const std::string& title, const std::
   const std::string grid = "#e6e6e6", axis = "#444444";
   for (double t : f.y.ticks) {
     p.line(f.left, f.sy(t), f.left + f.w, f.sy(t), grid, 1);
-    p.text(f.left - 6, f.sy(t) + 4, tick_label(t, f.y.ticks.size() > 1 ? f.y.ticks[1] - f.y.ticks[0] : 1), 11, Anchor::End, false);
+    p.text(f.left - 6, f.sy(t) + 4, tick_label(t, f.y.ticks.size() > 1 ? f.y.ticks[1] - f.y.ticks[0] : 1), 11,
+           Anchor::End, false);
   }
   for (double t : f.x.ticks) {
     p.line(f.sx(t), f.top, f.sx(t), f.top + f.h, grid, 1);
-    p.text(f.sx(t), f.top + f.h + 16, tick_label(t, f.x.ticks.size() > 1 ? f.x.ticks[1] - f.x.ticks[0] : 1), 11, Anchor::Middle, false);
+    p.text(f.sx(t), f.top + f.h + 16, tick_label(t, f.x.ticks.size() > 1 ? f.x.ticks[1] - f.x.ticks[0] : 1), 11,
+           Anchor::Middle, false);
   }
   if (f.has_y2)
     for (double t : f.y2.ticks)
-      p.text(f.left + f.w + 6, f.sy2(t) + 4, tick_label(t, f.y2.ticks.size() > 1 ? f.y2.ticks[1] - f.y2.ticks[0] : 1), 11,
-             Anchor::Start, false);
+      p.text(f.left + f.w + 6, f.sy2(t) + 4, tick_label(t, f.y2.ticks.size() > 1 ? f.y2.ticks[1] - f.y2.ticks[0] : 1),
+             11, Anchor::Start, false);
   p.line(f.left, f.top + f.h, f.left + f.w, f.top + f.h, axis, 1.2);
   p.line(f.left, f.top, f.left, f.top + f.h, axis, 1.2);
   if (f.has_y2) p.line(f.left + f.w, f.top, f.left + f.w, f.top + f.h, axis, 1.2);
@@ -245,8 +257,9 @@ void paint_histogram(Painter& p, const Histogram& hist, int width, int height) {
   f.x = nice_range(lo, hi);
   f.x.lo = lo;  // bars span exactly the binned range
   f.x.hi = hi;
-  f.x.ticks.erase(std::remove_if(f.x.ticks.begin(), f.x.ticks.end(), [&](double t) { return t < lo - 1e-12 || t > hi + 1e-12; }),
-                  f.x.ticks.end());
+  f.x.ticks.erase(
+      std::remove_if(f.x.ticks.begin(), f.x.ticks.end(), [&](double t) { return t < lo - 1e-12 || t > hi + 1e-12; }),
+      f.x.ticks.end());
   const double top = counts.empty() ? 1 : *std::max_element(counts.begin(), counts.end());
   f.y = nice_range(0, top > 0 ? top : 1);
   f.y.lo = 0;
@@ -260,7 +273,8 @@ void paint_histogram(Painter& p, const Histogram& hist, int width, int height) {
 }
 
 bool ends_with_svg(const std::string& path) {
-  return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".svg") == 0 || path.compare(path.size() - 4, 4, ".SVG") == 0);
+  return path.size() >= 4 &&
+         (path.compare(path.size() - 4, 4, ".svg") == 0 || path.compare(path.size() - 4, 4, ".SVG") == 0);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ struct Histogram {
   std::string title, x_label;
   std::string y_label = "count";
   std::vector<double> values;
-  std::vector<double> weights;   ///< optional, same length as values (e.g. triangle areas); empty = count
+  std::vector<double> weights;  ///< optional, same length as values (e.g. triangle areas); empty = count
   int bins = 30;
   std::optional<double> lo, hi;  ///< range; default: min / max of the values
 };

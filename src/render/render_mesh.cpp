@@ -72,17 +72,23 @@ Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& V, const Eigen::MatrixX3
 
 Rgb branch_point_color(int quarter_index) {
   switch (quarter_index) {
-    case 1: return {0.10, 0.25, 0.95};
-    case -1: return {0.92, 0.10, 0.10};
-    case 2: return {0.0, 0.75, 0.80};
-    case -2: return {0.85, 0.10, 0.80};
-    default: return {0.25, 0.25, 0.25};
+    case 1:
+      return {0.10, 0.25, 0.95};
+    case -1:
+      return {0.92, 0.10, 0.10};
+    case 2:
+      return {0.0, 0.75, 0.80};
+    case -2:
+      return {0.85, 0.10, 0.80};
+    default:
+      return {0.25, 0.25, 0.25};
   }
 }
 
 int count_flipped(const Eigen::MatrixX3cd& uv) {
   int n = 0;
-  for (Eigen::Index f = 0; f < uv.rows(); ++f) n += std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0))) < 0;
+  for (Eigen::Index f = 0; f < uv.rows(); ++f)
+    n += std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0))) < 0;
   return n;
 }
 
@@ -153,7 +159,8 @@ Image render_textured_mesh(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
       if (textured) {
         const std::complex<double> z = (b[0] * uv(f, 0) + b[1] * uv(f, 1) + b[2] * uv(f, 2)) / period;
         if (o.texture == SurfaceTexture::Checkerboard) {
-          const long long parity = static_cast<long long>(std::floor(z.real())) + static_cast<long long>(std::floor(z.imag()));
+          const long long parity =
+              static_cast<long long>(std::floor(z.real())) + static_cast<long long>(std::floor(z.imag()));
           if (parity & 1) base = o.color_dark;
         } else {
           const double du = std::abs(z.real() - std::round(z.real())), dv = std::abs(z.imag() - std::round(z.imag()));

@@ -16,18 +16,18 @@ enum class SurfaceTexture { None, Checkerboard, GridLines };
 
 /// Options of render_textured_mesh / render_polygon_mesh. Defaults give an 800×800 front view, 3×3 supersampling.
 struct RenderOptions {
-  int width = 800, height = 800;               ///< output pixels
-  int supersample = 3;                         ///< antialiasing: n×n samples per pixel (1 = none)
-  ViewCamera camera;                           ///< default: front
+  int width = 800, height = 800;  ///< output pixels
+  int supersample = 3;            ///< antialiasing: n×n samples per pixel (1 = none)
+  ViewCamera camera;              ///< default: front
   SurfaceTexture texture = SurfaceTexture::Checkerboard;
-  double texture_period = 1.0;                 ///< UV units per checker square / grid cell (grid units: one quad)
-  bool show_seams = true;                      ///< draw edges where the UVs jump
-  bool show_branch_points = true;              ///< dots at branch points (coloured by index)
-  double line_width = 1.5;                     ///< seams and wireframe, output pixels
-  double point_radius = 4.0;                   ///< branch point dots, output pixels
+  double texture_period = 1.0;     ///< UV units per checker square / grid cell (grid units: one quad)
+  bool show_seams = true;          ///< draw edges where the UVs jump
+  bool show_branch_points = true;  ///< dots at branch points (coloured by index)
+  double line_width = 1.5;         ///< seams and wireframe, output pixels
+  double point_radius = 4.0;       ///< branch point dots, output pixels
   Rgb background{1, 1, 1};
-  Rgb color_light{0.93, 0.93, 0.90};           ///< checker light squares / base colour
-  Rgb color_dark{0.35, 0.55, 0.80};            ///< checker dark squares / grid lines
+  Rgb color_light{0.93, 0.93, 0.90};  ///< checker light squares / base colour
+  Rgb color_dark{0.35, 0.55, 0.80};   ///< checker dark squares / grid lines
   Rgb seam_color{0.90, 0.45, 0.05};
   Rgb wire_color{0.10, 0.10, 0.12};
 };
@@ -62,12 +62,12 @@ Image render_polygon_mesh(const Eigen::MatrixX3d& V, const std::vector<std::vect
 struct UvLayoutOptions {
   int width = 800, height = 800;
   int supersample = 3;
-  double margin = 0.05;                  ///< fraction of the image side left free around the layout
-  bool integer_grid = true;              ///< light lines at integer coordinates (when at least 4 px apart)
-  bool edges = true;                     ///< triangle edges
+  double margin = 0.05;      ///< fraction of the image side left free around the layout
+  bool integer_grid = true;  ///< light lines at integer coordinates (when at least 4 px apart)
+  bool edges = true;         ///< triangle edges
   Rgb background{1, 1, 1};
-  Rgb fill{0.78, 0.86, 0.95};            ///< positively oriented triangles
-  Rgb flipped{0.90, 0.05, 0.05};         ///< negative-area (flipped) triangles
+  Rgb fill{0.78, 0.86, 0.95};     ///< positively oriented triangles
+  Rgb flipped{0.90, 0.05, 0.05};  ///< negative-area (flipped) triangles
   Rgb edge_color{0.25, 0.30, 0.40};
   Rgb grid_color{0.80, 0.80, 0.80};
 };

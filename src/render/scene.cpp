@@ -13,7 +13,9 @@ MeshScene scene_from_soup(const PolygonSoup& soup) {
   std::size_t triangles = 0;
   for (std::size_t f = 0; f < soup.num_faces(); ++f) {
     const std::size_t n = soup.face_size(f);
-    if (n < 3) throw InputError(soup.file, f < soup.face_lines.size() ? soup.face_lines[f] : 0, "face with fewer than 3 corners");
+    if (n < 3)
+      throw InputError(soup.file, f < soup.face_lines.size() ? soup.face_lines[f] : 0,
+                       "face with fewer than 3 corners");
     triangles += n - 2;
     s.all_triangles = s.all_triangles && n == 3;
     std::vector<int> poly(n);

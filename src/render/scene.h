@@ -8,11 +8,11 @@
 namespace quadcover {
 
 struct MeshScene {
-  Eigen::MatrixX3d V;                       ///< #V by 3 positions
-  std::vector<std::vector<int>> polygons;   ///< faces as read (0-based)
-  bool all_triangles = true;                ///< every face has three corners
-  Eigen::MatrixX3i F;                       ///< triangles: the faces, polygons fan-triangulated
-  Eigen::MatrixX3cd uv;                     ///< #F by 3 per-corner u + iv; empty unless every corner has a `vt`
+  Eigen::MatrixX3d V;                      ///< #V by 3 positions
+  std::vector<std::vector<int>> polygons;  ///< faces as read (0-based)
+  bool all_triangles = true;               ///< every face has three corners
+  Eigen::MatrixX3i F;                      ///< triangles: the faces, polygons fan-triangulated
+  Eigen::MatrixX3cd uv;                    ///< #F by 3 per-corner u + iv; empty unless every corner has a `vt`
 };
 
 /// Builds the scene from a soup. No manifold check (pictures of broken meshes are useful too).

@@ -1,12 +1,12 @@
 // Batch mode through the real binary: `quadcover info FOLDER FILE --json` processes every file, a broken one
 // fails alone, and the exit code and JSON summary say so.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "support/test_meshes.h"
 

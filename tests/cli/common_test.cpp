@@ -158,18 +158,21 @@ TEST(Batch, FailingFilesAreReportedAndOthersContinueInParallel) {
   std::mutex m;
   std::set<std::thread::id> threads;
   std::ostringstream log;
-  const auto results = process_files(files, global, [&](const std::string& in, ProgressSink&) {
-    {
-      std::lock_guard lock(m);
-      threads.insert(std::this_thread::get_id());
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    const int i = std::stoi(in.substr(4));
-    if (i == 3) throw InputError(in, 7, "bad token");
-    if (i == 8) throw std::runtime_error("solver exploded");
-    if (i == 10) throw TopologyError("not manifold", {"edge 1 2", "edge 3 4"});
-    return nlohmann::json{{"index", i}, {"square", i * i}};
-  }, log);
+  const auto results = process_files(
+      files, global,
+      [&](const std::string& in, ProgressSink&) {
+        {
+          std::lock_guard lock(m);
+          threads.insert(std::this_thread::get_id());
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        const int i = std::stoi(in.substr(4));
+        if (i == 3) throw InputError(in, 7, "bad token");
+        if (i == 8) throw std::runtime_error("solver exploded");
+        if (i == 10) throw TopologyError("not manifold", {"edge 1 2", "edge 3 4"});
+        return nlohmann::json{{"index", i}, {"square", i * i}};
+      },
+      log);
   ASSERT_EQ(results.size(), files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     EXPECT_EQ(results[i].input, files[i]);  // input order, whatever the scheduling
@@ -207,11 +210,14 @@ TEST(Batch, InterruptedBatchSkipsFilesNotStarted) {
   global.jobs = 1;
   std::ostringstream log;
   clear_interrupt();
-  const auto results = process_files({"a", "b", "c"}, global, [](const std::string& in, ProgressSink& p) {
-    if (in == "a") request_interrupt();
-    EXPECT_EQ(p.cancelled(), true);
-    return nlohmann::json{{"ok", true}};
-  }, log);
+  const auto results = process_files(
+      {"a", "b", "c"}, global,
+      [](const std::string& in, ProgressSink& p) {
+        if (in == "a") request_interrupt();
+        EXPECT_EQ(p.cancelled(), true);
+        return nlohmann::json{{"ok", true}};
+      },
+      log);
   clear_interrupt();
   EXPECT_EQ(results[0].exit_code, kOk);  // the running file finishes with its best result
   EXPECT_EQ(results[1].exit_code, kInternal);
@@ -247,7 +253,7 @@ TEST(Cancellation, SigintSetsTheFlagAndTheNextOneIsFatal) {
   TerminalProgress p(out, style);
   EXPECT_TRUE(p.cancelled());
   // The handler re-armed the default action so a second Ctrl-C kills a stuck process.
-  struct sigaction current{};
+  struct sigaction current {};
   sigaction(SIGINT, nullptr, &current);
   EXPECT_EQ(current.sa_handler, SIG_DFL);
   clear_interrupt();

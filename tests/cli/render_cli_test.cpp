@@ -1,13 +1,13 @@
 // `quadcover render` through the real binary: textured, wireframe and UV-layout PNGs of files with per-corner vt,
 // errors for impossible requests without partial outputs, and batch rendering into a folder.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "support/test_meshes.h"
 
@@ -83,7 +83,8 @@ TEST_F(RenderCli, BadRequestsFailCleanlyWithoutOutput) {
   EXPECT_EQ(run("render " + plain + " -o " + path("x.png") + " --view diagonal").code, 2);
   EXPECT_EQ(run("render " + plain).code, 2);  // no output named
   EXPECT_FALSE(fs::exists(path("x.png")));
-  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
 }
 
 TEST_F(RenderCli, BatchRendersEveryFileIntoTheOutputFolder) {

@@ -44,9 +44,12 @@ TEST(HtmlReport, PageHoldsMetricsFiguresAndMeshData) {
 
   HtmlReport r;
   r.title = "grid <test>";
-  r.metrics = {{"E_D", 0.25}, {"seamless", true}, {"branch_points", {{"+1", 8}}},
-               {"history", {{{"iteration", 0}, {"E_D", 2.0}, {"E_H", 0.1}, {"branch_points", 4}},
-                            {{"iteration", 1}, {"E_D", 1.0}, {"E_H", 0.3}, {"branch_points", 6}}}},
+  r.metrics = {{"E_D", 0.25},
+               {"seamless", true},
+               {"branch_points", {{"+1", 8}}},
+               {"history",
+                {{{"iteration", 0}, {"E_D", 2.0}, {"E_H", 0.1}, {"branch_points", 4}},
+                 {{"iteration", 1}, {"E_D", 1.0}, {"E_H", 0.3}, {"branch_points", 6}}}},
                {"histograms", {{"arap", {0.1, 0.2, 0.2}}}}};
   r.figures = figures_from_report(r.metrics);
   ASSERT_EQ(r.figures.size(), 3u);  // Fig. 6.1, Fig. 6.5, one histogram
@@ -65,7 +68,8 @@ TEST(HtmlReport, PageHoldsMetricsFiguresAndMeshData) {
   EXPECT_EQ(svgs, 3u);
   EXPECT_EQ(std::count(page.begin(), page.end(), '\0'), 0);
 
-  const auto data = nlohmann::json::parse(between(page, "<script type=\"application/json\" id=\"qc-data\">", "</script>"));
+  const auto data =
+      nlohmann::json::parse(between(page, "<script type=\"application/json\" id=\"qc-data\">", "</script>"));
   ASSERT_EQ(data["meshes"].size(), 2u);
   EXPECT_EQ(data["meshes"][0]["triangles"].size(), 3u * grid.num_faces());
   EXPECT_EQ(data["meshes"][0]["uv"].size(), 6u * grid.num_faces());

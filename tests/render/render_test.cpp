@@ -1,12 +1,11 @@
 // The offscreen renderer: known scenes must produce images with predictable, countable properties.
-#include "render/render_mesh.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "render/image.h"
+#include "render/render_mesh.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -59,8 +58,8 @@ Eigen::MatrixX3cd torus_uv(const Mesh& m, int n_major, int n_minor, double R) {
 TEST(UvLayout, UnitSquareCoversExpectedArea) {
   // Two triangles forming [0,1]²: the layout fills a square of side (1 - 2·margin)·size.
   Eigen::MatrixX3cd uv(2, 3);
-  uv << std::complex<double>(0, 0), std::complex<double>(1, 0), std::complex<double>(1, 1),
-      std::complex<double>(0, 0), std::complex<double>(1, 1), std::complex<double>(0, 1);
+  uv << std::complex<double>(0, 0), std::complex<double>(1, 0), std::complex<double>(1, 1), std::complex<double>(0, 0),
+      std::complex<double>(1, 1), std::complex<double>(0, 1);
   UvLayoutOptions o;
   o.width = o.height = 200;
   o.margin = 0.1;
