@@ -473,6 +473,32 @@ class Extractor {
     }
   }
 
+  // Around cut-out folds two distinct traced segments can join the same two vertices in the same direction; the
+  // polygon mesh would then be non-manifold. Keep the smallest face on such an edge and drop the others.
+  void drop_duplicate_edges(QuadMesh& qm) {
+    std::unordered_map<long long, std::vector<int>> users;
+    for (int f = 0; f < qm.num_faces(); ++f) {
+      const auto& F = qm.faces[f];
+      for (std::size_t i = 0; i < F.size(); ++i)
+        users[(static_cast<long long>(F[i]) << 32) | static_cast<unsigned>(F[(i + 1) % F.size()])].push_back(f);
+    }
+    std::vector<char> drop(qm.num_faces(), 0);
+    for (auto& [key, fs] : users) {
+      if (fs.size() < 2) continue;
+      std::sort(fs.begin(), fs.end(), [&](int a, int b) {
+        return qm.faces[a].size() != qm.faces[b].size() ? qm.faces[a].size() < qm.faces[b].size() : a < b;
+      });
+      for (std::size_t i = 1; i < fs.size(); ++i) drop[fs[i]] = 1;
+    }
+    std::vector<std::vector<int>> kept;
+    for (int f = 0; f < qm.num_faces(); ++f)
+      if (drop[f])
+        ++rep_.dropped_faces;
+      else
+        kept.push_back(std::move(qm.faces[f]));
+    qm.faces = std::move(kept);
+  }
+
   // Where cut-out folds touch at one output vertex its faces form several fans: give each fan its own copy so that
   // the output stays a manifold polygon mesh.
   void split_pinched_vertices(QuadMesh& qm) {
@@ -589,6 +615,7 @@ class Extractor {
                              g_.is_grid_value(gv_[i].p.x) && g_.is_grid_value(gv_[i].p.y);
     }
     qm.faces = std::move(faces);
+    drop_duplicate_edges(qm);
     split_pinched_vertices(qm);
     rep_.quads = qm.num_quads();
     rep_.non_quads = qm.num_faces() - rep_.quads;

@@ -37,7 +37,7 @@ struct ExtractionReport {
   int torn_seams = 0;            ///< edges whose transition does not hold (treated as boundary)
   int non_integer_translations = 0;  ///< transitions whose translation is not in Z[i]
   int failed_traces = 0;         ///< iso-line segments that could not be followed (e.g. into a non-integer branch point)
-  int dropped_faces = 0;         ///< faces not emitted because a bounding segment failed
+  int dropped_faces = 0;         ///< faces not emitted: a bounding segment failed, or an edge twice (near folds)
   int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
   /// Parameter area of the triangles that were extracted (not cut out): the quad count of a valid closed map.

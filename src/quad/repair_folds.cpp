@@ -75,7 +75,10 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
   for (int f : bad)
     for (int c = 0; c < 3; ++c) moving.insert(mesh.F()(f, c));
   std::vector<char> touched(mesh.num_vertices(), 0);
+  int best = r.bad_before;
   for (int round = 0; round < options.rounds && !bad.empty(); ++round) {
+    const Eigen::MatrixX3cd before = r.uv;
+    const std::vector<char> touched_before = touched;
     std::vector<std::pair<int, Fan>> fans;
     for (int v : moving) {
       Fan fan;
@@ -96,6 +99,14 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
         }
         touched[v] = 1;
       }
+    // Tutte averaging is only guaranteed to untangle star-shaped rings: never accept a round that makes it worse.
+    const int now = static_cast<int>(bad_faces(0.0).size());
+    if (now > best) {
+      r.uv = before;
+      touched = touched_before;
+    } else {
+      best = now;
+    }
     bad = bad_faces(options.min_area);
     // grow by one ring around what is still bad
     for (int f : bad)
