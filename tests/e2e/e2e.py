@@ -45,6 +45,7 @@ DATA = os.path.join(ROOT, "tests", "data")
 SEAM_TOL = 1e-9      # relative to the parameter extent (issue 5)
 METRIC_RTOL = 1e-6   # metrics re-measured from a written file vs. the in-memory report (OBJ rounding)
 TIMING_KEYS = {"seconds"}
+COMMAND_TIMEOUT = [300.0]  # seconds per command (--timeout); a hang fails the suite instead of stalling it
 # Defects accepted for now, from tests/regression/metrics.json "known_issues": mesh -> {issue key: description}.
 KNOWN = {}
 NOTES = []  # printed at the end (list.append is thread-safe)
@@ -61,7 +62,11 @@ def check(cond, message):
 
 def run(binary, args, cwd=None, expect=0):
     t0 = time.monotonic()
-    p = subprocess.run([binary] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        p = subprocess.run([binary] + args, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           timeout=COMMAND_TIMEOUT[0])
+    except subprocess.TimeoutExpired as e:
+        raise Failure(f"`quadcover {' '.join(args)}` did not finish within {COMMAND_TIMEOUT[0]} s (hang?)") from e
     dt = time.monotonic() - t0
     if expect is not None and p.returncode != expect:
         raise Failure(f"`quadcover {' '.join(args)}` exited {p.returncode} (expected {expect}):\n"
@@ -249,7 +254,11 @@ def run_bad(binary, bad_path, out):
                    "--param", os.path.join(folder, "rp.obj")],
     }
     for cmd, args in commands.items():
-        p, _ = run(binary, args, expect=None)
+        try:
+            p, _ = run(binary, args, expect=None)
+        except Failure as e:
+            errors.append(f"{name}: {e}")
+            continue
         if p.returncode != 2:
             errors.append(f"{name}: `{cmd}` exited {p.returncode}, expected 2")
         if not LOCATED.search(p.stderr):
@@ -263,6 +272,8 @@ def run_bad(binary, bad_path, out):
     p, _ = run(binary, ["metrics", os.path.join(DATA, "eight_genus2.obj"), "--no-extract", "--ref", bad_path,
                         "--report", os.path.join(folder, "m.json")], expect=None)
     if p.returncode != 2 or os.listdir(folder):
+        for f in os.listdir(folder):
+            os.remove(os.path.join(folder, f))
         errors.append(f"{name}: `metrics --ref` exited {p.returncode} (expected 2), left {os.listdir(folder)}")
     os.rmdir(folder)
     return errors
@@ -368,7 +379,9 @@ def main():
     ap.add_argument("--self-test", action="store_true", help="only test the checkers themselves")
     ap.add_argument("--known", default=os.path.join(ROOT, "tests", "regression", "metrics.json"),
                     help="JSON file with a \"known_issues\" object (default: the regression baseline)")
+    ap.add_argument("--timeout", type=float, default=COMMAND_TIMEOUT[0], help="seconds allowed per command")
     args = ap.parse_args()
+    COMMAND_TIMEOUT[0] = args.timeout
     if args.known and os.path.exists(args.known):
         KNOWN.update(json.load(open(args.known)).get("known_issues", {}))
     if args.self_test:
