@@ -27,6 +27,7 @@ struct ParamCmdOptions {
   std::string lattice = "rotated";
   std::string rounding = "direct";
   std::string optimize = "none";
+  bool align = true;
 };
 
 /// Per-corner coordinates as OBJ texture vertices: corners of one mesh vertex with the same coordinates share a vt.
@@ -63,6 +64,7 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
   po.lattice = parse_lattice(opt.lattice);
   po.edge_length = opt.edge_length;
   po.target_quads = opt.quads;
+  po.align_curves = opt.align;
 
   using Clock = std::chrono::steady_clock;
   nlohmann::json seconds = nlohmann::json::object();
@@ -166,6 +168,9 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
+      ->capture_default_str();
+  cmd->add_option("--align", opt->align,
+                  "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write a JSON report (one input) or a folder for NAME.param.json files");
   cmd->add_option("--rounding", opt->rounding, "Rounding of the periods: direct (nearest lattice point)")

@@ -50,7 +50,7 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
                                           const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
                                           const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
                                           const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts) {
+                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift) {
   const int nv = mesh.num_vertices();
   conflicts = 0;
   curves.clear();
@@ -110,6 +110,7 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     double sum = 0, anchor = 0;
     int count = 0;
     bool anchored = false;  // a branch point on the line fixes its value (its position is set by the periods)
+    bool consistent = true;  // two branch points on one line at different integers: the line cannot be kept
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const int i = queue[q];
       curves[k].edges.push_back(slots[i].edge);
@@ -119,7 +120,10 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
             sigma_of[i] * (std::real(ipow(-slots[i].coordinate) * phi_at(u0, slots[i].face, c)) - tau_of[i]);
         sum += estimate;
         ++count;
-        if (cut.branch[mesh.F()(slots[i].face, c)] && !anchored) anchored = true, anchor = estimate;
+        if (cut.branch[mesh.F()(slots[i].face, c)]) {
+          if (anchored && std::abs(estimate - anchor) > 0.5) consistent = false;
+          if (!anchored) anchored = true, anchor = estimate;
+        }
       }
       for (const Rel& r : rel[i]) {
         if (curve_of[r.to] >= 0) continue;
@@ -130,6 +134,9 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
       }
     }
     curves[k].value = std::round(anchored ? anchor : sum / count);
+    // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
+    // collapses the strip between them) stay free.
+    curves[k].enforced = consistent && (anchored || std::abs(sum / count - curves[k].value) <= max_shift);
   }
   std::vector<double> n_of(static_cast<std::size_t>(ns));
   for (auto& c : curves) c.edges.clear();
@@ -141,18 +148,29 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     c.edge_values.push_back(n_of[i]);
   }
 
+  // A line that closes on itself with another integer (a boundary loop around branch points, a line through a
+  // cut whose transition does not map it to itself) fixes some component of u twice with different values: such
+  // lines, and those through two branch points at different integers, are left free (reported, not enforced).
+  std::map<int, std::pair<int, double>> seen;  // u-component index -> (curve, value)
+  for (int p = 0; p < nv; ++p)
+    for (const Use& w : uses[p]) {
+      const int idx = w.component * nv + p, k = curve_of[w.slot];
+      const double v = w.sign * (known_coord(w) - n_of[w.slot]);
+      auto [it, inserted] = seen.try_emplace(idx, k, v);
+      if (!inserted && std::abs(it->second.second - v) > 1e-9 * (1 + std::abs(v))) {
+        if (curves[k].enforced) ++conflicts;
+        curves[k].enforced = false;
+        curves[it->second.first].enforced = false;
+      }
+    }
   std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
   Eigen::VectorXd value = Eigen::VectorXd::Zero(2 * nv);
   for (int p = 0; p < nv; ++p)
     for (const Use& w : uses[p]) {
+      if (!curves[curve_of[w.slot]].enforced) continue;
       const int idx = w.component * nv + p;
-      const double v = w.sign * (known_coord(w) - n_of[w.slot]);
-      if (fixed[idx]) {
-        if (std::abs(value[idx] - v) > 1e-9 * (1 + std::abs(v))) ++conflicts;  // an iso-line closing inconsistently
-        continue;
-      }
       fixed[idx] = 1;
-      value[idx] = v;
+      value[idx] = w.sign * (known_coord(w) - n_of[w.slot]);
     }
 
   // Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.

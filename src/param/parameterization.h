@@ -44,7 +44,7 @@ struct Parameterization {
   /// (|two endpoint estimates of a translation| on the curl-free field): diagnostics, round-off sized.
   double max_translation_residual = 0, integration_mismatch = 0;
   /// Boundary / feature curves put on integer iso-lines (ParamOptions::align_curves), each with its largest
-  /// deviation; and the number of curve vertices whose two constraints disagreed (the first one was kept).
+  /// deviation; and the number of lines left free because they close on themselves inconsistently.
   struct Curve {
     std::vector<int> edges;
     /// Per edge, the coordinate (0: φ⁰, 1: φ¹) constant along it in its face EF(e,0) (or the boundary edge's face),
@@ -53,6 +53,9 @@ struct Parameterization {
     std::vector<double> edge_values;
     int coordinate = 0;  ///< of the first edge
     double value = 0, max_deviation = 0;
+    /// False for lines that cannot be integer iso-lines with the rounded periods (through two branch points at
+    /// different integers, or closing on themselves with another integer): left free, deviation reported.
+    bool enforced = true;
   };
   std::vector<Curve> aligned_curves;
   int alignment_conflicts = 0;

@@ -283,7 +283,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     if (!slots.empty()) {
       const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;
       u = solve_aligned_correction(mesh, cc, L, b, vl.layer, known, u, kernel_pins, slots, P.aligned_curves,
-                                   P.alignment_conflicts);
+                                   P.alignment_conflicts, options.align_max_shift);
     }
   }
   Eigen::MatrixX3cd ucorner(nf, 3);

@@ -31,6 +31,9 @@ struct ParamOptions {
   FeatureOptions features;
   /// A curve edge counts as aligned when a frame vector is within this angle of it.
   double align_tolerance_degrees = 2.0;
+  /// A curve is put on its nearest integer line only if that moves it by at most this many grid units on average
+  /// (unless a branch point on it fixes the line); farther ones stay free and their deviation is reported.
+  double align_max_shift = 0.35;
 };
 
 /// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.
