@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <unordered_map>
+#include <vector>
 
 namespace quadcover {
 
@@ -76,6 +77,86 @@ PolygonTopology polygon_topology(int num_vertices, const std::vector<std::vector
   }
   t.euler_characteristic = t.vertices - t.edges + t.faces;
   return t;
+}
+
+// Around cut-out folds two distinct traced segments can join the same two vertices in the same direction; the
+// polygon mesh would then be non-manifold. Keep the smallest face on such an edge and drop the others.
+int drop_faces_on_duplicate_edges(QuadMesh& qm) {
+  int dropped = 0;
+  std::unordered_map<long long, std::vector<int>> users;
+  for (int f = 0; f < qm.num_faces(); ++f) {
+    const auto& F = qm.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i)
+      users[(static_cast<long long>(F[i]) << 32) | static_cast<unsigned>(F[(i + 1) % F.size()])].push_back(f);
+  }
+  std::vector<char> drop(qm.num_faces(), 0);
+  for (auto& [key, fs] : users) {
+    if (fs.size() < 2) continue;
+    std::sort(fs.begin(), fs.end(), [&](int a, int b) {
+      return qm.faces[a].size() != qm.faces[b].size() ? qm.faces[a].size() < qm.faces[b].size() : a < b;
+    });
+    for (std::size_t i = 1; i < fs.size(); ++i) drop[fs[i]] = 1;
+  }
+  std::vector<std::vector<int>> kept;
+  for (int f = 0; f < qm.num_faces(); ++f)
+    if (drop[f])
+      ++dropped;
+    else
+      kept.push_back(std::move(qm.faces[f]));
+  qm.faces = std::move(kept);
+  return dropped;
+}
+
+// Where cut-out folds touch at one output vertex its faces form several fans: give each fan its own copy so that
+// the output stays a manifold polygon mesh.
+int split_pinched_vertices(QuadMesh& qm) {
+  const int nv = qm.num_vertices();
+  std::vector<std::vector<std::pair<int, int>>> corners(nv);  // (face, index in face)
+  for (int f = 0; f < qm.num_faces(); ++f)
+    for (int i = 0; i < static_cast<int>(qm.faces[f].size()); ++i) corners[qm.faces[f][i]].emplace_back(f, i);
+  std::vector<std::vector<int>> extra_of(nv);
+  int added = 0;
+  for (int v = 0; v < nv; ++v) {
+    const auto& cs = corners[v];
+    const int m = static_cast<int>(cs.size());
+    if (m < 2) continue;
+    std::vector<int> parent(m);
+    for (int i = 0; i < m; ++i) parent[i] = i;
+    auto find = [&](int i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    auto nbr = [&](int i, int step) {
+      const auto& f = qm.faces[cs[i].first];
+      const int n = static_cast<int>(f.size());
+      return f[(cs[i].second + step + n) % n];
+    };
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        if (i != j && nbr(i, 1) == nbr(j, -1)) parent[find(i)] = find(j);
+    std::vector<int> roots;
+    for (int i = 0; i < m; ++i)
+      if (find(i) == i) roots.push_back(i);
+    for (std::size_t r = 1; r < roots.size(); ++r) {
+      const int nvid = nv + added++;
+      extra_of[v].push_back(nvid);
+      for (int i = 0; i < m; ++i)
+        if (find(i) == roots[r]) qm.faces[cs[i].first][cs[i].second] = nvid;
+    }
+  }
+  if (added == 0) return 0;
+  qm.V.conservativeResize(nv + added, 3);
+  qm.uv.conservativeResize(nv + added);
+  qm.source_face.conservativeResize(nv + added);
+  qm.on_grid.conservativeResize(nv + added);
+  for (int v = 0; v < nv; ++v)
+    for (int c : extra_of[v]) {
+      qm.V.row(c) = qm.V.row(v);
+      qm.uv[c] = qm.uv[v];
+      qm.source_face[c] = qm.source_face[v];
+      qm.on_grid[c] = qm.on_grid[v];
+    }
+  return added;
 }
 
 }  // namespace quadcover

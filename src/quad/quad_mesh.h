@@ -38,4 +38,12 @@ struct PolygonTopology {
 /// Counts the above for faces over `num_vertices` vertices. Linear time.
 PolygonTopology polygon_topology(int num_vertices, const std::vector<std::vector<int>>& faces);
 
+/// Where two faces use the same directed edge (possible next to cut-out folds), keeps the smallest face and drops
+/// the others. Returns the number of dropped faces.
+int drop_faces_on_duplicate_edges(QuadMesh& q);
+
+/// Gives each fan of faces around a vertex its own copy of the vertex (a vertex pinched between holes).
+/// Returns the number of vertices added.
+int split_pinched_vertices(QuadMesh& q);
+
 }  // namespace quadcover
