@@ -56,6 +56,16 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
   if (!progress.cancelled() && options.smoothing_rounds > 0) {
     progress.report("field", 0.5, "smoothing (5.3)");
     FrameSmoother smoother(mesh, r.field, r.stability, r.trusted, r.constrained, options.lambda);
+    if (options.fill == Fill::Smooth) {
+      // E_A measures the deviation from the original curvature directions on the trusted faces (5.3), which
+      // the power fill does not reproduce exactly: β_t = the rotation from X_t to the nearest of the four
+      // curvature directions. Propagated trusted frames are the curvature frames themselves (β = 0).
+      Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);
+      for (int t = 0; t < nf; ++t)
+        if (r.trusted[static_cast<std::size_t>(t)])
+          beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / r.field.X[t], 4));
+      smoother.set_alignment_targets(beta);
+    }
     Eigen::VectorXd alpha = smoother.solve();
     for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
       // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching

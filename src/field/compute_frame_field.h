@@ -32,9 +32,10 @@ struct FieldOptions {
   /// propagation leaves 77 / 259 / 251 (BENCHMARKS.md, "Frame field").
   Fill fill = Fill::Smooth;
   /// Fill::Smooth: alignment strength μ of PowerFieldProblem. Larger values follow the curvature frames more
-  /// closely at the price of curl (E_D) and eventually branch points. Mean deviation from the principal
-  /// directions on the 5% most stable faces of bunny_3k / bunny_20k_holes: 13° / 19° at μ = 100, 11° / 15° at
-  /// 1000, 8° / 12° at 3000 (propagation: 6° / 4°, with 2-4× the branch points).
+  /// closely at the price of curl (E_D) and eventually branch points: without the smoothing step, the mean
+  /// deviation from the principal directions on the 5% most stable faces of bunny_3k / bunny_20k_holes is
+  /// 13° / 19° at μ = 100, 10° / 15° at 1000, 8° / 12° at 3000. The smoothing (5.3) then pulls the trusted
+  /// frames back towards the curvature directions (its E_A targets them), to 8° / 7° at the default.
   double fill_alignment = 1000.0;
   /// Fill::Smooth: Ginzburg–Landau weight σ and majorize-minimize steps of PowerFieldProblem. σ = 1000 (core
   /// radius ≈ 3% of √area) with 10 steps removes a few more close ± pairs and lowers E_D of the parameterization
@@ -42,9 +43,11 @@ struct FieldOptions {
   double fill_unit_weight = 1000.0;
   int fill_iterations = 10;
   /// λ of (5.3) in (0, 1]: 1 ignores the curvature directions (only fixed faces anchor the field), small values
-  /// keep trusted frames in place. 0.5 weighs the (scale-normalized) terms equally; on the test meshes it lowers
-  /// E_S of the propagated field 3-10× (bunny_3k 660 -> 213, fandisk 360 -> 48), within a few % of λ = 0.9,
-  /// while E_A stays about half as large as with λ = 0.9.
+  /// keep trusted frames at their curvature directions (with Fill::Smooth, E_A measures the rotation from the
+  /// filled frame to the nearest curvature direction: FrameSmoother::set_alignment_targets). 0.5 weighs the
+  /// (scale-normalized) terms equally; with Fill::Propagate it lowers E_S of the propagated field 3-10×
+  /// (bunny_3k 660 -> 213, fandisk 360 -> 48), within a few % of λ = 0.9, while E_A stays about half as large
+  /// as with λ = 0.9.
   double lambda = 0.5;
   /// Smoothing rounds. After each round but the last, the matching is re-chosen as the straightest one (5.1) for
   /// the smoothed frames (a right-hand-side update, no refactorization) and the system is solved again.
@@ -56,10 +59,10 @@ struct FrameFieldResult {
   FrameField field;               ///< cross field (Y = iX) with its matching
   CurvatureFrames curvature;      ///< principal curvature frames (5.1.1)
   Eigen::VectorXd stability;      ///< #F, ω_t (5.2)
-  std::vector<char> trusted;      ///< #F, faces of the alignment term / propagation sources
+  std::vector<char> trusted;      ///< #F, faces of the alignment terms / propagation sources
   std::vector<char> constrained;  ///< #F, feature-aligned faces (fixed during smoothing)
   std::vector<BranchPoint> branch_points;
-  double energy_smooth_initial = 0;  ///< E_S of the propagated field with its straightest matching
+  double energy_smooth_initial = 0;  ///< E_S of the filled field with its straightest matching
   double energy_smooth = 0;          ///< E_S of the result
   double energy_align = 0;           ///< E_A of the result's rotation angles
 };

@@ -42,6 +42,7 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
       ++count;
     }
   if (sum > 0) align_ *= count / sum;
+  beta_ = Eigen::VectorXd::Zero(nf);
 
   // Fixed faces; then fix the most stable face of every free group that has no anchor.
   fixed_.assign(static_cast<std::size_t>(nf), 0);
@@ -149,8 +150,18 @@ double FrameSmoother::smoothing_energy(const Eigen::VectorXd& alpha) const {
   return E;
 }
 
+void FrameSmoother::set_alignment_targets(const Eigen::VectorXd& beta) {
+  if (beta.size() != beta_.size()) throw std::invalid_argument("FrameSmoother: β must have one entry per face");
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) {
+    const int t = unknowns_[i];
+    // ∂/∂α_t of (1-λ) a_t (α_t - β_t)² puts (1-λ) a_t β_t into b_t.
+    b_[static_cast<Eigen::Index>(i)] += (1 - lambda_) * align_[t] * (beta[t] - beta_[t]);
+  }
+  beta_ = beta;
+}
+
 double FrameSmoother::alignment_energy(const Eigen::VectorXd& alpha) const {
-  return (align_.array() * alpha.array().square()).sum();
+  return (align_.array() * (alpha - beta_).array().square()).sum();
 }
 
 }  // namespace quadcover

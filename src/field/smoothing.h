@@ -38,13 +38,17 @@ class FrameSmoother {
   /// m_e += k on interior edge e: θ_e becomes wrap(θ_e - (π/2)k) and only the two entries b_s, b_t change
   /// (5.2.2: by ∓λω_e(π/2)k when no wrap occurs). The result equals a smoother built from the new matching.
   void change_matching(int e, int k);
+  /// Aligns E_A to target rotations instead of α = 0: E_A(α) = Σ_trusted a_t (α_t - β_t)² (beyond the thesis:
+  /// lets E_A pull towards the curvature frames when X⁰ is not them, e.g. after the power fill). Like a matching
+  /// change it only updates b. β  #F (entries of untrusted and fixed faces are ignored); all zeros restores (5.3).
+  void set_alignment_targets(const Eigen::VectorXd& beta);
   /// The minimizer α of (5.3) for the current matching: #F, 0 at fixed faces.
   Eigen::VectorXd solve() const;
   /// X_t = e^{iα_t} X⁰_t with the current matching (a cross field).
   FrameField rotated(const Eigen::VectorXd& alpha) const;
 
   double smoothing_energy(const Eigen::VectorXd& alpha) const;  ///< E_S(α)
-  double alignment_energy(const Eigen::VectorXd& alpha) const;  ///< E_A(α)
+  double alignment_energy(const Eigen::VectorXd& alpha) const;  ///< E_A(α) with the current targets β
 
   const Eigen::VectorXi& matching() const { return matching_; }
   const Eigen::VectorXd& curvature() const { return theta_; }  ///< θ of X⁰ with the current matching, #E
@@ -57,7 +61,7 @@ class FrameSmoother {
   const Mesh* mesh_;
   Eigen::VectorXcd X0_;
   Eigen::VectorXi matching_;
-  Eigen::VectorXd theta_, omega_, align_;  // θ_e, ω_e (#E); a_t (#F)
+  Eigen::VectorXd theta_, omega_, align_, beta_;  // θ_e, ω_e (#E); a_t, β_t (#F)
   double lambda_;
   std::vector<char> fixed_;
   std::vector<int> unknown_of_face_, unknowns_;

@@ -31,10 +31,10 @@ TEST_P(ClosedPipeline, IndicesEnergiesAndDeterminism) {
   std::size_t fractional = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v) fractional += q[v] % 4 != 0;
   EXPECT_EQ(r.branch_points.size(), fractional);
-  // The result is smoother than the raw curvature frames, and smoothing (5.3) lowers E_S of the filled field.
+  // The result is smoother than the raw curvature frames. (Smoothing (5.3) need not lower E_S of the power
+  // fill: its E_A pulls the trusted frames back towards the curvature directions.)
   const double raw = smoothing_energy(mesh, cross_field_with_straightest_matching(mesh, r.curvature.direction));
   EXPECT_LT(r.energy_smooth, raw);
-  EXPECT_LT(r.energy_smooth, r.energy_smooth_initial);
   EXPECT_NEAR(r.energy_smooth, smoothing_energy(mesh, r.field), 1e-9 * r.energy_smooth);
   // At least the requested fraction is trusted.
   EXPECT_GE(std::count(r.trusted.begin(), r.trusted.end(), 1), static_cast<long>(std::ceil(0.2 * nf)));
@@ -55,6 +55,7 @@ TEST_P(ClosedPipeline, PropagationSeamsAreSmoothedAndAvoidedByTheSmoothFill) {
   EXPECT_LT(r.energy_smooth, 0.5 * r.energy_smooth_initial);
   const FrameFieldResult smooth = compute_frame_field_detailed(mesh);
   EXPECT_LT(smooth.energy_smooth_initial, 0.5 * r.energy_smooth_initial);
+  EXPECT_LE(smooth.energy_smooth, 1.01 * r.energy_smooth) << "propagated and smoothed: " << r.energy_smooth;
   EXPECT_LE(smooth.branch_points.size(), r.branch_points.size());
 }
 
@@ -113,7 +114,7 @@ namespace {
 // Regression bounds on the number of branch points of the default (smooth-fill) field, about 15% above the
 // counts measured when the fill was introduced (bunny_3k 42, cow 182, bunny_20k_holes 66; thesis Table 7.1:
 // 37 on the bunny), and on the mean deviation from the principal directions on the most stable faces (measured
-// 11.2°, 7.2°, 14.9°). Breadth-first propagation leaves 77 / 259 / 251 branch points on the same meshes. Poincaré–Hopf with
+// 7.7°, 6.1°, 7.4°). Breadth-first propagation leaves 77 / 259 / 251 branch points on the same meshes. Poincaré–Hopf with
 // boundaries (boundary vertices have index 0, so the interior sum is not χ there) is checked on closed meshes.
 struct BranchBound {
   const char* mesh;
@@ -141,8 +142,8 @@ TEST_P(BranchPointRegression, FewBranchPoints) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, BranchPointRegression,
-                         ::testing::Values(BranchBound{"bunny_3k", 48, 13}, BranchBound{"cow", 207, 9},
-                                           BranchBound{"bunny_20k_holes", 76, 17}),
+                         ::testing::Values(BranchBound{"bunny_3k", 48, 9}, BranchBound{"cow", 207, 8},
+                                           BranchBound{"bunny_20k_holes", 76, 9}),
                          [](const auto& info) { return std::string(info.param.mesh); });
 
 }  // namespace

@@ -95,6 +95,41 @@ TEST(Smoothing, ResolveAfterMatchingChangeEqualsFreshSolve) {
   EXPECT_LT((smoother.curvature() - fresh.curvature()).norm(), 1e-12);
 }
 
+// Alignment targets β (E_A = Σ a_t(α_t - β_t)²) only move b: the re-solve minimizes the new energy, equals a
+// smoother that starts from the frames rotated by β with zero targets (up to that rotation), and β = 0 restores
+// the thesis solution.
+TEST(Smoothing, AlignmentTargets) {
+  const Propagated s = propagated("torus_5k");
+  const double lambda = 0.5;
+  FrameSmoother smoother(s.mesh, s.field, s.stability, s.trusted, {}, lambda);
+  const Eigen::VectorXd plain = smoother.solve();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> angle(-0.3, 0.3);
+  Eigen::VectorXd beta(s.mesh.num_faces());
+  for (int t = 0; t < beta.size(); ++t) beta[t] = angle(rng);
+  smoother.set_alignment_targets(beta);
+  const Eigen::VectorXd alpha = smoother.solve();
+  EXPECT_GT((alpha - plain).norm(), 1e-2);
+  const auto E = [&](const Eigen::VectorXd& a) {
+    return lambda * smoother.smoothing_energy(a) + (1 - lambda) * smoother.alignment_energy(a);
+  };
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 10; ++trial) {
+    Eigen::VectorXd d(s.mesh.num_faces());
+    for (int t = 0; t < d.size(); ++t) d[t] = normal(rng);
+    EXPECT_GT(E(alpha + 1e-3 * d), E(alpha));
+  }
+  // Rotating the input by β: α' = α - β solves the problem with zero targets (matching unchanged; |β| < π/4
+  // keeps every wrapped θ away from ±π here, so θ' = θ - β_s + β_t exactly).
+  FrameField turned = s.field;
+  for (int t = 0; t < beta.size(); ++t) turned.X[t] *= std::polar(1.0, beta[t]);
+  turned.Y = Complex(0, 1) * turned.X;
+  const FrameSmoother shifted(s.mesh, turned, s.stability, s.trusted, {}, lambda);
+  EXPECT_LT((shifted.solve() - (alpha - beta)).norm(), 1e-8 * alpha.norm());
+  smoother.set_alignment_targets(Eigen::VectorXd::Zero(s.mesh.num_faces()));
+  EXPECT_LT((smoother.solve() - plain).norm(), 1e-10 * plain.norm());
+}
+
 // Fixed faces never rotate; with λ = 1 and no fixed faces one face per component is pinned (A is singular
 // otherwise) and the result is a minimizer of E_S alone.
 TEST(Smoothing, FixedFacesAndPinning) {
