@@ -138,8 +138,7 @@ PowerFieldResult smooth_power_field(const Mesh& mesh, const PowerFieldProblem& p
         x = cholesky.solve(rhs);
         ++r.iterations;
         double moved = 0;
-        for (int i = 0; i < n; ++i)
-          moved = std::max(moved, std::abs(std::arg(x[i] * std::conj(previous[i]))));
+        for (int i = 0; i < n; ++i) moved = std::max(moved, std::abs(std::arg(x[i] * std::conj(previous[i]))));
         previous = x;
         if (moved < 1e-6) break;
       }

@@ -21,10 +21,10 @@ namespace quadcover {
 /// μ is the alignment strength: features of the target smaller than about 1/√μ of the component's size are
 /// smoothed away.
 struct PowerFieldProblem {
-  Eigen::VectorXcd target;       ///< #F target directions d_t (any nonzero length; only the direction is used)
-  Eigen::VectorXd weight;        ///< #F alignment weights a_t >= 0 (0: the face only follows its neighbours)
-  std::vector<char> fixed;       ///< #F (or empty): faces whose cross is d_t exactly (hard constraint)
-  double alignment = 100.0;      ///< μ
+  Eigen::VectorXcd target;   ///< #F target directions d_t (any nonzero length; only the direction is used)
+  Eigen::VectorXd weight;    ///< #F alignment weights a_t >= 0 (0: the face only follows its neighbours)
+  std::vector<char> fixed;   ///< #F (or empty): faces whose cross is d_t exactly (hard constraint)
+  double alignment = 100.0;  ///< μ
   /// Ginzburg–Landau weight σ >= 0: after the linear solve, `iterations` majorize-minimize steps decrease
   ///   E(u) + σ Σ_t (A_t/A_M) (|u_t| - 1)²,
   /// each minimizing E(u) + σ Σ_t (A_t/A_M)|u_t - u⁰_t/|u⁰_t||² around the previous iterate u⁰ (one factorization
@@ -32,7 +32,7 @@ struct PowerFieldProblem {
   /// singularity cost energy ~ log(core size), so nearby ± pairs annihilate; σ ~ 1/ε², ε the core radius as a
   /// fraction of √A_M. 0 keeps the linear solution.
   double unit_weight = 0.0;
-  int iterations = 0;  ///< majorize-minimize steps (stops early when no |u_t| direction moves by more than 1e-6)
+  int iterations = 0;  ///< majorize-minimize steps (fewer once no u_t turns by more than 1e-6 rad in a step)
 };
 
 struct PowerFieldResult {

@@ -114,8 +114,9 @@ namespace {
 // Regression bounds on the number of branch points of the default (smooth-fill) field, about 15% above the
 // counts measured when the fill was introduced (bunny_3k 42, cow 182, bunny_20k_holes 66; thesis Table 7.1:
 // 37 on the bunny), and on the mean deviation from the principal directions on the most stable faces (measured
-// 7.7°, 6.1°, 7.4°). Breadth-first propagation leaves 77 / 259 / 251 branch points on the same meshes. Poincaré–Hopf with
-// boundaries (boundary vertices have index 0, so the interior sum is not χ there) is checked on closed meshes.
+// 7.7°, 6.1°, 7.4°). Breadth-first propagation leaves 77 / 259 / 251 branch points on the same meshes.
+// Poincaré–Hopf is checked where it applies: boundary vertices have index 0 by convention, so with boundaries the
+// sum is not χ.
 struct BranchBound {
   const char* mesh;
   std::size_t max_branch_points;
