@@ -89,6 +89,19 @@ TEST(Pipeline, CylinderAlignedToBoundary) {
   }
 }
 
+// Nothing to follow: a flat grid has no curvature (every ω^stable = 0) and, with features off, no constraint.
+// The smooth fill then holds one face and returns the parallel field: E_S = 0 and no branch point.
+TEST(Pipeline, FlatGridWithoutFeaturesIsParallel) {
+  const Mesh mesh = testing::make_grid(10);
+  FieldOptions options;
+  options.features.boundaries = false;
+  options.features.sharp_angle_degrees = 0;
+  const FrameFieldResult r = compute_frame_field_detailed(mesh, options);
+  EXPECT_TRUE(r.branch_points.empty());
+  EXPECT_LT(r.energy_smooth, 1e-20);
+  EXPECT_LT(field_curvature(mesh, r.field).cwiseAbs().maxCoeff(), 1e-9);
+}
+
 // Options are honoured: the trusted fraction, disabling features, and zero smoothing rounds.
 TEST(Pipeline, OptionsAreHonoured) {
   const Mesh mesh = testing::load_test_mesh("fandisk");
