@@ -25,5 +25,7 @@ fi
 # three.js for the HTML report is vendored in html/vendor (MIT); re-fetch it from npm if it is missing.
 [ -f html/vendor/three.module.min.js ] || bash html/update_three.sh
 JOBS=${JOBS:-$(nproc)}
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${QUADCOVER_CMAKE_ARGS:-} >/dev/null
+# The Python module is part of the main build (for Debian's /usr/bin/python3), so tests need no second build.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DQUADCOVER_BUILD_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3 \
+  ${QUADCOVER_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j"$JOBS"
