@@ -71,6 +71,7 @@ class Topology:
         self.boundary_edges = 0
         self.components = 0
         self.unreferenced_vertices = 0
+        self.edge_faces = {}  # (min v, max v) -> [faces]
 
     @property
     def manifold(self):
@@ -106,6 +107,7 @@ def polygon_topology(num_vertices, faces, max_problems=10):
     for e, fs in undirected.items():
         if len(fs) > 2:
             t.problems.append(f"edge {e} in {len(fs)} faces {fs}")
+    t.edge_faces = undirected
     t.edges = len(undirected)
     t.boundary_edges = sum(1 for fs in undirected.values() if len(fs) == 1)
     # One fan per vertex: faces around v linked through the edges (v, x) they share.
@@ -131,8 +133,6 @@ def polygon_topology(num_vertices, faces, max_problems=10):
         fans = len({find(i) for i in range(len(corners))})
         if fans > 1:
             t.problems.append(f"vertex {v}: {fans} separate fans of faces meet there")
-    if t.unreferenced_vertices:
-        t.problems.append(f"{t.unreferenced_vertices} vertices used by no face")
     t.vertices = num_vertices - t.unreferenced_vertices
     # Components through shared edges.
     parent = list(range(len(faces)))
