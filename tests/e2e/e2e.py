@@ -12,11 +12,13 @@ the param and remesh outputs; the files are re-read here and checked independent
     vertex); its face / non-quad counts and closedness are those of the report; an all-quad closed output of a
     closed input has the input's Euler characteristic; the face count matches the parameter-space area of the
     extracted triangles (one quad = one unit square; a k-gon at most (k-2)/2).
+  - render: the param OBJ, its UV layout and the quad OBJ render to PNGs that decode, have the requested size and
+    are not blank.
   - metrics: re-measuring the written quad OBJ gives the remesh report's numbers; on the param OBJ it finds the
     same flips and a seamless map.
 Every mesh of tests/data/bad/ gives exit status 2 from info, field, param and remesh with a message that names
 file:line, and leaves no output file (nor a temporary one) behind.
-Determinism (--determinism): the same input and options give byte-identical param OBJ, remesh OBJ and field JSON
+Determinism (--determinism): the same input and options give byte-identical param OBJ, remesh OBJ, field JSON, PNG
 and the same reports minus timing keys, run twice and in batch mode with -j2 on two files.
 With --metrics-out, the key metrics of every mesh are written as JSON for tests/regression/check_regression.py.
 
@@ -213,6 +215,23 @@ def check_remesh(binary, mesh_path, name, out, info):
     return rep, topo, dt
 
 
+def check_render(binary, name, out):
+    """render: the param OBJ (checkerboard), its UV layout and the quad OBJ (wireframe) as small PNGs that decode,
+    have the requested size and show something (not just background)."""
+    t0 = time.monotonic()
+    for src, extra, tag in ((name + ".param.obj", [], "param"), (name + ".param.obj", ["--uv-layout"], "uv"),
+                            (name + ".quad.obj", [], "quad")):
+        png = os.path.join(out, f"{name}.{tag}.png")
+        run(binary, ["render", os.path.join(out, src), "-o", png, "--size", "96x64", "--supersample", "1", "-q"] + extra)
+        w, h, ch, rows = objcheck.read_png(png)
+        check((w, h) == (96, 64), f"{name}: render {tag}: {w}x{h} instead of 96x64")
+        pixels = [r[i:i + ch] for r in rows for i in range(0, len(r), ch)]
+        covered = sum(1 for px in pixels if px != pixels[0]) / len(pixels)
+        check(covered > 0.03 and len(set(pixels)) >= 2,
+              f"{name}: render {tag} looks blank ({100 * covered:.1f}% non-background, {len(set(pixels))} colours)")
+    return time.monotonic() - t0
+
+
 def key_metrics(param_rep, remesh_rep, topo):
     """The numbers the regression file tracks (tests/regression/metrics.json)."""
     pq, q = remesh_rep["parameterization"], remesh_rep["quad_mesh"]
@@ -245,6 +264,7 @@ def run_mesh(binary, name, out):
         times["field"] = check_field(binary, mesh_path, name, out, info)
         param_rep, times["param"] = check_param(binary, mesh_path, name, out, info, src)
         remesh_rep, topo, times["remesh"] = check_remesh(binary, mesh_path, name, out, info)
+        times["render"] = check_render(binary, name, out)
         return name, None, key_metrics(param_rep, remesh_rep, topo), times
     except (Failure, objcheck.ObjError, KeyError, ValueError, OSError) as e:
         return name, f"{type(e).__name__}: {e}", None, times
@@ -323,6 +343,7 @@ def determinism(binary, out, names):
             run(binary, ["field", path, "-o", n + ".field.json", "-q"], cwd=d)
             run(binary, ["param", path, "-o", n + ".param.obj", "--report", n + ".param.json", "-q"], cwd=d)
             run(binary, ["remesh", path, "-o", n + ".quad.obj", "--report", n + ".remesh.json", "-q"], cwd=d)
+            run(binary, ["render", n + ".param.obj", "-o", n + ".png", "--size", "120x90", "-q"], cwd=d)
     c = os.path.join(out, "det-c")
     os.makedirs(c)
     run(binary, ["field"] + inputs + ["-o", ".", "-j", "2", "-q"], cwd=c)
@@ -344,6 +365,8 @@ def determinism(binary, out, names):
             else:
                 same_files(a, cfile, f"{n}{suffix} batch -j2 vs single")
             compared += 2
+        same_files(os.path.join(dirs["a"], n + ".png"), os.path.join(dirs["b"], n + ".png"), f"{n}.png run twice")
+        compared += 1
     return compared
 
 
@@ -375,7 +398,23 @@ def self_test():
     assert bad.max_translation_defect > 0.1, vars(bad)
     areas = objcheck.uv_signed_areas(obj_with(0))
     assert areas[0] > 0 and areas[1] > 0, areas  # a rotation keeps orientation
-    print("e2e self-test: checkers detect fins, flips, pinches, open/closed, seams off Z[i]: ok")
+    # PNG decoding: a 3x2 RGB image with Sub and Up filters round-trips.
+    import struct
+    import zlib
+    pixels = [[(10, 20, 30), (40, 50, 60), (70, 80, 90)], [(11, 21, 31), (41, 51, 61), (71, 81, 91)]]
+    raw = bytes([1]) + bytes(pixels[0][0]) + bytes((pixels[0][x][k] - pixels[0][x - 1][k]) & 255
+                                                   for x in (1, 2) for k in range(3))
+    raw += bytes([2]) + bytes((pixels[1][x][k] - pixels[0][x][k]) & 255 for x in range(3) for k in range(3))
+    chunk = lambda kind, body: (struct.pack(">I", len(body)) + kind + body +
+                                struct.pack(">I", zlib.crc32(kind + body)))
+    png = os.path.join(tempfile.mkdtemp(prefix="e2e-self-"), "t.png")
+    with open(png, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 3, 2, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+    w, h, ch, rows = objcheck.read_png(png)
+    assert (w, h, ch) == (3, 2, 3) and [list(r) for r in rows] == [sum(map(list, row), []) for row in pixels], rows
+    shutil.rmtree(os.path.dirname(png))
+    print("e2e self-test: checkers detect fins, flips, pinches, open/closed, seams off Z[i]; PNG decoding: ok")
 
 
 # ---- main -------------------------------------------------------------------------------------------------------

@@ -216,3 +216,58 @@ def mesh_area(obj):
             cx = (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
             total += 0.5 * math.sqrt(sum(x * x for x in cx))
     return total
+
+
+def read_png(path):
+    """Decodes an 8-bit non-interlaced PNG (grey, RGB, RGBA) with zlib: returns (width, height, channels, rows),
+    rows a list of bytes objects after undoing the scanline filters (PNG spec 9.2)."""
+    import struct
+    import zlib
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ObjError(f"{path}: not a PNG file")
+    pos, idat, header = 8, b"", None
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if zlib.crc32(kind + body) != struct.unpack(">I", data[pos + 8 + length:pos + 12 + length])[0]:
+            raise ObjError(f"{path}: CRC error in chunk {kind!r}")
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"IEND":
+            break
+        pos += 12 + length
+    if header is None:
+        raise ObjError(f"{path}: no IHDR")
+    w, h, depth, colour, _, _, interlace = header
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}.get(colour)
+    if depth != 8 or channels is None or interlace:
+        raise ObjError(f"{path}: unsupported PNG (depth {depth}, colour type {colour}, interlace {interlace})")
+    raw = zlib.decompress(idat)
+    stride = w * channels
+    if len(raw) != h * (stride + 1):
+        raise ObjError(f"{path}: {len(raw)} bytes of image data for {w}x{h}x{channels}")
+    rows, prev = [], bytearray(stride)
+    for y in range(h):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = prev[i], prev[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+            elif kind != 0:
+                raise ObjError(f"{path}: unknown filter {kind} in row {y}")
+        rows.append(bytes(line))
+        prev = line
+    return w, h, channels, rows
