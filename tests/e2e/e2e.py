@@ -21,11 +21,13 @@ file:line, and leaves no output file (nor a temporary one) behind.
 Determinism (--determinism): the same input and options give byte-identical param OBJ, remesh OBJ, field JSON, PNG
 and the same reports minus timing keys, run twice and in batch mode with -j2 on two files.
 With --metrics-out, the key metrics of every mesh are written as JSON for tests/regression/check_regression.py.
+Accepted open defects are listed per mesh and issue key under "known_issues" in tests/regression/metrics.json
+(e.g. "unreferenced_vertices"): the check then prints a note instead of failing, and says when it stops occurring.
 
 Usage: /usr/bin/python3 tests/e2e/e2e.py --bin build/quadcover [--jobs 2] [--determinism] [--metrics-out M.json]
                                          [--meshes bunny_3k,torus_5k] [--self-test]
-All shipped meshes run every command (the largest, camelhead_boundary and bunny_20k_holes, take ~5 s each for
-remesh); the whole step stays well under the 3-minute budget on 2 cores.
+All shipped meshes run every command (the largest, camelhead_boundary and bunny_20k_holes, take 1-5 s each for
+remesh); the whole step takes 20-100 s on 2 cores depending on load, well under its 3-minute budget.
 """
 
 import argparse
