@@ -119,7 +119,7 @@ def main():
         print("better: " + line)
     for line in worse:
         print("WORSE:  " + line)
-    checked = sum(len(v) for v in baseline["meshes"].values())
+    checked = sum(len(v) for m, v in baseline["meshes"].items() if not args.subset or m in current)
     print(f"regression: {checked} baseline values, {len(worse)} worse, {len(better)} better")
     if worse:
         print(HINT)
