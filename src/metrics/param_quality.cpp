@@ -5,6 +5,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "param/seams.h"
 #include "quad/transitions.h"
 
 namespace quadcover {
@@ -35,9 +36,12 @@ ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, cons
     J[f] = map_jacobian(mesh, param.uv, f);
     const double det = J[f].determinant();
     q.uv_area += std::abs(det) * A[f];
-    if (det < 0) ++q.flipped_triangles;
-    if (det == 0) ++q.degenerate_triangles;
   }
+  // Signs from the parameter areas with the relative zero threshold of param/seams.h, so that a triangle collapsed
+  // to round-off counts as degenerate, never as a flip.
+  const FlipReport flips = flipped_triangles(param.uv);
+  q.flipped_triangles = flips.flipped;
+  q.degenerate_triangles = flips.degenerate;
   q.scale = q.uv_area > 0 ? std::sqrt(mesh.total_area() / q.uv_area) : 1.0;
   q.arap_per_face.resize(nf);
   double weighted = 0;
