@@ -19,7 +19,7 @@
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "optimize/curl_energy.h"
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 namespace {
 

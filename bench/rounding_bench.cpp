@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 namespace {
 

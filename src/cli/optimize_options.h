@@ -9,13 +9,13 @@
 #include "common/progress.h"
 #include "field/compute_frame_field.h"
 #include "optimize/optimize_field.h"
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 namespace quadcover::cli {
 
 struct OptimizeCliOptions {
   std::string optimize = "relocate";  ///< see optimize/optimize_field.h
-  std::string rounding = "search3";   ///< see optimize/rounding.h
+  std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = 3000;         ///< E_D evaluations of Algorithm 6.1 (0 = unlimited)
 };
 

@@ -9,6 +9,7 @@
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/lattice.h"
+#include "param/period_rounding.h"
 #include "param/parameterization.h"
 
 namespace quadcover {
@@ -23,6 +24,10 @@ struct ParamOptions {
   /// Default density when neither is given: h = default_edge_factor × mean mesh edge length (≈ #F / 9 quads on
   /// a regular mesh).
   double default_edge_factor = 2.0;
+  /// Rounding of the periods to the lattice (6.3): the period matrix P_ij = ⟨H_i, Σ_j⟩ of the harmonic fields of
+  /// the symmetric paths is computed column by column (6.3.2) and E_H = ½ dᵀ P d is minimized by the strategy.
+  /// Direct skips P (nearest lattice point, 4.2.2).
+  RoundingOptions rounding;
   /// Move even branch points to integer points by adjusting one period each (rotated lattice only).
   bool fix_even_branch_points = true;
   /// Put boundary and sharp feature curves on integer iso-lines where the field is aligned with them (beyond the

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "common/errors.h"
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 namespace quadcover {
 namespace {

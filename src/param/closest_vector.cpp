@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "common/errors.h"
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 namespace quadcover {
 

@@ -1,4 +1,4 @@
-#include "optimize/rounding.h"
+#include "param/period_rounding.h"
 
 #include <Eigen/Cholesky>
 #include <cmath>
