@@ -1,8 +1,13 @@
 #include "optimize/curl_energy.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "common/errors.h"
 #include "cover/complex_stiffness.h"
@@ -18,10 +23,24 @@ int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 }  // namespace
 
+struct CurlEnergy::Workspaces {
+  tbb::enumerable_thread_specific<EstimateWorkspace> per_thread;
+  EstimateWorkspace serial;
+};
+
 CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options)
-    : mesh_(&mesh), smoother_(&smoother), options_(options) {
+    : workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother), options_(options) {
   recompute_from_scratch();
 }
+
+CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
+                       const CurlEnergyOptions& options)
+    : CurlEnergy(mesh, smoother, options) {
+  system_ = std::make_unique<SmoothingSystem>(mesh, smoother, weights);
+}
+
+CurlEnergy::~CurlEnergy() = default;
+CurlEnergy::CurlEnergy(CurlEnergy&&) noexcept = default;
 
 Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
   Eigen::SparseMatrix<Complex> A = complex_nonconforming_stiffness(*mesh_, smoother_->matching());
@@ -42,9 +61,10 @@ double CurlEnergy::recompute_from_scratch() {
   alpha_ = smoother_->solve();
   field_ = smoother_->rotated(alpha_);
   factor_ = UpdatableCholesky(shifted_stiffness());
-  factor_.set_rhs(-complex_curl_star(*mesh_, field_));  // 𝔏̄* v = -curl* X (6.1)
+  factor_.set_rhs(rhs(alpha_));  // 𝔏̄* v = -curl* X (6.1)
   trial_ = FactorTrial(factor_.size());
   pending_valid_ = false;
+  estimates_ready_ = false;
   return energy();
 }
 
@@ -56,22 +76,27 @@ int CurlEnergy::layer_after(int e, int m) const {
   return mod4(r == s ? -m : m);
 }
 
-StarChange CurlEnergy::stiffness_change(int e, int delta) const {
+template <class Layer>
+StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
   StarChange c;
   c.k = e;
-  if (delta == 0 || mesh_->is_boundary_edge(e)) return c;
   const int g = std::max(mesh_->EF()(e, 0), mesh_->EF()(e, 1));  // non-reference face: its layer of e changes
   int a = 0;
   while (mesh_->FE()(g, a) != e) ++a;
-  const int mu_new = layer_after(e, field_.matching[e] + delta);
+  const int mu_new = layer_after(e, new_matching);
   const double area = mesh_->face_areas()[g];
   for (int b = 0; b < 3; ++b) {
     if (b == a) continue;
     // 𝔏̄*(e, e_b) from face g = K_ab i^{μ_b - μ_a} (3.8), K_ab = ⟨e_a, e_b⟩ / A_g (1.5).
     const double K = std::real(std::conj(mesh_->edge_vector_local(g, a)) * mesh_->edge_vector_local(g, b)) / area;
-    c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu_(g, b) - mu_new) - ipow(mu_(g, b) - mu_(g, a)))});
+    c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu(g, b) - mu_new) - ipow(mu(g, b) - mu(g, a)))});
   }
   return c;
+}
+
+StarChange CurlEnergy::stiffness_change(int e, int delta) const {
+  if (delta == 0 || mesh_->is_boundary_edge(e)) return StarChange{e, {}};
+  return star_change(e, field_.matching[e] + delta, [&](int f, int k) { return mu_(f, k); });
 }
 
 double CurlEnergy::curvature(int e) const {
@@ -135,20 +160,23 @@ void CurlEnergy::commit() {
   trial_.commit(factor_);
   trial_.reset();
   pending_valid_ = false;
+  estimates_ready_ = false;
 }
 
 // -curl* (3.3) of X_f = e^{iα_f} X⁰_f (Y = iX) with the layers μ: b_e = Σ_f conj(i^{μ(f,k)}) ⟨Z_f, e_f⟩, the same
 // sum as cover/complex_stiffness.cpp but with cached edge vectors and layers (no global layer recomputation).
+// One face's term of -curl* (3.3) at its edge k for X_f = e^{iα}X⁰_f (Y = iX) on layer μ: conj(i^μ) ⟨Z_f, e⟩ with
+// ⟨Z, e⟩ = ⟨X, e⟩ + i⟨Y, e⟩ (the sum of cover/complex_stiffness.cpp, with cached edge vectors and layers).
+Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
+  const Complex X = std::polar(1.0, alpha) * X0_[f];
+  const Complex ce = std::conj(edge_vec_(f, k));
+  return ipow(-mu) * Complex(std::real(ce * X), std::real(ce * Complex(-X.imag(), X.real())));
+}
+
 Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
   Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
-  for (int f = 0; f < mesh_->num_faces(); ++f) {
-    const Complex X = std::polar(1.0, alpha[f]) * X0_[f];
-    for (int k = 0; k < 3; ++k) {
-      const Complex ce = std::conj(edge_vec_(f, k));
-      const Complex ez(std::real(ce * X), std::real(ce * Complex(-X.imag(), X.real())));
-      b[mesh_->FE()(f, k)] += ipow(-mu_(f, k)) * ez;
-    }
-  }
+  for (int f = 0; f < mesh_->num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += contribution(f, k, alpha[f], mu_(f, k));
   return b;
 }
 
@@ -161,6 +189,133 @@ Eigen::VectorXd CurlEnergy::distortion_shares() const {
     share[e] = std::abs(std::real(std::conj(v[e]) * bp[i]));
   }
   return share;
+}
+
+// ∇_α E_D: E_D = ½ bᴴ𝔏̄*⁻¹b, so ∂E_D/∂α_f = Re(vᴴ ∂b/∂α_f) with v = 𝔏̄*⁻¹b; ∂/∂α_f of face f's term c_fk is
+// -i·c_fk (the term is linear in conj(X_f) = e^{-iα_f} conj(X⁰_f)). z = A⁻¹∇_α E_D (5.4).
+void CurlEnergy::prepare_estimates() {
+  if (!system_) throw std::logic_error("CurlEnergy::estimate needs the SmoothingWeights constructor");
+  if (estimates_ready_) return;
+  const Eigen::VectorXcd v = factor_.solve_full();
+  grad_ = Eigen::VectorXd::Zero(mesh_->num_faces());
+  for (int f = 0; f < mesh_->num_faces(); ++f) {
+    if (!system_->is_free(f)) continue;
+    double g = 0;
+    for (int k = 0; k < 3; ++k)
+      g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * contribution(f, k, alpha_[f], mu_(f, k)));
+    grad_[f] = g;
+  }
+  adjoint_ = system_->solve(grad_);
+  estimates_ready_ = true;
+}
+
+double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const {
+  if (!estimates_ready_) throw std::logic_error("CurlEnergy::estimate before prepare_estimates");
+  const int nf = mesh_->num_faces(), ne = mesh_->num_edges();
+  if (static_cast<int>(ws.face_stamp.size()) != nf || static_cast<int>(ws.edge_stamp.size()) != ne) {
+    ws.face_stamp.assign(static_cast<std::size_t>(nf), 0);
+    ws.edge_stamp.assign(static_cast<std::size_t>(ne), 0);
+    ws.edge_slot.assign(static_cast<std::size_t>(ne), 0);
+    ws.stamp = 0;
+  }
+  if (++ws.stamp == 0) {
+    std::fill(ws.face_stamp.begin(), ws.face_stamp.end(), 0);
+    std::fill(ws.edge_stamp.begin(), ws.edge_stamp.end(), 0);
+    ws.stamp = 1;
+  }
+  auto t0 = Clock::now();
+  ws.m_override.clear(), ws.theta_override.clear(), ws.mu_override.clear(), ws.db_smooth.clear();
+  auto layer = [&](int f, int k) {
+    for (auto it = ws.mu_override.rbegin(); it != ws.mu_override.rend(); ++it)
+      if (std::get<0>(*it) == f && std::get<1>(*it) == k) return std::get<2>(*it);
+    return mu_(f, k);
+  };
+  ws.trial.reset();
+  bool ok = true;
+  for (const auto& c : changes) {
+    if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
+    int m = field_.matching[c.edge];
+    double theta = smoother_->curvature()[c.edge];
+    for (auto& [e, v] : ws.m_override) if (e == c.edge) m = v;
+    for (auto& [e, v] : ws.theta_override) if (e == c.edge) theta = v;
+    FaceEntry fe[2];
+    const int n = system_->rhs_change(c.edge, c.delta, theta, fe);  // Δb of (5.4), θ_e updated
+    ws.db_smooth.insert(ws.db_smooth.end(), fe, fe + n);
+    // Star change of 𝔏̄* one edge at a time with the layers as changed so far (6.2.1).
+    ok = ok && ws.trial.add_star_change(factor_, star_change(c.edge, m + c.delta, layer));
+    const int g = std::max(mesh_->EF()(c.edge, 0), mesh_->EF()(c.edge, 1));
+    int a = 0;
+    while (mesh_->FE()(g, a) != c.edge) ++a;
+    ws.mu_override.emplace_back(g, a, layer_after(c.edge, m + c.delta));
+    ws.m_override.emplace_back(c.edge, m + c.delta);
+    ws.theta_override.emplace_back(c.edge, theta);
+  }
+  ws.timings.update += seconds_since(t0);
+  if (!ok) return std::numeric_limits<double>::infinity();
+  t0 = Clock::now();
+  // Local re-smoothing Δα_P (SmoothingSystem::solve_local).
+  system_->solve_local(ws.db_smooth, options_.local_rings, options_.local_tolerance, ws.smoothing);
+  ws.timings.smoothing += seconds_since(t0);
+  t0 = Clock::now();
+  // Δ(-curl*X) on the edges of the faces whose angle or layers changed: a sparse right-hand side change.
+  ws.db_curl.clear();
+  auto add_face = [&](int f, double dalpha) {
+    if (ws.face_stamp[static_cast<std::size_t>(f)] == ws.stamp) return;
+    ws.face_stamp[static_cast<std::size_t>(f)] = ws.stamp;
+    for (int k = 0; k < 3; ++k) {
+      const int e = mesh_->FE()(f, k);
+      const Complex d = contribution(f, k, alpha_[f] + dalpha, layer(f, k)) - contribution(f, k, alpha_[f], mu_(f, k));
+      if (ws.edge_stamp[static_cast<std::size_t>(e)] != ws.stamp) {
+        ws.edge_stamp[static_cast<std::size_t>(e)] = ws.stamp;
+        ws.edge_slot[static_cast<std::size_t>(e)] = static_cast<int>(ws.db_curl.size());
+        ws.db_curl.push_back({e, d});
+      } else {
+        ws.db_curl[static_cast<std::size_t>(ws.edge_slot[static_cast<std::size_t>(e)])].value += d;
+      }
+    }
+  };
+  const auto& patch = ws.smoothing.faces;
+  for (std::size_t i = 0; i < patch.size(); ++i) add_face(patch[i], ws.smoothing.x[i]);
+  for (const auto& o : ws.mu_override) add_face(std::get<0>(o), 0.0);  // layer changed, angle fixed or unchanged
+  ws.trial.add_rhs_change(factor_, ws.db_curl);
+  // First-order far field: zᵀΔb - (∇_α E_D)ᵀΔα_P.
+  double correction = 0;
+  for (const auto& fe : ws.db_smooth) correction += adjoint_[fe.face] * fe.value;
+  for (std::size_t i = 0; i < patch.size(); ++i) correction -= grad_[patch[i]] * ws.smoothing.x[i];
+  ws.timings.curl += seconds_since(t0);
+  t0 = Clock::now();
+  const double e_local = 0.5 * ws.trial.evaluate(factor_);  // reach-limited forward solve
+  ws.timings.solve += seconds_since(t0);
+  ++ws.timings.evaluations;
+  ws.patch_faces += static_cast<long>(patch.size());
+  ws.reach_columns += ws.trial.reach();
+  return e_local + correction;
+}
+
+void CurlEnergy::estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out,
+                                int threads) {
+  prepare_estimates();
+  if (candidates.size() <= 1 || threads == 1) {
+    for (std::size_t i = 0; i < candidates.size(); ++i) out[i] = estimate(candidates[i], workspaces_->serial);
+    return;
+  }
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+      out[i] = estimate(candidates[i], workspaces_->per_thread.local());
+    });
+  });
+}
+
+CurlEnergyTimings CurlEnergy::estimate_timings() const {
+  CurlEnergyTimings t;
+  auto add = [&](const EstimateWorkspace& w) {
+    t.smoothing += w.timings.smoothing, t.curl += w.timings.curl, t.update += w.timings.update;
+    t.solve += w.timings.solve, t.evaluations += w.timings.evaluations;
+  };
+  add(workspaces_->serial);
+  for (const auto& w : workspaces_->per_thread) add(w);
+  return t;
 }
 
 }  // namespace quadcover

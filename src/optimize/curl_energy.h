@@ -7,11 +7,21 @@
 // of the rotated field is recomputed; 𝔏̄* changes by a four-entry star per edge (Deng split, two rank-1 terms
 // applied to private copies of the affected factor columns); one forward solve gives E_D. Nothing is written
 // back unless the change is committed.
+//
+// Local estimate (beyond the thesis; estimate()): the re-smoothing is solved on a patch of a few face rings around
+// the changed edges only (SmoothingSystem::solve_local), curl* changes only on the patch's edges (a sparse
+// right-hand side), and E_D comes from the reach-limited forward solve on the etree paths of the changed rows
+// (FactorTrial::evaluate). The part of Δα outside the patch is added to first order with the adjoint
+// z = A⁻¹ ∇_α E_D:  E_D(α+Δα) ≈ E_D(α+Δα_P) + zᵀΔb - (∇_α E_D)ᵀΔα_P  (exact when the patch is the whole mesh).
+// Algorithm 6.1 screens candidates with estimates and confirms each accepted move with evaluate().
+#include <memory>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "field/frame_field.h"
 #include "field/smoothing.h"
+#include "optimize/local_smoothing.h"
 #include "optimize/updatable_cholesky.h"
 
 namespace quadcover {
@@ -20,6 +30,9 @@ struct CurlEnergyOptions {
   /// 𝔏̄* + ε·I with ε = diagonal_shift × mean diagonal: keeps the factor definite when the covering is trivial
   /// (no odd branch points and trivial holonomy: constants are symmetric). Changes E_D by a relative ~ε/λ_min.
   double diagonal_shift = 1e-10;
+  /// estimate(): face rings of the local re-smoothing patch around the changed edges, and its CG tolerance.
+  int local_rings = 6;
+  double local_tolerance = 1e-8;
 };
 
 /// A matching change m_e += delta on an interior edge.
@@ -34,6 +47,21 @@ struct CurlEnergyTimings {
   long evaluations = 0;
 };
 
+/// Per-thread scratch of CurlEnergy::estimate() (sized on first use; reused without O(n) clears).
+struct EstimateWorkspace {
+  FactorTrial trial;
+  LocalSmoothingWork smoothing;
+  std::vector<FaceEntry> db_smooth;               // Δb of (5.4)
+  std::vector<std::pair<int, int>> m_override;    // (edge, new m_e)
+  std::vector<std::pair<int, double>> theta_override;  // (edge, new θ_e)
+  std::vector<std::tuple<int, int, int>> mu_override;  // (face, slot, new μ)
+  std::vector<int> face_stamp, edge_stamp, edge_slot;
+  int stamp = 0;
+  std::vector<SparseEntry> db_curl;  // Δ(-curl*X) on the patch edges
+  CurlEnergyTimings timings;         // smoothing / curl / update / solve of the estimates made with this workspace
+  long patch_faces = 0, reach_columns = 0;  // summed over the estimates
+};
+
 class CurlEnergy {
  public:
   /// Factors 𝔏̄* of the smoother's current matching and evaluates E_D of the re-smoothed field.
@@ -41,12 +69,31 @@ class CurlEnergy {
   /// commit() only (evaluate() restores it).
   /// \throw NumericalError if 𝔏̄* cannot be factored.
   CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options = {});
+  /// As above, plus the data of the smoother's matrix (5.4) (λ, stability, trusted), which enables estimate().
+  CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
+             const CurlEnergyOptions& options = {});
+  ~CurlEnergy();
+  CurlEnergy(CurlEnergy&&) noexcept;
 
   /// E_D of the current state.
   double energy() const { return 0.5 * factor_.rhs_energy(); }
   /// E_D after applying `changes` (one edge at a time, in order), without changing the state.
   /// \return +infinity if an update lost positive definiteness (never expected for valid matchings).
   double evaluate(std::span<const MatchingChange> changes);
+  /// True if constructed with SmoothingWeights (estimate() available).
+  bool can_estimate() const { return system_ != nullptr; }
+  /// Computes ∇_α E_D and the adjoint z of the current state (one full solve with 𝔏̄*, one with A); needed once
+  /// after every commit before estimate(ws). No-op if current. \throw std::logic_error without SmoothingWeights.
+  void prepare_estimates();
+  /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
+  /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
+  double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
+  /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
+  /// not depend on the thread count. Calls prepare_estimates().
+  void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out,
+                      int threads = 0);
+  /// Timings and sizes of all estimates so far (summed over the workspaces).
+  CurlEnergyTimings estimate_timings() const;
   /// Makes the last evaluate() the current state.
   void commit();
   /// Recomputes everything from scratch for the current matching (factorization included): the reference the
@@ -68,6 +115,14 @@ class CurlEnergy {
 
  private:
   int layer_after(int e, int new_matching) const;
+  template <class Layer>
+  StarChange star_change(int e, int new_matching, Layer mu) const;
+  Complex contribution(int f, int k, double alpha, int mu) const;
+  std::unique_ptr<SmoothingSystem> system_;
+  Eigen::VectorXd grad_, adjoint_;  // ∇_α E_D and z = A⁻¹∇_α E_D of the current state (prepare_estimates)
+  bool estimates_ready_ = false;
+  struct Workspaces;
+  std::unique_ptr<Workspaces> workspaces_;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
   Eigen::VectorXcd rhs(const Eigen::VectorXd& alpha) const;
 

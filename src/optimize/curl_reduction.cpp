@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <queue>
 
@@ -91,9 +92,31 @@ class Reducer {
   void undo_indices(const Path& path) {
     for (const auto& c : path) q_[mesh_.E()(c.edge, 0)] -= c.delta, q_[mesh_.E()(c.edge, 1)] += c.delta;
   }
-  double evaluate(const Path& path) {
-    ++res_.evaluations;
+  bool estimating() const { return opt_.local_estimates && ed_.can_estimate(); }
+  // Exact E_D after `path` (full re-smoothing, CurlEnergy::evaluate): the value a commit is based on.
+  double evaluate_exact(const Path& path) {
+    ++res_.exact_evaluations;
     return ed_.evaluate(path);
+  }
+  // Screening values of candidates: local estimates in parallel (deterministic, CurlEnergy::estimate_batch), or
+  // NaN when estimates are off (the caller then evaluates exactly, one at a time).
+  std::vector<double> screen(const std::vector<Path>& paths) {
+    std::vector<double> out(paths.size(), std::numeric_limits<double>::quiet_NaN());
+    if (estimating()) {
+      ed_.estimate_batch(paths, out, opt_.threads);
+      res_.evaluations += static_cast<long>(paths.size());
+    }
+    return out;
+  }
+  // E_D after `path` if it may be lower than `bound`, else +inf: a screened value >= bound is trusted (no exact
+  // evaluation); otherwise the exact value decides (so E_D never increases over an accepted move).
+  double exact_if_promising(const Path& path, double screened, double bound) {
+    if (std::isnan(screened)) {
+      ++res_.evaluations;
+      return ed_.evaluate(path);
+    }
+    if (screened >= bound) return std::numeric_limits<double>::infinity();
+    return evaluate_exact(path);
   }
   void accept(const Path& path, const char* phase) {
     ed_.commit();
@@ -159,10 +182,12 @@ class Reducer {
     for (int p : branch_vertices()) {
       if (stop()) return;
       if (!is_branch(p)) continue;  // cancelled earlier in this loop
-      for (const Path& path : cancellation_paths(p)) {
+      const std::vector<Path> paths = cancellation_paths(p);
+      const std::vector<double> est = screen(paths);
+      for (std::size_t i = 0; i < paths.size(); ++i) {
         if (stop()) return;
-        if (evaluate(path) < ed_.energy()) {
-          accept(path, "cancellation");
+        if (exact_if_promising(paths[i], est[i], ed_.energy()) < ed_.energy()) {
+          accept(paths[i], "cancellation");
           break;
         }
       }
@@ -181,16 +206,34 @@ class Reducer {
       std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return share[a] > share[b]; });
       long changed = 0;
       progress_.report("curl reduction", -1, "E_D " + std::to_string(ed_.energy()));
-      for (int e : order) {
+      // Candidates in sorted order, screened in batches (batch size doubles while nothing is accepted, back to
+      // the minimum after an acceptance: a fixed rule, so the result does not depend on the thread count).
+      std::size_t next = 0, batch = kMinBatch;
+      std::vector<Path> paths;
+      std::vector<std::size_t> after;  // position in `order` after each candidate
+      while (next < order.size()) {
         if (stop()) return;
-        const double theta = ed_.curvature(e);
-        const Path path{{e, theta > 0 ? -1 : 1}};  // m_e <- m_e - sign(θ_e)
-        if (!creation && branch_points_after(path) > bp_) continue;
-        if (evaluate(path) < ed_.energy()) {
-          accept(path, "reduction");
-          improved = true;
-          if (++changed > resort_after) break;  // go to step 2
+        paths.clear(), after.clear();
+        while (next < order.size() && paths.size() < batch) {
+          const int e = order[next++];
+          const double theta = ed_.curvature(e);
+          Path path{{e, theta > 0 ? -1 : 1}};  // m_e <- m_e - sign(θ_e)
+          if (!creation && branch_points_after(path) > bp_) continue;
+          paths.push_back(std::move(path));
+          after.push_back(next);
         }
+        const std::vector<double> est = screen(paths);
+        bool accepted = false;
+        for (std::size_t i = 0; i < paths.size() && !accepted; ++i) {
+          if (stop()) return;
+          if (exact_if_promising(paths[i], est[i], ed_.energy()) < ed_.energy()) {
+            accept(paths[i], "reduction");
+            improved = accepted = true;
+            next = after[i];  // the rest of the batch was screened against the old state
+          }
+        }
+        batch = accepted ? kMinBatch : std::min(2 * batch, kMaxBatch);
+        if (accepted && ++changed > resort_after) break;  // go to step 2
       }
     }
   }
@@ -204,15 +247,24 @@ class Reducer {
       Path path;
     };
     std::vector<Candidate> candidates;
+    std::vector<Path> paths;
+    std::vector<std::pair<int, int>> pairs;
     for (int p : branch_vertices()) {
       for (Path& path : cancellation_paths(p)) {
-        if (stop()) return 0;
         int q = p;
         for (const auto& c : path) q = mesh_.E()(c.edge, 0) == q ? mesh_.E()(c.edge, 1) : mesh_.E()(c.edge, 0);
         if (q < p) continue;  // each pair once
-        const double cost = evaluate(path) - ed_.energy();
-        if (cost < opt_.delta_eh) candidates.push_back({cost, p, q, std::move(path)});
+        paths.push_back(std::move(path));
+        pairs.emplace_back(p, q);
       }
+    }
+    // Costs Δ_ED for sorting only (estimates when available; every cancellation is re-checked exactly below).
+    std::vector<double> est = screen(paths);
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      if (stop()) return 0;
+      if (std::isnan(est[i])) est[i] = (++res_.evaluations, ed_.evaluate(paths[i]));
+      const double cost = est[i] - ed_.energy();
+      if (cost < opt_.delta_eh) candidates.push_back({cost, pairs[i].first, pairs[i].second, std::move(paths[i])});
     }
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
@@ -221,7 +273,7 @@ class Reducer {
       if (stop()) break;
       if (!is_branch(c.p) || !is_branch(c.q) || mod4(q_[c.p] + q_[c.q]) != 0) continue;
       if (branch_points_after(c.path) != bp_ - 2) continue;  // the path's charge no longer cancels exactly p and q
-      const double cost = evaluate(c.path) - ed_.energy();
+      const double cost = evaluate_exact(c.path) - ed_.energy();
       if (cost < opt_.delta_eh) {
         accept(c.path, "balancing");
         ++cancelled;
@@ -231,6 +283,7 @@ class Reducer {
     return cancelled;
   }
 
+  static constexpr std::size_t kMinBatch = 4, kMaxBatch = 64;
   const Mesh& mesh_;
   CurlEnergy& ed_;
   const CurlReductionOptions& opt_;

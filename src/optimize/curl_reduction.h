@@ -25,6 +25,12 @@ struct CurlReductionOptions {
   /// Stop after this many E_D evaluations (0 = unlimited) or seconds (0 = unlimited), with the best state so far.
   long max_evaluations = 0;
   double time_limit_seconds = 0;
+  /// Screen candidates with CurlEnergy::estimate() (local re-smoothing, reach-limited solve; needs the
+  /// SmoothingWeights constructor) and evaluate exactly only the promising ones before accepting. Off or without
+  /// weights: every candidate is evaluated exactly (thesis). Either way E_D never increases over accepted moves.
+  bool local_estimates = true;
+  /// Threads for screening batches (0 = all cores); results do not depend on it.
+  int threads = 0;
 };
 
 /// One line of the per-iteration log (enough for Figure 6.1 and 6.5).
@@ -40,6 +46,7 @@ struct CurlReductionResult {
   double initial_energy = 0, final_energy = 0;
   int initial_branch_points = 0, final_branch_points = 0;
   long evaluations = 0, accepted = 0, cancelled_pairs = 0;
+  long exact_evaluations = 0;  ///< full re-smoothed evaluations confirming screened candidates (with estimates)
   int balancing_rounds = 0;
   double seconds = 0;
   bool stopped_early = false;  ///< by max_evaluations, time_limit_seconds or progress.cancelled()

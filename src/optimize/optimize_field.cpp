@@ -26,12 +26,14 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   out.field = field.field;
   if (options.mode == OptimizeMode::None) return out;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
-  CurlEnergy energy(mesh, smoother, options.energy);
+  CurlEnergy energy(mesh, smoother, SmoothingWeights{options.lambda, field.stability, field.trusted}, options.energy);
   CurlReductionOptions ro;
   ro.allow_creation = options.mode == OptimizeMode::Full;
   ro.cancellation_neighbours = options.cancellation_neighbours;
   ro.max_evaluations = options.max_evaluations;
   ro.time_limit_seconds = options.time_limit_seconds;
+  ro.local_estimates = options.local_estimates;
+  ro.threads = options.threads;
   out.reduction = reduce_curl(mesh, energy, ro, progress);
   long evaluations = out.reduction.evaluations;
   if (options.mode == OptimizeMode::Full && !out.reduction.stopped_early) {
@@ -68,6 +70,7 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
   j["branch_points_after"] = last.final_branch_points;
   j["evaluations"] = r.reduction.evaluations + r.balancing.evaluations;
   j["accepted"] = r.reduction.accepted + r.balancing.accepted;
+  j["exact_evaluations"] = r.reduction.exact_evaluations + r.balancing.exact_evaluations;
   j["cancelled_pairs"] = r.balancing.cancelled_pairs;
   j["E_H_estimate"] = r.energy_harmonic_estimate;
   j["h_sym"] = r.h_sym;

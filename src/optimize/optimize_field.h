@@ -28,6 +28,10 @@ struct OptimizeOptions {
   long max_evaluations = 3000;
   double time_limit_seconds = 0;
   CurlEnergyOptions energy;
+  /// Screen candidates with local E_D estimates (CurlReductionOptions::local_estimates) on `threads` threads
+  /// (0 = all cores; the result does not depend on it).
+  bool local_estimates = true;
+  int threads = 0;
   ParamOptions param;  ///< used by `full` to measure E_H for Δ_EH
 };
 
@@ -47,8 +51,9 @@ struct OptimizeResult {
 OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, const OptimizeOptions& options = {},
                               ProgressSink& progress = null_progress());
 
-/// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, accepted, cancelled_pairs,
-/// evaluations_per_second, seconds, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D, branch_points).
+/// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, exact_evaluations, accepted,
+/// cancelled_pairs, evaluations_per_second, seconds, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D,
+/// branch_points).
 nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
 
 }  // namespace quadcover
