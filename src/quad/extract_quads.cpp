@@ -513,32 +513,24 @@ class Extractor {
       }
       faces.push_back(std::move(clean));
     }
-    // Compact to the vertices used.
-    std::vector<int> remap(gv_.size(), -1);
-    int nv = 0;
-    for (auto& f : faces)
-      for (int& v : f) {
-        if (remap[v] < 0) remap[v] = nv++;
-        v = remap[v];
-      }
     ExtractionResult res;
     QuadMesh& qm = res.mesh;
-    qm.V.resize(nv, 3);
-    qm.uv.resize(nv);
-    qm.source_face.resize(nv);
-    qm.on_grid.resize(nv);
-    for (std::size_t i = 0; i < gv_.size(); ++i) {
-      if (remap[i] < 0) continue;
+    const int ng = static_cast<int>(gv_.size());
+    qm.V.resize(ng, 3);
+    qm.uv.resize(ng);
+    qm.source_face.resize(ng);
+    qm.on_grid.resize(ng);
+    for (int i = 0; i < ng; ++i) {
       std::complex<double> uv;
-      qm.V.row(remap[i]) = position(gv_[i], uv).transpose();
-      qm.uv[remap[i]] = uv;
-      qm.source_face[remap[i]] = gv_[i].face;
-      qm.on_grid[remap[i]] = gv_[i].type != GVType::Crossing &&
-                             g_.is_grid_value(gv_[i].p.x) && g_.is_grid_value(gv_[i].p.y);
+      qm.V.row(i) = position(gv_[i], uv).transpose();
+      qm.uv[i] = uv;
+      qm.source_face[i] = gv_[i].face;
+      qm.on_grid[i] = gv_[i].type != GVType::Crossing && g_.is_grid_value(gv_[i].p.x) && g_.is_grid_value(gv_[i].p.y);
     }
     qm.faces = std::move(faces);
     rep_.dropped_faces += drop_faces_on_duplicate_edges(qm);
     rep_.split_vertices = split_pinched_vertices(qm);
+    remove_unused_vertices(qm);  // after the clean-up: dropped faces leave no orphans
     rep_.quads = qm.num_quads();
     rep_.non_quads = qm.num_faces() - rep_.quads;
     rep_.flipped_triangles = g_.flipped_faces;

@@ -159,4 +159,33 @@ int split_pinched_vertices(QuadMesh& qm) {
   return added;
 }
 
+int remove_unused_vertices(QuadMesh& qm) {
+  const int nv = qm.num_vertices();
+  std::vector<int> remap(nv, -1);
+  int used = 0;
+  for (auto& f : qm.faces)
+    for (int& v : f) {
+      if (remap[v] < 0) remap[v] = used++;
+      v = remap[v];
+    }
+  QuadMesh out;
+  out.V.resize(used, 3);
+  out.uv.resize(qm.uv.size() == nv ? used : 0);  // per-vertex arrays that are not #V are dropped
+  out.source_face.resize(qm.source_face.size() == nv ? used : 0);
+  out.on_grid.resize(qm.on_grid.size() == nv ? used : 0);
+  for (int v = 0; v < nv; ++v) {
+    const int r = remap[v];
+    if (r < 0) continue;
+    out.V.row(r) = qm.V.row(v);
+    if (qm.uv.size() == nv) out.uv[r] = qm.uv[v];
+    if (qm.source_face.size() == nv) out.source_face[r] = qm.source_face[v];
+    if (qm.on_grid.size() == nv) out.on_grid[r] = qm.on_grid[v];
+  }
+  qm.V = std::move(out.V);
+  qm.uv = std::move(out.uv);
+  qm.source_face = std::move(out.source_face);
+  qm.on_grid = std::move(out.on_grid);
+  return nv - used;
+}
+
 }  // namespace quadcover

@@ -46,4 +46,8 @@ int drop_faces_on_duplicate_edges(QuadMesh& q);
 /// Returns the number of vertices added.
 int split_pinched_vertices(QuadMesh& q);
 
+/// Removes the vertices used by no face and numbers the others in order of first use by the faces.
+/// Returns the number of vertices removed.
+int remove_unused_vertices(QuadMesh& q);
+
 }  // namespace quadcover

@@ -1,6 +1,7 @@
 #include "quad/repair_folds.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "quad/integer_grid_map.h"
@@ -54,6 +55,48 @@ bool regular_fan(const Mesh& mesh, const Parameterization& p, int v, Fan& fan) {
   }
   // Around a regular vertex the charts close up: the composed change is the identity.
   return std::abs(T.a - Complex(1, 0)) < 1e-12 && std::abs(T.b) < 1e-9;
+}
+
+// The kernel of a vertex's one-ring in its first chart: where it can sit so that every incident triangle has signed
+// area >= margin (det Dφ > 0, thesis 2.1 requirement 2). Intersection of one half-plane per opposite edge q1 → q2
+// (x strictly to its left), clipped from a box around the ring (Sutherland–Hodgman). Empty if infeasible.
+std::vector<Complex> ring_kernel(const std::vector<std::pair<Complex, Complex>>& edges, double margin) {
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  for (const auto& [a, b] : edges)
+    for (const Complex z : {a, b}) {
+      lo_x = std::min(lo_x, z.real()), hi_x = std::max(hi_x, z.real());
+      lo_y = std::min(lo_y, z.imag()), hi_y = std::max(hi_y, z.imag());
+    }
+  std::vector<Complex> poly = {{lo_x, lo_y}, {hi_x, lo_y}, {hi_x, hi_y}, {lo_x, hi_y}}, next;
+  for (const auto& [q1, q2] : edges) {
+    const Complex d = q2 - q1;
+    // 2 · area(x, q1, q2) = cross(d, x - q1) >= 2 · margin
+    auto g = [&](Complex x) { return d.real() * (x - q1).imag() - d.imag() * (x - q1).real() - 2 * margin; };
+    next.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Complex a = poly[i], b = poly[(i + 1) % poly.size()];
+      const double ga = g(a), gb = g(b);
+      if (ga >= 0) next.push_back(a);
+      if ((ga >= 0) != (gb >= 0)) next.push_back(a + (b - a) * (ga / (ga - gb)));
+    }
+    poly.swap(next);
+    if (poly.size() < 3) return {};
+  }
+  return poly;
+}
+
+// Area centroid of a convex polygon (its vertex mean if the area vanishes).
+Complex centroid(const std::vector<Complex>& poly) {
+  Complex c{0, 0}, mean{0, 0};
+  double area = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Complex a = poly[i], b = poly[(i + 1) % poly.size()];
+    const double w = a.real() * b.imag() - a.imag() * b.real();
+    area += w;
+    c += (a + b) * w;
+    mean += a;
+  }
+  return std::abs(area) > 1e-300 ? c / (3 * area) : mean / static_cast<double>(poly.size());
 }
 
 }  // namespace
@@ -113,6 +156,73 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
       for (int c = 0; c < 3; ++c)
         for (const auto& fc : mesh.fan(mesh.F()(f, c)))
           for (int cc = 0; cc < 3; ++cc) moving.insert(mesh.F()(fc.face, cc));
+  }
+  // Kernel sweeps: each regular vertex near what is still bad moves to its one-ring's Tutte average when every
+  // incident triangle stays positive there, else (if it has a bad incident triangle) into the kernel of its ring.
+  // No move makes an incident triangle bad, so the bad count never grows; the neighbourhood grows by one ring
+  // whenever a sweep makes no progress.
+  std::vector<signed char> regular(mesh.num_vertices(), -1);
+  std::vector<Fan> fan_of(mesh.num_vertices());
+  auto fan_at = [&](int v) -> const Fan* {
+    if (regular[v] < 0) regular[v] = regular_fan(mesh, param, v, fan_of[v]) ? 1 : 0;
+    return regular[v] ? &fan_of[v] : nullptr;
+  };
+  bad = bad_faces(options.min_area);
+  std::vector<char> is_bad(nf, 0);
+  int ring = 0, stalled = 0;
+  for (int sweep = 0; sweep < options.kernel_sweeps && !bad.empty(); ++sweep) {
+    std::fill(is_bad.begin(), is_bad.end(), 0);
+    for (int f : bad) is_bad[f] = 1;
+    std::set<int> cand;
+    for (int f : bad)
+      for (int c = 0; c < 3; ++c) cand.insert(mesh.F()(f, c));
+    for (int g = 0; g < ring; ++g) {
+      std::set<int> grown = cand;
+      for (int v : cand)
+        for (const auto& fc : mesh.fan(v))
+          for (int cc = 0; cc < 3; ++cc) grown.insert(mesh.F()(fc.face, cc));
+      cand.swap(grown);
+    }
+    for (int v : cand) {
+      const Fan* fan = fan_at(v);
+      if (!fan) continue;
+      std::vector<std::pair<Complex, Complex>> edges;
+      Complex sum{0, 0};
+      bool has_bad = false;
+      for (std::size_t j = 0; j < fan->corners.size(); ++j) {
+        const auto [f, c] = fan->corners[j];
+        const Complex q1 = fan->from_first[j].inverse(r.uv(f, (c + 1) % 3));
+        edges.emplace_back(q1, fan->from_first[j].inverse(r.uv(f, (c + 2) % 3)));
+        sum += q1;
+        has_bad |= signed_area(r.uv, f) <= options.min_area;
+      }
+      const double margin = 2 * options.min_area;
+      Complex p = sum / static_cast<double>(edges.size());
+      bool ok = true;
+      for (const auto& [q1, q2] : edges) {
+        const Complex d = q2 - q1;
+        ok &= d.real() * (p - q1).imag() - d.imag() * (p - q1).real() >= 2 * margin;
+      }
+      if (!ok) {
+        if (!has_bad) continue;
+        const std::vector<Complex> kernel = ring_kernel(edges, margin);
+        if (kernel.empty()) continue;
+        p = centroid(kernel);
+      }
+      for (std::size_t j = 0; j < fan->corners.size(); ++j) {
+        const auto [f, c] = fan->corners[j];
+        r.uv(f, c) = fan->from_first[j](p);
+      }
+      touched[v] = 1;
+    }
+    const std::size_t before = bad.size();
+    bad = bad_faces(options.min_area);
+    if (bad.size() < before) {
+      stalled = 0;
+    } else if (++stalled >= 2) {
+      ring = std::min(ring + 1, options.max_ring);
+      stalled = 0;
+    }
   }
   r.bad_after = static_cast<int>(bad_faces(0.0).size());
   r.moved_vertices = static_cast<int>(std::count(touched.begin(), touched.end(), 1));

@@ -3,7 +3,7 @@
 // folded or degenerate triangles are moved to the average of their one-ring, seen in the vertex's own chart and
 // written back consistently into every chart across seams, so the map stays seamless. Cones (vertices where the
 // charts around do not close up to the identity) and boundary vertices never move, so grid-aligned branch points
-// and boundaries are preserved.
+// and boundaries are preserved. What Tutte relaxation leaves folded is then moved into the kernel of its one-ring.
 #include "mesh/mesh.h"
 #include "param/parameterization.h"
 
@@ -15,6 +15,10 @@ struct FoldRepairOptions {
   /// Gauss–Seidel sweeps per round (default 20); each round grows the moving set by one ring (default 6 rounds).
   int sweeps = 20;
   int rounds = 6;
+  /// Then up to `kernel_sweeps` sweeps moving each regular vertex near a bad triangle into the kernel of its
+  /// one-ring (never creating a bad triangle), over a neighbourhood growing up to `max_ring` rings (default 40, 4).
+  int kernel_sweeps = 40;
+  int max_ring = 4;
 };
 
 struct FoldRepairResult {

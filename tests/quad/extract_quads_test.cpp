@@ -6,7 +6,10 @@
 #include <random>
 
 #include "common/errors.h"
+#include "quad/integer_grid_map.h"
+#include "quad/polygon_check.h"
 #include "quad/quad_test_maps.h"
+#include "quad/repair_folds.h"
 
 namespace quadcover {
 namespace {
@@ -228,6 +231,104 @@ TEST(ExtractQuads, RepairsFoldsAtRegularVertices) {
   EXPECT_EQ(res.mesh.num_faces(), 17 * 7);
   const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
   EXPECT_TRUE(t.manifold() && t.closed());
+}
+
+int count_bad(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+  int bad = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Complex e1 = uv(f, 1) - uv(f, 0), e2 = uv(f, 2) - uv(f, 0);
+    bad += e1.real() * e2.imag() - e1.imag() * e2.real() <= 0;
+  }
+  return bad;
+}
+
+// A regular vertex next to a cone (a cube corner, valence 3) pushed through the cone (z ↦ 2.5 c − 1.5 z in its
+// chart): the map stays seamless but folds. Tutte rounds are switched off: the kernel sweeps alone must untangle it, and extraction then gives the
+// exact cube quad mesh back.
+TEST(RepairFolds, KernelSweepsUntangleAFoldAtACone) {
+  for (const auto& [n, m] : {std::pair{4, 4}, std::pair{3, 5}}) {
+    auto [mesh, param] = cube_map(n, m);
+    const int cone = mesh.F()(0, 0), u = mesh.F()(0, 2);  // cube corner (0, 0, 1) and P(1, 1) inside side 0
+    ASSERT_EQ(mesh.fan(u).size(), 6u);
+    const Complex c0 = param.uv(0, 0);
+    for (const auto& fc : mesh.fan(u)) {  // all in the chart of side 0 (the seams run along the cube edges)
+      ASSERT_TRUE(fc.face < 2 * n * n);
+      param.uv(fc.face, fc.corner) = 2.5 * c0 - 1.5 * param.uv(fc.face, fc.corner);
+    }
+    const int bad = count_bad(mesh, param.uv);
+    ASSERT_GT(bad, 0);
+    FoldRepairOptions opt;
+    opt.rounds = 0;
+    const FoldRepairResult fr = repair_folds(mesh, param, opt);
+    EXPECT_EQ(fr.bad_before, bad);
+    EXPECT_EQ(fr.bad_after, 0);
+    EXPECT_EQ(count_bad(mesh, fr.uv), 0);
+    EXPECT_GE(fr.moved_vertices, 1);
+    // the cone never moves
+    for (const auto& fc : mesh.fan(cone)) EXPECT_EQ(fr.uv(fc.face, fc.corner), param.uv(fc.face, fc.corner));
+    const ExtractionResult res = extract_quads(mesh, param);
+    EXPECT_EQ(res.report.flipped_triangles + res.report.degenerate_triangles, 0);
+    EXPECT_EQ(res.mesh.num_quads(), 6 * m * m);
+    EXPECT_EQ(res.mesh.num_faces(), 6 * m * m);
+    const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+    EXPECT_TRUE(t.manifold() && t.closed());
+    EXPECT_EQ(t.euler_characteristic, 2);
+  }
+}
+
+// Many random folds on a torus: the kernel sweeps never make things worse (each move keeps the incident triangles
+// positive), remove most folds, and the extraction around what is left stays manifold without unused vertices.
+TEST(RepairFolds, KernelSweepsNeverIncreaseFolds) {
+  auto [mesh, param] = torus_map(24, 12, 17, 7);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jump(-0.8, 0.8);
+  for (int v = 0; v < mesh.num_vertices(); v += 5) {
+    const Complex d(jump(rng), jump(rng));
+    for (const auto& fc : mesh.fan(v)) param.uv(fc.face, fc.corner) += d;  // translations only: stays seamless
+  }
+  const int bad = count_bad(mesh, param.uv);
+  ASSERT_GT(bad, 10);
+  for (int sweeps : {0, 1, 3, 40}) {
+    FoldRepairOptions opt;
+    opt.rounds = 0;
+    opt.kernel_sweeps = sweeps;
+    const FoldRepairResult fr = repair_folds(mesh, param, opt);
+    EXPECT_LE(fr.bad_after, bad);
+    if (sweeps == 0) EXPECT_EQ(fr.bad_after, bad);
+    if (sweeps == 40) EXPECT_EQ(fr.bad_after, 0);
+  }
+  const ExtractionResult res = extract_quads(mesh, param);
+  const testing::PolygonCheck pc = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(pc.problems, 0);
+  EXPECT_EQ(pc.unreferenced, 0);
+  EXPECT_EQ(res.mesh.num_quads(), 17 * 7);
+}
+
+// Unused vertices are removed, the others renumbered in order of first use with their data.
+TEST(QuadMesh, RemoveUnusedVerticesKeepsDataAndOrder) {
+  QuadMesh q;
+  q.V.resize(6, 3);
+  q.uv.resize(6);
+  q.source_face.resize(6);
+  q.on_grid.resize(6);
+  for (int v = 0; v < 6; ++v) {
+    q.V.row(v) << v, 10 * v, 100 * v;
+    q.uv[v] = Complex(v, -v);
+    q.source_face[v] = 7 * v;
+    q.on_grid[v] = v % 2;
+  }
+  q.faces = {{5, 2, 3, 0}};  // 1 and 4 unused
+  EXPECT_EQ(remove_unused_vertices(q), 2);
+  ASSERT_EQ(q.num_vertices(), 4);
+  EXPECT_EQ(q.faces[0], (std::vector<int>{0, 1, 2, 3}));
+  const int old_of[4] = {5, 2, 3, 0};
+  for (int v = 0; v < 4; ++v) {
+    EXPECT_EQ(q.V(v, 1), 10 * old_of[v]);
+    EXPECT_EQ(q.uv[v], Complex(old_of[v], -old_of[v]));
+    EXPECT_EQ(q.source_face[v], 7 * old_of[v]);
+    EXPECT_EQ(q.on_grid[v], old_of[v] % 2);
+  }
+  EXPECT_EQ(polygon_topology(q.num_vertices(), q.faces).isolated_vertices, 0);
 }
 
 // A broken seam (translation off the lattice) is cut open and reported instead of producing garbage.

@@ -5,6 +5,7 @@
 #include "field/compute_frame_field.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/polygon_check.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -18,15 +19,32 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
   const ExtractionResult res = extract_quads(mesh, P);
   const ExtractionReport& r = res.report;
   const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
+  const double area = parameter_area(mesh, P.uv);
   EXPECT_EQ(t.non_manifold_edges, 0);
   EXPECT_EQ(t.non_manifold_vertices, 0);
   EXPECT_EQ(t.degenerate_faces, 0);
   EXPECT_EQ(r.failed_traces, 0);
   if (r.flipped_triangles + r.degenerate_triangles == 0) EXPECT_EQ(r.dropped_faces, 0);
   EXPECT_EQ(r.torn_seams, 0);
+  // The report is honest: an independent check of the same faces agrees, and no vertex is left unused.
+  const testing::PolygonCheck pc = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(pc.problems, 0);
+  EXPECT_EQ(pc.unreferenced, 0);
+  EXPECT_EQ(t.isolated_vertices, 0);
+  EXPECT_EQ(t.manifold(), pc.problems == 0);
+  EXPECT_EQ(t.euler_characteristic, pc.euler());
+  EXPECT_EQ(t.boundary_edges, pc.boundary_edges);
+  // No spurious handles: capping every boundary loop with a disk, the output's total genus is at most the
+  // input's (it lies on the input surface): χ̂ − 2·components can only grow.
+  const int capped_in = mesh.euler_characteristic() + mesh.num_boundary_loops() - 2 * mesh.num_components();
+  EXPECT_GE(pc.euler() + pc.boundary_loops - 2 * pc.components, capped_in);
+  // A closed all-quad output of a closed input is the same surface with one quad per unit of parameter area.
+  if (mesh.num_boundary_loops() == 0 && t.closed() && r.non_quads == 0) {
+    EXPECT_EQ(t.euler_characteristic, mesh.euler_characteristic());
+    EXPECT_NEAR(r.quads, r.active_parameter_area, 1e-6 * area);
+  }
   // Each quad is one unit cell of the parameter domain. Polygons at the boundary or around cut-out folds are
   // partial or merged cells (at most 4 cells each), so the count is the extracted area up to them.
-  const double area = parameter_area(mesh, P.uv);
   EXPECT_NEAR(r.quads, r.active_parameter_area, 4.0 * r.non_quads + 1e-6 * area)
       << "non-quads " << r.non_quads << ", cut out: " << r.flipped_triangles << " flipped, " << r.degenerate_triangles
       << " degenerate";
@@ -44,7 +62,7 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
 INSTANTIATE_TEST_SUITE_P(Meshes, ShippedMeshes,
                          ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "3holes_genus3", "fertility_genus4",
                                            "lilium_disk", "camelhead_boundary", "spot", "fandisk", "cow",
-                                           "couplingdown_genus9"));
+                                           "couplingdown_genus9", "mech_holes_shark", "bunny_20k_holes"));
 
 }  // namespace
 }  // namespace quadcover
