@@ -51,6 +51,7 @@ class Reducer {
       if (cancelled == 0) break;
       creation = false;  // 6.4: no new branch points from now on
       reduction(creation);
+      if (opt_.max_balancing_rounds > 0 && res_.balancing_rounds >= opt_.max_balancing_rounds) break;
     }
     res_.final_energy = ed_.energy();
     res_.final_branch_points = bp_;
@@ -276,7 +277,7 @@ class Reducer {
       const double cost = evaluate_exact(c.path) - ed_.energy();
       if (cost < opt_.delta_eh) {
         accept(c.path, "balancing");
-        ++cancelled;
+        if (++cancelled == opt_.max_cancellations_per_round) break;
       }
     }
     res_.cancelled_pairs += cancelled;

@@ -22,6 +22,10 @@ struct CurlReductionOptions {
   /// Δ_EH = E_H / (2 h_sym) (6.4), the expected continuity distortion per pair of rounding constraints. Balancing
   /// runs only when it is > 0.
   double delta_eh = 0;
+  /// Balancing limits (0 = unlimited): rounds of step 4, and cancellations per round (1 = only the cheapest pair;
+  /// used by the Figure 6.5 sweep, optimize/balancing_sweep.h).
+  int max_balancing_rounds = 0;
+  long max_cancellations_per_round = 0;
   /// Stop after this many E_D evaluations (0 = unlimited) or seconds (0 = unlimited), with the best state so far.
   long max_evaluations = 0;
   double time_limit_seconds = 0;
