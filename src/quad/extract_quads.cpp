@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "common/errors.h"
+#include "quad/collapse_degenerate.h"
 #include "quad/integer_grid_map.h"
 #include "quad/repair_folds.h"
 
@@ -558,22 +559,30 @@ ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, 
   if ((param.transition_rotation.size() && param.transition_rotation.size() != mesh.num_edges()) ||
       (param.transition_translation.size() && param.transition_translation.size() != mesh.num_edges()))
     throw InputError("", 0, "extract_quads: transitions must have one entry per edge");
+  // Edges mapped to a point (e.g. two branch points rounded onto one integer point) are collapsed first.
+  CollapsedMap collapsed;
+  if (options.collapse_zero_edges) collapsed = collapse_zero_edges(mesh, param, 2 * options.snap);
+  const bool use_collapsed = collapsed.collapsed_edges > 0;
+  const Mesh& m = use_collapsed ? collapsed.mesh : mesh;
   FoldRepairResult repair;
-  const Parameterization* map = &param;
+  const Parameterization* map = use_collapsed ? &collapsed.param : &param;
   Parameterization repaired;
   if (options.repair_folds) {
-    repair = repair_folds(mesh, param);
+    repair = repair_folds(m, *map);
     if (repair.moved_vertices > 0) {
-      repaired = param;
+      repaired = *map;
       repaired.uv = repair.uv;
       map = &repaired;
     }
   }
-  const GridMap g = build_grid_map(mesh, *map, options.snap, options.seam_tolerance);
-  Extractor x(mesh, g, options);
+  const GridMap g = build_grid_map(m, *map, options.snap, options.seam_tolerance);
+  Extractor x(m, g, options);
   ExtractionResult r = x.run(progress);
   r.report.unfolded_triangles = repair.bad_before - repair.bad_after;
   r.report.moved_vertices = repair.moved_vertices;
+  r.report.collapsed_edges = collapsed.collapsed_edges;
+  if (use_collapsed)  // source faces refer to the input mesh
+    for (int v = 0; v < r.mesh.num_vertices(); ++v) r.mesh.source_face[v] = collapsed.face_origin[r.mesh.source_face[v]];
   return r;
 }
 

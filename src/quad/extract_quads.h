@@ -22,6 +22,9 @@ struct ExtractOptions {
   /// Untangle folded / degenerate triangles first by moving non-cone interior vertices (see repair_folds.h);
   /// what remains folded is cut out (default on).
   bool repair_folds = true;
+  /// Collapse edges whose two ends the map sends to one point (see collapse_degenerate.h) before the repair
+  /// (default on).
+  bool collapse_zero_edges = true;
 };
 
 /// What extraction found and repaired. A valid seamless map on a closed surface with integer branch points gives
@@ -32,6 +35,7 @@ struct ExtractionReport {
   int boundary_vertices = 0;     ///< output vertices where an iso-line meets the boundary
   int unfolded_triangles = 0;    ///< folded or degenerate triangles made valid by repair_folds
   int moved_vertices = 0;        ///< vertices repair_folds moved
+  int collapsed_edges = 0;       ///< edges mapped to a point, collapsed (their two triangles removed)
   int flipped_triangles = 0;     ///< input triangles with negative parameter area (cut out)
   int degenerate_triangles = 0;  ///< input triangles with zero parameter area (cut out)
   int torn_seams = 0;            ///< edges whose transition does not hold (treated as boundary)
