@@ -1,20 +1,32 @@
 #include "cli/optimize_options.h"
 
+#include <cstdio>
+
+#include "common/errors.h"
+#include "render/html_report.h"
+#include "render/plots.h"
+
 namespace quadcover::cli {
 
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--optimize", options.optimize,
-                 "Distortion optimization (thesis ch. 6): none; relocate = Algorithm 6.1 moving/cancelling branch "
-                 "points only; full = with creation of branch points and balancing (6.4)")
+                 "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
+                 "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "
+                 "creation of branch points, then balancing (6.4) when the budget allows. Default relocate: on the "
+                 "Table 7.1 bunny (BENCHMARKS.md) it lowers E_D and the branch point count in 0.3 s and keeps the "
+                 "quad mesh closed and all-quad with the fewest irregular vertices; full lowers RSD and ARAP "
+                 "further but adds branch points, irregular vertices and non-quads and takes 5-50x longer")
       ->check(CLI::IsMember({"none", "relocate", "full"}))
       ->capture_default_str();
   cmd.add_option("--rounding", options.rounding,
-                 "Period rounding (6.3): direct, greedy (MIQ), search1/2/3 (change up to r periods at a time), "
-                 "exact (closest vector, small instances)")
+                 "Period rounding (6.3) minimizing E_H with the period matrix: direct (nearest lattice point, no "
+                 "matrix), greedy (MIQ), search1/2/3 (change up to r periods at a time; the thesis's r = 3), "
+                 "exact (closest vector by LLL + enumeration, up to 48 periods, else search3)")
       ->check(CLI::IsMember({"direct", "greedy", "search1", "search2", "search3", "exact"}))
       ->capture_default_str();
   cmd.add_option("--max-iterations", options.max_iterations,
-                 "Budget of E_D evaluations for --optimize (0 = until converged)")
+                 "Budget of E_D evaluations for --optimize (0 = until converged); --time-limit and Ctrl-C also "
+                 "stop it, keeping the best field so far")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 }
@@ -27,13 +39,48 @@ OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOp
   return o;
 }
 
+void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param) {
+  try {
+    param.rounding.strategy = parse_rounding_strategy(cli.rounding);
+  } catch (const InputError& e) {
+    throw InputError("--rounding", 0, e.what());
+  }
+}
+
 FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,
                         const ParamOptions& param, ProgressSink& progress, nlohmann::json& report) {
   const OptimizeOptions o = to_optimize_options(cli, param);
+  if (o.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + cli.optimize + ")");
   OptimizeResult r = optimize_field(mesh, field, o, progress);
   report = to_json(r, o.mode);
   report["rounding"] = cli.rounding;
+  if (o.mode != OptimizeMode::None) {
+    char line[200];
+    std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s)%s",
+                  report["E_D_before"].get<double>(), report["E_D_after"].get<double>(),
+                  report["branch_points_before"].get<int>(), report["branch_points_after"].get<int>(),
+                  report["evaluations"].get<long>(), r.evaluations_per_second,
+                  report["stopped_early"].get<bool>() ? ", stopped early" : "");
+    progress.report("optimize", 1, line);
+  }
   return std::move(r.field);
+}
+
+FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
+                           ProgressSink& progress, nlohmann::json& optimize_report) {
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
+  return run_optimize(mesh, field, cli, param, progress, optimize_report);
+}
+
+nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param) {
+  return {{"strategy", cli.rounding}, {"E_H", param.energy_harmonic}, {"h_sym", param.h_sym}};
+}
+
+void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {
+  const nlohmann::json& log = optimize_report.contains("log") ? optimize_report["log"] : nlohmann::json::array();
+  if (!log.is_array() || log.empty())
+    throw InputError("--plot", 0, "no optimization log to plot (use --optimize relocate or full)");
+  write_line_plot(path, optimization_history_plot(log));
 }
 
 }  // namespace quadcover::cli

@@ -5,14 +5,19 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/optimize_options.h"
+#include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "mesh/mesh.h"
+#include "metrics/param_quality.h"
+#include "metrics/report.h"
 #include "param/parameterize.h"
 #include "param/seams.h"
+#include "render/pipeline_pictures.h"
 
 namespace quadcover::cli {
 
@@ -25,9 +30,14 @@ struct ParamCmdOptions {
   double edge_length = 0;
   int quads = 0;
   std::string lattice = "rotated";
-  std::string rounding = "direct";
-  std::string optimize = "none";
+  OptimizeCliOptions optimize;
+  PictureCliOptions pictures;
   bool align = true;
+};
+
+/// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
+struct ParamOutputs {
+  std::string obj, report, png, html, plot;
 };
 
 /// Per-corner coordinates as OBJ texture vertices: corners of one mesh vertex with the same coordinates share a vt.
@@ -52,12 +62,9 @@ void corner_uv_table(const Mesh& mesh, const Eigen::MatrixX3cd& uv, Eigen::Matri
   for (std::size_t i = 0; i < table.size(); ++i) UV.row(static_cast<Eigen::Index>(i)) << table[i].real(), table[i].imag();
 }
 
-nlohmann::json run_param(const std::string& input, const std::string& output, const std::string& report_path,
-                         const ParamCmdOptions& opt, ProgressSink& progress) {
-  if (opt.rounding != "direct")
-    throw InputError("--rounding", 0, "only 'direct' rounding is available in this version, got '" + opt.rounding + "'");
-  if (opt.optimize != "none")
-    throw InputError("--optimize", 0, "only 'none' is available in this version, got '" + opt.optimize + "'");
+nlohmann::json run_param(const std::string& input, const ParamOutputs& out, const ParamCmdOptions& opt,
+                         ProgressSink& progress) {
+  const std::string& output = out.obj;
   if (opt.edge_length > 0 && opt.quads > 0)
     throw InputError("--edge-length/--quads", 0, "give either --edge-length or --quads, not both");
   ParamOptions po;
@@ -65,6 +72,11 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
   po.edge_length = opt.edge_length;
   po.target_quads = opt.quads;
   po.align_curves = opt.align;
+  apply_rounding(opt.optimize, po);
+  if (!out.plot.empty() && opt.optimize.optimize == "none")
+    throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
+  const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
+  const std::vector<ViewCamera> views = picture_views(opt.pictures);
 
   using Clock = std::chrono::steady_clock;
   nlohmann::json seconds = nlohmann::json::object();
@@ -76,8 +88,11 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
   };
   const Mesh mesh = build_mesh(read_mesh(input)).mesh;
   lap("read");
-  const FrameField field = compute_frame_field(mesh, FieldOptions{}, progress);
+  nlohmann::json optimize;
+  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
   lap("field");
+  const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
+  lap("optimize");
   const Parameterization P = parameterize(mesh, field, po, progress);
   for (const auto& [stage, s] : P.stage_seconds) seconds["param_" + stage] = s;
   t = Clock::now();
@@ -118,8 +133,8 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
                            {"genus", mesh.genus()},
                            {"boundary_loops", mesh.num_boundary_loops()},
                            {"lattice", to_string(po.lattice)},
-                           {"rounding", "direct"},
-                           {"optimize", "none"},
+                           {"rounding", rounding_report(opt.optimize, P)},
+                           {"optimize", optimize},
                            {"edge_length", P.edge_length},
                            {"parameter_area", flips.parameter_area},
                            {"branch_points", bps},
@@ -140,11 +155,27 @@ nlohmann::json run_param(const std::string& input, const std::string& output, co
                            {"max_curve_deviation", worst_curve},
                            {"alignment_conflicts", P.alignment_conflicts},
                            {"seconds", seconds}};
-  if (!report_path.empty()) write_json_atomically(report_path, report);
+  if (!out.report.empty()) write_json_atomically(out.report, report);
+  if (!out.png.empty()) {
+    write_parameterization_png(out.png, mesh, P, views, render_options);
+    report["png"] = out.png;
+  }
+  if (!out.plot.empty()) {
+    write_optimization_plot(out.plot, optimize);
+    report["plot"] = out.plot;
+  }
+  if (!out.html.empty()) {
+    const ParamQuality quality = param_quality(mesh, P);
+    nlohmann::json page = report;
+    page["quality"] = to_json(quality);
+    write_pipeline_report(out.html, "quadcover param: " + input, mesh, &P, nullptr, page, &quality);
+    report["report_html"] = out.html;
+  }
   nlohmann::json summary = report;
   summary["branch_points"] = P.branch_points.size();
   summary.erase("flipped_faces");
   summary["aligned_curves"] = P.aligned_curves.size();
+  summary["optimize"].erase("log");  // in the --report file; the summary stays short
   if (!seams.seamless)
     throw NumericalError("param", "the written parameterization is not seamless (max transition error " +
                                       std::to_string(seams.max_transition_error) + ")");
@@ -173,9 +204,8 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write a JSON report (one input) or a folder for NAME.param.json files");
-  cmd->add_option("--rounding", opt->rounding, "Rounding of the periods: direct (nearest lattice point)")
-      ->capture_default_str();
-  cmd->add_option("--optimize", opt->optimize, "Distortion optimization (thesis ch. 6): none")->capture_default_str();
+  add_optimize_options(*cmd, opt->optimize);
+  add_picture_options(*cmd, opt->pictures, "PNG of the map: checkerboard (one square = one quad), seams, branch points");
   add_global_options(*cmd, global);
   cmd->callback([opt, &global, &exit_code] {
     BatchSpec spec;
@@ -185,10 +215,12 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
     exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
       const std::string output =
           batch || opt->output.empty() ? batch_output_path(input, opt->output, ".param.obj") : opt->output;
-      const std::string report = opt->report.empty() ? std::string()
-                                 : batch               ? batch_output_path(input, opt->report, ".param.json")
-                                                       : opt->report;
-      return run_param(input, output, report, *opt, progress);
+      auto path = [&](const std::string& o, const char* suffix) {
+        return o.empty() ? std::string() : batch ? batch_output_path(input, o, suffix) : o;
+      };
+      const ParamOutputs out{output, path(opt->report, ".param.json"), path(opt->pictures.png, ".param.png"),
+                             path(opt->pictures.report_html, ".param.html"), path(opt->pictures.plot, ".optimize.png")};
+      return run_param(input, out, *opt, progress);
     });
   });
 }

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/optimize_options.h"
+#include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
@@ -13,6 +15,7 @@
 #include "metrics/report.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "render/pipeline_pictures.h"
 
 namespace quadcover::cli {
 
@@ -26,7 +29,13 @@ struct RemeshOptions {
   int vertices = 0;
   double edge_length = 0;
   std::string lattice = "rotated";
-  std::string optimize = "none";
+  OptimizeCliOptions optimize;
+  PictureCliOptions pictures;
+};
+
+/// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
+struct RemeshOutputs {
+  std::string quads, report, param, png, html, plot;
 };
 
 void write_param_obj(const std::string& path, const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
@@ -40,14 +49,15 @@ void write_param_obj(const std::string& path, const Mesh& mesh, const Eigen::Mat
   write_obj_with_uv(path, mesh.V(), mesh.F(), UV, FUV);
 }
 
-nlohmann::json run_remesh(const std::string& input, const std::string& output, const std::string& report_path,
-                          const std::string& param_path, const RemeshOptions& opt, ProgressSink& progress) {
+nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, const RemeshOptions& opt,
+                          ProgressSink& progress) {
+  const std::string& output = out.quads;
   if (opt.vertices > 0 && opt.edge_length > 0)
     throw InputError("--vertices/--edge-length", 0, "give either --vertices or --edge-length, not both");
-  if (opt.optimize != "none")
-    throw InputError("--optimize", 0,
-                     "only 'none' is available until the optimization stage (thesis ch. 6) lands, got '" +
-                         opt.optimize + "'");
+  if (!out.plot.empty() && opt.optimize.optimize == "none")
+    throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
+  const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
+  const std::vector<ViewCamera> views = picture_views(opt.pictures);
   using Clock = std::chrono::steady_clock;
   Report report;
   report.input = input;
@@ -59,13 +69,17 @@ nlohmann::json run_remesh(const std::string& input, const std::string& output, c
   };
   const Mesh mesh = build_mesh(read_mesh(input)).mesh;
   lap("read");
-  const FrameField field = compute_frame_field(mesh, FieldOptions{}, progress);
-  lap("field");
   ParamOptions po;
   po.lattice = parse_lattice(opt.lattice);
   po.edge_length = opt.edge_length;
   // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
   po.target_quads = opt.vertices;
+  apply_rounding(opt.optimize, po);
+  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
+  lap("field");
+  nlohmann::json optimize;
+  const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
+  lap("optimize");
   const Parameterization P = parameterize(mesh, field, po, progress);
   lap("param");
   ExtractionResult ex = extract_quads(mesh, P, ExtractOptions{}, progress);
@@ -81,10 +95,19 @@ nlohmann::json run_remesh(const std::string& input, const std::string& output, c
   if (ex.mesh.num_faces() == 0)
     throw NumericalError("remesh", "the extraction produced no faces (map too coarse or broken)");
   write_polygon_obj(output, ex.mesh.V, ex.mesh.faces);
-  if (!param_path.empty()) write_param_obj(param_path, mesh, P.uv);
+  if (!out.param.empty()) write_param_obj(out.param, mesh, P.uv);
   lap("write");
-  const nlohmann::json j = to_json(report);
-  if (!report_path.empty()) write_json_atomically(report_path, j);
+  nlohmann::json j = to_json(report);
+  j["optimize"] = optimize;
+  j["rounding"] = rounding_report(opt.optimize, P);
+  if (!out.report.empty()) write_json_atomically(out.report, j);
+  if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
+  if (!out.plot.empty()) write_optimization_plot(out.plot, optimize);
+  if (!out.html.empty())
+    write_pipeline_report(out.html, "quadcover remesh: " + input, mesh, &P, &ex.mesh, j,
+                          &*report.parameterization);
+  nlohmann::json brief = optimize;
+  brief.erase("log");  // in the --report file; the summary stays short
   const auto& q = *report.quad_mesh;
   return {{"output", output},
           {"vertices", q.vertices},
@@ -100,6 +123,10 @@ nlohmann::json run_remesh(const std::string& input, const std::string& output, c
           {"closed", q.topology.closed()},
           {"distance_max", report.surface_distance->max},
           {"repairs", ex.report.failed_traces + ex.report.dropped_faces + ex.report.torn_seams},
+          {"E_D", report.parameterization->energy_curl},
+          {"E_H", report.parameterization->energy_harmonic},
+          {"optimize", brief},
+          {"rounding", j["rounding"]},
           {"seconds", report.seconds}};
 }
 
@@ -120,10 +147,11 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--lattice", opt->lattice, "Period lattice (4.2.2): unit, coarse or rotated")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
-  cmd->add_option("--optimize", opt->optimize, "Distortion optimization (thesis ch. 6): none")->capture_default_str();
+  add_optimize_options(*cmd, opt->optimize);
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,
                   "Also write the parameterization as OBJ with per-corner vt (one input) or a folder for them");
+  add_picture_options(*cmd, opt->pictures, "PNG of the quad mesh: wireframe over flat shading");
   add_global_options(*cmd, global);
   cmd->callback([opt, &global, &exit_code] {
     BatchSpec spec;
@@ -137,8 +165,13 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       auto path = [&](const std::string& o, const char* suffix) {
         return o.empty() ? std::string() : batch ? batch_output_path(input, o, suffix) : o;
       };
-      return run_remesh(input, output, path(opt->report, ".remesh.json"), path(opt->param_output, ".param.obj"), *opt,
-                        progress);
+      const RemeshOutputs out{output,
+                              path(opt->report, ".remesh.json"),
+                              path(opt->param_output, ".param.obj"),
+                              path(opt->pictures.png, ".quad.png"),
+                              path(opt->pictures.report_html, ".remesh.html"),
+                              path(opt->pictures.plot, ".optimize.png")};
+      return run_remesh(input, out, *opt, progress);
     });
   });
 }

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cli/common.h"
+#include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
@@ -29,35 +30,6 @@ struct RenderCmdOptions {
   std::string metrics;      // a JSON report (param/remesh/metrics --report) shown in the page
   std::string quads;        // a quad mesh shown next to the input in the page
 };
-
-std::pair<int, int> parse_size(const std::string& s) {
-  int w = 0, h = 0;
-  char x = 0;
-  std::istringstream in(s);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || w < 16 || h < 16 || w > 8192 || h > 8192 || !in.eof())
-    throw InputError("--size", 0, "expected WxH with 16 <= W, H <= 8192, got '" + s + "'");
-  return {w, h};
-}
-
-/// "front", "side", "top", ..., "all" (front, side and top side by side) or "AZ,EL" in degrees.
-std::vector<ViewCamera> parse_views(const std::string& s) {
-  if (s == "all") return {named_view("front"), named_view("side"), named_view("top")};
-  if (const auto comma = s.find(','); comma != std::string::npos) {
-    try {
-      std::size_t used_a = 0, used_e = 0;
-      const std::string a = s.substr(0, comma), e = s.substr(comma + 1);
-      const ViewCamera cam{std::stod(a, &used_a), std::stod(e, &used_e)};
-      if (used_a == a.size() && used_e == e.size()) return {cam};
-    } catch (const std::exception&) {
-    }
-    throw InputError("--view", 0, "expected AZIMUTH,ELEVATION in degrees, got '" + s + "'");
-  }
-  try {
-    return {named_view(s)};
-  } catch (const std::invalid_argument& e) {
-    throw InputError("--view", 0, e.what());
-  }
-}
 
 nlohmann::json render_one(const std::string& input, const std::string& output, const RenderCmdOptions& opt) {
   const auto [w, h] = parse_size(opt.size);

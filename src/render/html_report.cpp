@@ -45,7 +45,7 @@ void flatten(const nlohmann::json& j, const std::string& prefix,
              std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) {
-      if (k == "history" || k == "histograms") continue;  // drawn as figures
+      if (k == "history" || k == "histograms" || k == "log") continue;  // drawn as figures
       flatten(v, prefix.empty() ? k : prefix + "." + k, rows);
     }
   } else if (j.is_array() && j.size() > 12) {
@@ -74,29 +74,45 @@ std::string script_safe(std::string s) {
 
 }  // namespace
 
+LinePlot optimization_history_plot(const nlohmann::json& history) {
+  const bool by_evaluation = !history.empty() && !history[0].contains("iteration") && history[0].contains("evaluation");
+  const std::vector<double> it = column(history, by_evaluation ? "evaluation" : "iteration"),
+                            ed = column(history, "E_D"), bp = column(history, "branch_points");
+  const char* x = by_evaluation ? "E_D evaluation" : "iteration";
+  return {"E_D and branch points over the iterations (Fig. 6.1)",
+          x,
+          "E_D",
+          "branch points",
+          {{"E_D", it, ed}, {"branch points", it, bp, true}}};
+}
+
 std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report) {
   std::vector<std::pair<std::string, std::string>> figures;
   if (!report.is_object()) return figures;
-  if (report.contains("history") && report["history"].is_array() && !report["history"].empty()) {
-    const auto& h = report["history"];
-    const std::vector<double> it = column(h, "iteration"), ed = column(h, "E_D"), eh = column(h, "E_H"),
-                              bp = column(h, "branch_points");
-    LinePlot over_iterations{"E_D and branch points over the iterations (Fig. 6.1)",
-                             "iteration",
-                             "E_D",
-                             "branch points",
-                             {{"E_D", it, ed}, {"branch points", it, bp, true}}};
+  const nlohmann::json* history = nullptr;
+  if (report.contains("history") && report["history"].is_array() && !report["history"].empty())
+    history = &report["history"];
+  else if (report.contains("optimize") && report["optimize"].is_object() && report["optimize"].contains("log") &&
+           report["optimize"]["log"].is_array() && !report["optimize"]["log"].empty())
+    history = &report["optimize"]["log"];
+  if (history) {
+    const auto& h = *history;
     figures.emplace_back("Energy and branch point count during the optimization (thesis Fig. 6.1)",
-                         line_plot_svg(over_iterations));
-    std::vector<double> sum(ed.size());
-    for (std::size_t i = 0; i < ed.size(); ++i) sum[i] = ed[i] + eh[i];
-    LinePlot over_count{
-        "E_D, E_H and E_D + E_H over the branch point count (Fig. 6.5)",
-        "branch points",
-        "energy",
-        "",
-        {{"E_D", bp, ed, false, true}, {"E_H", bp, eh, false, true}, {"E_D + E_H", bp, sum, false, true}}};
-    figures.emplace_back("Energies over the number of branch points (thesis Fig. 6.5)", line_plot_svg(over_count));
+                         line_plot_svg(optimization_history_plot(h)));
+    const std::vector<double> ed = column(h, "E_D"), eh = column(h, "E_H"), bp = column(h, "branch_points");
+    bool any_eh = false;
+    for (double v : eh) any_eh = any_eh || std::isfinite(v);
+    if (any_eh) {  // Fig. 6.5 needs E_H per row (the optimize log has E_D only)
+      std::vector<double> sum(ed.size());
+      for (std::size_t i = 0; i < ed.size(); ++i) sum[i] = ed[i] + eh[i];
+      LinePlot over_count{
+          "E_D, E_H and E_D + E_H over the branch point count (Fig. 6.5)",
+          "branch points",
+          "energy",
+          "",
+          {{"E_D", bp, ed, false, true}, {"E_H", bp, eh, false, true}, {"E_D + E_H", bp, sum, false, true}}};
+      figures.emplace_back("Energies over the number of branch points (thesis Fig. 6.5)", line_plot_svg(over_count));
+    }
   }
   if (report.contains("histograms") && report["histograms"].is_object())
     for (const auto& [name, values] : report["histograms"].items()) {

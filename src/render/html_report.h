@@ -31,7 +31,13 @@ struct HtmlReport {
 ///    over iterations (Fig. 6.1) and E_D, E_H, E_D + E_H over the branch point count (Fig. 6.5);
 ///  - "histograms": object of name -> array of numbers (e.g. "arap", "edge_length", "angle") -> histograms
 ///    (Fig. 6.2, 7.1). Keys that are absent produce no figure.
+///  - "optimize": {"log": [{"evaluation", "E_D", "branch_points", ...}]} (the optimize object of param/remesh
+///    reports) -> the Fig. 6.1 plot when there is no "history".
 std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report);
+
+/// Thesis Fig. 6.1: E_D (left axis) and the branch point count (right axis) over the iterations, from rows with
+/// "iteration" (or "evaluation", as in the optimize log), "E_D" and "branch_points".
+LinePlot optimization_history_plot(const nlohmann::json& history);
 
 /// Edge-length and corner-angle (degrees) histograms of a polygon mesh (Fig. 7.1 style), as (caption, SVG).
 std::vector<std::pair<std::string, std::string>> polygon_mesh_figures(const Eigen::MatrixX3d& V,

@@ -1,0 +1,183 @@
+// `quadcover param` / `remesh` with the Chapter 6 optimization and rounding through the real binary: relocation
+// lowers the parameterization's E_D and never adds branch points, the report carries the "optimize" and "rounding"
+// objects consistent with the parameterization, --time-limit still writes a valid mesh, and the pictures
+// (--png, --plot, --report-html) are written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " 2>/dev/null";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+nlohmann::json load_json(const fs::path& p) { return nlohmann::json::parse(slurp(p)); }
+
+/// Width and height from a PNG's IHDR chunk (0, 0 if the file is not a PNG).
+std::pair<int, int> png_size(const fs::path& p) {
+  const std::string s = slurp(p);
+  if (s.size() < 24 || s.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || s.compare(12, 4, "IHDR") != 0) return {0, 0};
+  auto be32 = [&](std::size_t o) {
+    return (int(static_cast<unsigned char>(s[o])) << 24) | (int(static_cast<unsigned char>(s[o + 1])) << 16) |
+           (int(static_cast<unsigned char>(s[o + 2])) << 8) | int(static_cast<unsigned char>(s[o + 3]));
+  };
+  return {be32(16), be32(20)};
+}
+
+class OptimizeCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() / ("quadcover_optimize_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+  fs::path dir;
+};
+
+TEST_F(OptimizeCli, RelocationLowersCurlEnergyAndNeverAddsBranchPoints) {
+  for (const std::string mesh : {"bunny_3k", "eight_genus2"}) {
+    SCOPED_TRACE(mesh);
+    const std::string in = quadcover::testing::data_path(mesh);
+    ASSERT_EQ(run("param " + in + " -o " + path("none.obj") + " --optimize none --report " + path("none.json") + " -q")
+                  .code,
+              0);
+    ASSERT_EQ(run("param " + in + " -o " + path("reloc.obj") + " --optimize relocate --report " + path("reloc.json") +
+                  " -q")
+                  .code,
+              0);
+    const auto none = load_json(path("none.json")), reloc = load_json(path("reloc.json"));
+    const auto& o = reloc["optimize"];
+    for (const char* key : {"mode", "E_D_before", "E_D_after", "branch_points_before", "branch_points_after",
+                            "evaluations", "evaluations_per_second", "stopped_early", "log"})
+      EXPECT_TRUE(o.contains(key)) << key;
+    EXPECT_EQ(o["mode"], "relocate");
+    EXPECT_EQ(none["optimize"]["mode"], "none");
+    EXPECT_GT(o["evaluations"].get<long>(), 0);
+    // The optimizer's counts agree with the branch points the parameterizations found (independent measurement).
+    EXPECT_EQ(o["branch_points_before"].get<std::size_t>(), none["branch_points"].size());
+    EXPECT_EQ(o["branch_points_after"].get<std::size_t>(), reloc["branch_points"].size());
+    EXPECT_LE(reloc["branch_points"].size(), none["branch_points"].size());
+    // Algorithm 6.1 without creation: E_D and the branch point count never rise along the log.
+    double ed = o["E_D_before"].get<double>();
+    int bp = o["branch_points_before"].get<int>();
+    ASSERT_FALSE(o["log"].empty());
+    for (const auto& e : o["log"]) {
+      EXPECT_LE(e["E_D"].get<double>(), ed * (1 + 1e-12));
+      EXPECT_LE(e["branch_points"].get<int>(), bp);
+      ed = e["E_D"].get<double>();
+      bp = e["branch_points"].get<int>();
+    }
+    EXPECT_LE(o["E_D_after"].get<double>(), o["E_D_before"].get<double>());
+    // E_D of the parameterization itself (curl removal on the covering, 4.1) also goes down.
+    EXPECT_LT(reloc["E_D"].get<double>(), none["E_D"].get<double>());
+    EXPECT_EQ(reloc["rounding"]["strategy"], "search3");
+    EXPECT_DOUBLE_EQ(reloc["rounding"]["E_H"].get<double>(), reloc["E_H"].get<double>());
+    EXPECT_EQ(reloc["rounding"]["h_sym"], reloc["h_sym"]);
+    EXPECT_TRUE(reloc["seamless"].get<bool>());
+  }
+}
+
+TEST_F(OptimizeCli, TimeLimitStopsTheOptimizationAndStillWritesAValidMesh) {
+  const std::string in = quadcover::testing::data_path("bunny_3k");
+  // Unlimited full optimization takes far longer than a second on this mesh (BENCHMARKS.md, Table 7.1).
+  const Result r = run("remesh " + in + " -o " + path("q.obj") + " --optimize full --max-iterations 0 --time-limit 1" +
+                       " --report " + path("q.json") + " --json -q");
+  ASSERT_EQ(r.code, 0);
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(summary["optimize"]["stopped_early"].get<bool>());
+  EXPECT_FALSE(summary["optimize"].contains("log"));  // the summary stays short
+  const auto report = load_json(path("q.json"));
+  EXPECT_TRUE(report["optimize"]["stopped_early"].get<bool>());
+  EXPECT_EQ(report["optimize"]["mode"], "full");
+  EXPECT_LE(report["optimize"]["E_D_after"].get<double>(), report["optimize"]["E_D_before"].get<double>());
+  // The written quad mesh, re-read by `metrics`, is a manifold polygon mesh matching the report.
+  const Result m = run("metrics " + path("q.obj") + " --json");
+  ASSERT_EQ(m.code, 0);
+  const auto metrics = nlohmann::json::parse(m.out);
+  EXPECT_TRUE(metrics["quad_mesh"]["manifold"].get<bool>());
+  EXPECT_EQ(metrics["quad_mesh"]["faces"], report["quad_mesh"]["faces"]);
+  EXPECT_GT(metrics["quad_mesh"]["faces"].get<int>(), 0);
+}
+
+TEST_F(OptimizeCli, RoundingStrategiesAreSelectableAndBadOptionsFailWithoutOutput) {
+  const std::string in = quadcover::testing::data_path("eight_genus2");
+  for (const std::string strategy : {"direct", "exact"}) {
+    const Result r = run("param " + in + " -o " + path("p.obj") + " --optimize none --rounding " + strategy +
+                         " --json -q");
+    ASSERT_EQ(r.code, 0) << strategy;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["rounding"]["strategy"], strategy);
+    EXPECT_GE(j["rounding"]["E_H"].get<double>(), 0.0);
+  }
+  fs::remove(path("p.obj"));
+  EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize everything").code, 2);
+  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --rounding nearest").code, 2);
+  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --max-iterations -3").code, 2);
+  EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize none --plot " + path("x.svg")).code, 2);
+  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --png " + path("x.png") + " --view diagonal").code, 2);
+  for (const auto& e : fs::directory_iterator(dir)) ADD_FAILURE() << "left behind: " << e.path();
+}
+
+TEST_F(OptimizeCli, PicturesPlotAndHtmlReport) {
+  const std::string in = quadcover::testing::data_path("bunny_3k");
+  ASSERT_EQ(run("param " + in + " -o " + path("p.obj") + " --png " + path("p.png") + " --size 120x90 --plot " +
+                path("fig61.svg") + " --report-html " + path("p.html") + " -q")
+                .code,
+            0);
+  EXPECT_EQ(png_size(path("p.png")), std::make_pair(120, 90));
+  const std::string svg = slurp(path("fig61.svg"));
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("Fig. 6.1"), std::string::npos);
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);  // the curves are drawn
+  const std::string html = slurp(path("p.html"));
+  EXPECT_NE(html.find("thesis Fig. 6.1"), std::string::npos);  // the optimization plot from the report's log
+  EXPECT_NE(html.find("thesis Fig. 6.2"), std::string::npos);  // the ARAP histogram
+  EXPECT_NE(html.find("optimize.E_D_after"), std::string::npos);  // metrics table, log not tabulated
+  EXPECT_EQ(html.find("optimize.log"), std::string::npos);
+
+  ASSERT_EQ(run("remesh " + in + " -o " + path("q.obj") + " --vertices 800 --png " + path("q.png") +
+                " --view all --size 100x80 --plot " + path("fig61.png") + " --report-html " + path("q.html") + " -q")
+                .code,
+            0);
+  EXPECT_EQ(png_size(path("q.png")), std::make_pair(3 * 100 + 2 * 8, 80));  // front, side, top tiled
+  EXPECT_EQ(png_size(path("fig61.png")), std::make_pair(640, 400));
+  const std::string qhtml = slurp(path("q.html"));
+  EXPECT_NE(qhtml.find("thesis Fig. 6.1"), std::string::npos);
+  EXPECT_NE(qhtml.find("quad mesh"), std::string::npos);
+  EXPECT_NE(qhtml.find("quad_mesh.rsd_edge_length"), std::string::npos);
+}
+
+}  // namespace
