@@ -38,6 +38,17 @@ struct Parameterization {
   /// component is made integral by the constant of φ at no cost).
   int h_sym = 0;
   std::vector<Complex> periods, rounded_periods;
+  /// Rounding of the periods (6.3): the strategy that ran, the number of real variables, E_H = xᵀPx predicted by the
+  /// period matrix for direct rounding and for the chosen periods (before the even-branch fix-up and the curve
+  /// alignment), the candidates the search evaluated and whether the exact solver proved optimality.
+  struct Rounding {
+    std::string strategy = "direct";
+    int variables = 0;
+    double energy_direct = 0, energy_rounded = 0;
+    long long candidates = 0;
+    bool proven_optimal = false;
+    double period_matrix_asymmetry = 0;  ///< max |P_ij − P_ji| / max P_ii (round-off)
+  } rounding;
   /// Even branch points the fix-up could not move to an integer point (rotated lattice), normally empty.
   std::vector<int> unfixed_even_branch_points;
   /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration

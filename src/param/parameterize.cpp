@@ -10,6 +10,8 @@
 #include "field/indices.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
+#include "param/harmonic_correction.h"
+#include "param/period_matrix.h"
 #include "param/alignment.h"
 #include "field/feature_alignment.h"
 
@@ -18,12 +20,6 @@ namespace quadcover {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double frame_norm2(const Mesh& mesh, const FramePairs& Z) {
-  double s = 0;
-  for (int f = 0; f < mesh.num_faces(); ++f) s += mesh.face_areas()[f] * (std::norm(Z(f, 0)) + std::norm(Z(f, 1)));
-  return s;
-}
 
 /// Per component of M: true iff the gauged matching is ≡ 0 mod 4 on all its interior edges (trivial holonomy, no
 /// branch points): then covering constants are in the kernel of 𝔏̄ and 𝔏̄*, and one value per component is pinned.
@@ -37,16 +33,6 @@ std::vector<char> trivial_holonomy(const Mesh& mesh, const CoverCut& cc) {
   return trivial;
 }
 
-/// Replaces row and column i of a Hermitian matrix by the unit vector (value pinned to 0).
-void pin(Eigen::SparseMatrix<Complex>& A, const std::vector<int>& rows) {
-  if (rows.empty()) return;
-  std::vector<char> pinned(static_cast<std::size_t>(A.rows()), 0);
-  for (int r : rows) pinned[r] = 1;
-  for (int c = 0; c < A.outerSize(); ++c)
-    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, c); it; ++it)
-      if (pinned[it.row()] || pinned[it.col()]) it.valueRef() = it.row() == it.col() ? Complex(1) : Complex(0);
-}
-
 /// J∇v per face for a covering nonconforming function v (reference gauge): J∇ψ_e = e / A.
 FramePairs rotated_gradient(const Mesh& mesh, const Eigen::MatrixX3i& mu, const Eigen::VectorXcd& v) {
   FramePairs G = FramePairs::Zero(mesh.num_faces(), 2);
@@ -58,6 +44,79 @@ FramePairs rotated_gradient(const Mesh& mesh, const Eigen::MatrixX3i& mu, const 
       G(f, 1) += w.imag() * e;
     }
   return G;
+}
+
+/// Period-matrix rounding (6.3) of the free paths' periods: x = T z with z integer and T the lattice basis in real
+/// coordinates (x = (Re d, Im d) per free path, see param/period_matrix.h).
+struct PeriodRounding {
+  bool active = false;
+  PeriodMatrix pm;
+  std::vector<int> variable_of_path;  ///< per path: its index in pm.paths, or -1 (dependent path)
+  /// E_H = xᵀ P x of the periods currently in P.rounded_periods.
+  double energy(const Parameterization& P) const {
+    const int m = static_cast<int>(pm.paths.size());
+    Eigen::VectorXd x(2 * m);
+    for (int a = 0; a < m; ++a) {
+      const Complex d = P.rounded_periods[pm.paths[a]] - P.periods[pm.paths[a]];
+      x[a] = d.real();
+      x[m + a] = d.imag();
+    }
+    return x.dot(pm.P * x);
+  }
+};
+
+/// Real coordinates (Re, Im per path) of the lattice generators (4.2.2): Z[i] → I, 2Z[i] → 2I, (1+i)Z[i]:
+/// (1+i)(a+ib) = (a−b) + i(a+b).
+Eigen::MatrixXd lattice_basis(Lattice lattice, int m) {
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m);
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+  switch (lattice) {
+    case Lattice::Unit: T = Eigen::MatrixXd::Identity(2 * m, 2 * m); break;
+    case Lattice::Coarse: T = 2 * Eigen::MatrixXd::Identity(2 * m, 2 * m); break;
+    case Lattice::Rotated:
+      T.topLeftCorner(m, m) = I;
+      T.topRightCorner(m, m) = -I;
+      T.bottomLeftCorner(m, m) = I;
+      T.bottomRightCorner(m, m) = I;
+      break;
+  }
+  return T;
+}
+
+/// Rounds the free periods with options.rounding (P.rounded_periods holds the direct rounding on entry).
+PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
+                                        const ParamOptions& options, Parameterization& P) {
+  PeriodRounding r;
+  r.variable_of_path.assign(static_cast<std::size_t>(cc.num_paths()), -1);
+  if (options.rounding.strategy == RoundingStrategy::Direct) return r;
+  r.pm = period_matrix(mesh, cc, correction);
+  const int m = static_cast<int>(r.pm.paths.size());
+  if (m == 0) return r;
+  r.active = true;
+  for (int a = 0; a < m; ++a) r.variable_of_path[r.pm.paths[a]] = a;
+  P.rounding.variables = 2 * m;
+  P.rounding.period_matrix_asymmetry = r.pm.asymmetry;
+  P.rounding.energy_direct = r.energy(P);
+  const Eigen::MatrixXd T = lattice_basis(options.lattice, m);
+  Eigen::VectorXd beta(2 * m);
+  for (int a = 0; a < m; ++a) {
+    beta[a] = P.periods[r.pm.paths[a]].real();
+    beta[m + a] = P.periods[r.pm.paths[a]].imag();
+  }
+  RoundingResult rr;
+  try {
+    rr = round_periods(T.transpose() * r.pm.P * T, T.partialPivLu().solve(beta), options.rounding);
+  } catch (const NumericalError&) {
+    P.rounding.energy_rounded = P.rounding.energy_direct;  // singular P: keep the direct rounding
+    return r;
+  }
+  const Eigen::VectorXd x = T * rr.c.cast<double>();
+  for (int a = 0; a < m; ++a) P.rounded_periods[r.pm.paths[a]] = Complex(x[a], x[m + a]);
+  P.rounding.strategy = to_string(rr.used);
+  P.rounding.candidates = rr.candidates;
+  P.rounding.proven_optimal = rr.proven_optimal;
+  P.rounding.energy_rounded = r.energy(P);
+  return r;
 }
 
 /// GF(2) solve of A x = r (rows: even branch points, columns: paths); x minimal in the elimination sense.
@@ -159,7 +218,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
         rhs[e] = 0;
       }
     }
-    pin(Ls, pinned);
+    pin_rows(Ls, pinned);
   }
   SparseCholesky<Complex> chol_s;
   chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
@@ -193,6 +252,11 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     P.periods[j] = c[cc.path_edge[j]];
     P.rounded_periods[j] = round_to_lattice(P.periods[j], options.lattice);
   }
+  // The factor of 𝔏̄ serves the period matrix (6.3.2) and the final harmonic correction.
+  const HarmonicCorrection correction(mesh, cc, trivial);
+  lap("harmonic_factor");
+  const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, P);
+  if (rounding.active) lap("period_rounding");
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
     // Even branch point q sits at D_q / 2 (D_q the translation around q); it is integral iff D_q ∈ 2Z[i]. Over the
     // rotated lattice D_q ∈ (1+i)Z[i]; flipping the parity of path periods (± (1±i)) fixes it: a GF(2) system.
@@ -218,10 +282,15 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     const bool ok = solve_gf2(A, r, n, x);
     for (int j = 0; j < n; ++j) {
       if (!x[j]) continue;
+      // The parity step ±(1±i) with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
       Complex best = 0;
       double best_d = INFINITY;
       for (const Complex delta : {Complex(1, 1), Complex(-1, -1), Complex(1, -1), Complex(-1, 1)}) {
-        const double d = std::abs(P.rounded_periods[j] + delta - P.periods[j]);
+        P.rounded_periods[j] += delta;
+        const double d = rounding.active && rounding.variable_of_path[j] >= 0
+                             ? rounding.energy(P)
+                             : std::abs(P.rounded_periods[j] - P.periods[j]);
+        P.rounded_periods[j] -= delta;
         if (d < best_d) best_d = d, best = delta;
       }
       P.rounded_periods[j] += best;
@@ -242,38 +311,8 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
   const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
   const FramePairs Sigma = corner_gradient(mesh, sigma);
-  const VertexLayers vl = vertex_layers(mesh, cc.matching);
-  Eigen::SparseMatrix<Complex> L = complex_conforming_stiffness(mesh, cc.matching);
-  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(nv);
-  for (int f = 0; f < nf; ++f)
-    for (int a = 0; a < 3; ++a) {
-      const int p = mesh.F()(f, a);
-      if (vl.branch[p]) continue;
-      // ∫⟨∇φ_p, Σ⟩ with ∇φ_p = J e_p / 2A, read in p's gauge.
-      b[p] += ipow(-vl.layer(f, a)) * 0.5 *
-              frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), Sigma(f, 0), Sigma(f, 1));
-    }
-  std::vector<int> kernel_pins;  // one vertex per component whose covering constants are harmonic
-  {
-    std::vector<char> done(trivial.size(), 0);
-    for (int p = 0; p < nv; ++p) {
-      const int comp = mesh.vertex_component()[p];
-      if (trivial[comp] && !done[comp]) {
-        done[comp] = 1;
-        kernel_pins.push_back(p);
-      }
-    }
-  }
-  Eigen::VectorXcd u;
-  {
-    Eigen::SparseMatrix<Complex> Lp = L;
-    Eigen::VectorXcd bp = b;
-    for (int p : kernel_pins) bp[p] = 0;
-    pin(Lp, kernel_pins);
-    SparseCholesky<Complex> chol;
-    chol.compute(Lp, "harmonic correction (complex conforming stiffness)");
-    u = chol.solve(bp);
-  }
+  const Eigen::VectorXcd b = correction.rhs(Sigma);
+  Eigen::VectorXcd u = correction.solve(b).col(0);
   if (options.align_curves) {
     // Boundary and feature curves on integer iso-lines: the same correction with one real component of u fixed
     // at every curve vertex (seams untouched: u is continuous on the covering).
@@ -282,14 +321,12 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
         aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
     if (!slots.empty()) {
       const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;
-      u = solve_aligned_correction(mesh, cc, L, b, vl.layer, known, u, kernel_pins, slots, P.aligned_curves,
-                                   P.alignment_conflicts, options.align_max_shift);
+      u = solve_aligned_correction(mesh, cc, correction.stiffness(), b, correction.layers().layer, known, u,
+                                   correction.kernel_pins(), slots, P.aligned_curves, P.alignment_conflicts,
+                                   options.align_max_shift);
     }
   }
-  Eigen::MatrixX3cd ucorner(nf, 3);
-  for (int f = 0; f < nf; ++f)
-    for (int a = 0; a < 3; ++a)
-      ucorner(f, a) = vl.branch[mesh.F()(f, a)] ? Complex(0) : ipow(vl.layer(f, a)) * u[mesh.F()(f, a)];
+  const Eigen::MatrixX3cd ucorner = correction.corner_values(u);
   const FramePairs H = Sigma - corner_gradient(mesh, ucorner);
   P.energy_harmonic = frame_norm2(mesh, H);
   lap("harmonic");

@@ -1,0 +1,84 @@
+#include "param/harmonic_correction.h"
+
+namespace quadcover {
+
+void pin_rows(Eigen::SparseMatrix<Complex>& A, const std::vector<int>& rows) {
+  if (rows.empty()) return;
+  std::vector<char> pinned(static_cast<std::size_t>(A.rows()), 0);
+  for (int r : rows) pinned[r] = 1;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, c); it; ++it)
+      if (pinned[it.row()] || pinned[it.col()]) it.valueRef() = it.row() == it.col() ? Complex(1) : Complex(0);
+}
+
+HarmonicCorrection::HarmonicCorrection(const Mesh& mesh, const CoverCut& cut, const std::vector<char>& trivial)
+    : mesh_(&mesh), layers_(vertex_layers(mesh, cut.matching)), L_(complex_conforming_stiffness(mesh, cut.matching)) {
+  std::vector<char> done(trivial.size(), 0);
+  for (int p = 0; p < mesh.num_vertices(); ++p) {
+    const int comp = mesh.vertex_component()[p];
+    if (trivial[comp] && !done[comp]) {
+      done[comp] = 1;
+      kernel_pins_.push_back(p);
+    }
+  }
+  Eigen::SparseMatrix<Complex> Lp = L_;
+  pin_rows(Lp, kernel_pins_);
+  chol_.compute(Lp, "harmonic correction (complex conforming stiffness)");
+}
+
+Eigen::VectorXcd HarmonicCorrection::rhs(const FramePairs& Sigma, const std::vector<int>& faces) const {
+  const Mesh& mesh = *mesh_;
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh.num_vertices());
+  for (int f : faces)
+    for (int a = 0; a < 3; ++a) {
+      const int p = mesh.F()(f, a);
+      if (layers_.branch[p]) continue;
+      // ∫⟨∇φ_p, Σ⟩ with ∇φ_p = J e_p / 2A, read in p's gauge.
+      b[p] += ipow(-layers_.layer(f, a)) * 0.5 *
+              frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), Sigma(f, 0), Sigma(f, 1));
+    }
+  return b;
+}
+
+Eigen::VectorXcd HarmonicCorrection::rhs(const FramePairs& Sigma) const {
+  std::vector<int> all(static_cast<std::size_t>(mesh_->num_faces()));
+  for (int f = 0; f < mesh_->num_faces(); ++f) all[f] = f;
+  return rhs(Sigma, all);
+}
+
+Eigen::MatrixXcd HarmonicCorrection::solve(const Eigen::MatrixXcd& B) const {
+  Eigen::MatrixXcd Bp = B;
+  for (int p : kernel_pins_) Bp.row(p).setZero();
+  return chol_.solve(Bp);
+}
+
+Eigen::MatrixX3cd HarmonicCorrection::corner_values(const Eigen::VectorXcd& u) const {
+  const Mesh& mesh = *mesh_;
+  Eigen::MatrixX3cd c(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const int p = mesh.F()(f, a);
+      c(f, a) = layers_.branch[p] ? Complex(0) : ipow(layers_.layer(f, a)) * u[p];
+    }
+  return c;
+}
+
+FramePairs HarmonicCorrection::harmonic_part(const FramePairs& Sigma) const {
+  const Eigen::VectorXcd u = solve(rhs(Sigma)).col(0);
+  return Sigma - corner_gradient(*mesh_, corner_values(u));
+}
+
+double frame_norm2(const Mesh& mesh, const FramePairs& Z) {
+  double s = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) s += mesh.face_areas()[f] * (std::norm(Z(f, 0)) + std::norm(Z(f, 1)));
+  return s;
+}
+
+double frame_inner(const Mesh& mesh, const FramePairs& Z, const FramePairs& W) {
+  double s = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    s += mesh.face_areas()[f] * std::real(std::conj(Z(f, 0)) * W(f, 0) + std::conj(Z(f, 1)) * W(f, 1));
+  return s;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,36 @@
+#pragma once
+// The period matrix of the symmetric paths (thesis 6.3, 6.3.2). Rounding the periods b to lattice points c changes
+// the harmonic correction H̃_d, d = c − b, and E_H = ‖H̃_d‖² (the Parameterization's convention: ½‖·‖² on M̃) is a
+// quadratic form in the real and imaginary parts of d on the free paths: E_H = xᵀ P x,
+// x = (Re d_{j_1}, …, Re d_{j_m}, Im d_{j_1}, …, Im d_{j_m}).
+// P_ij = ⟨H_i, Σ_j⟩ = ⟨H_i, H_j⟩ (H_i ⟂ gradients): built column block by column block with one harmonic field
+// H_i = Σ_i − ∇u_i at a time, the Σ_j stored sparsely (their support is the faces along the cut). The imaginary
+// unit acts on frame pairs as the quarter turn i(X, Y) = (−Y, X), so the Im columns need no extra solves.
+#include <Eigen/Core>
+#include <vector>
+
+#include "param/harmonic_correction.h"
+
+namespace quadcover {
+
+struct PeriodMatrix {
+  std::vector<int> paths;  ///< the m free paths (each component's dependent path is fixed by its constant)
+  Eigen::MatrixXd P;       ///< 2m by 2m, symmetric positive semi-definite: E_H = xᵀ P x
+  long long sigma_support = 0;  ///< Σ_j |supp Σ_j| (faces), the sparse storage
+  double asymmetry = 0;         ///< max |P_ij − P_ji| / max |P_ii| before symmetrization (round-off)
+};
+
+/// Σ̃_j = ∇σ_j for the unit jump on path j (completed to the whole cut), per face as frame pairs; only the faces
+/// in `support` are non-zero.
+struct SparseJumpField {
+  std::vector<int> support;
+  std::vector<Complex> X, Y;  ///< per support face
+};
+SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path);
+
+/// P for the free paths of `cut`; `correction` must have been built for the same cut. Solves in blocks of
+/// `block_size` right-hand sides. \throw NumericalError if a solve fails.
+PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
+                           int block_size = 32);
+
+}  // namespace quadcover

@@ -1,0 +1,101 @@
+// The period matrix of the symmetric paths (thesis 6.3.2) and period rounding inside parameterize().
+#include "param/period_matrix.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "field/compute_frame_field.h"
+#include "param/parameterize.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+using testing::load_test_mesh;
+
+// H_d as a dense field for the real variable `var` (Re or Im of the unit jump on one free path).
+FramePairs dense_harmonic(const Mesh& mesh, const HarmonicCorrection& hc, const SparseJumpField& s, bool imaginary) {
+  FramePairs S = FramePairs::Zero(mesh.num_faces(), 2);
+  for (std::size_t k = 0; k < s.support.size(); ++k) {
+    if (imaginary)
+      S.row(s.support[k]) << -s.Y[k], s.X[k];  // i(X, Y) = (−Y, X)
+    else
+      S.row(s.support[k]) << s.X[k], s.Y[k];
+  }
+  return hc.harmonic_part(S);
+}
+
+// P_ij = ⟨H_i, Σ_j⟩ with sparse Σ_j equals the Gram matrix ⟨H_i, H_j⟩ of the dense harmonic fields, both for the
+// real and the imaginary unit jumps (the latter computed with the quarter turn of Σ, not by P's shortcut).
+TEST(PeriodMatrix, EqualsGramMatrixOfHarmonicFields) {
+  for (const char* name : {"eight_genus2", "lilium_disk"}) {
+    const Mesh mesh = load_test_mesh(name);
+    const FrameField field = compute_frame_field(mesh);
+    const CoverCut cc = build_cover_cut(mesh, field.matching);
+    const HarmonicCorrection hc(mesh, cc, std::vector<char>(static_cast<std::size_t>(mesh.num_components()), 0));
+    const PeriodMatrix pm = period_matrix(mesh, cc, hc, 5);  // several blocks
+    const int m = static_cast<int>(pm.paths.size());
+    ASSERT_GT(m, 2) << name;
+    EXPECT_EQ(2 * m, cc.h_sym()) << name;
+    EXPECT_LT(pm.asymmetry, 1e-8) << name;
+    std::vector<FramePairs> H;
+    for (bool imaginary : {false, true})
+      for (int j : pm.paths) H.push_back(dense_harmonic(mesh, hc, unit_jump_field(mesh, cc, j), imaginary));
+    double scale = pm.P.diagonal().maxCoeff(), worst = 0;
+    for (int a = 0; a < 2 * m; ++a)
+      for (int b = 0; b < 2 * m; ++b) worst = std::max(worst, std::abs(pm.P(a, b) - frame_inner(mesh, H[a], H[b])));
+    EXPECT_LT(worst, 1e-8 * scale) << name;
+    // Positive definite on the free paths (the dependent paths are excluded).
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(pm.P).eigenvalues().minCoeff(), 0) << name;
+  }
+}
+
+// E_H of the final map equals xᵀPx of the rounded periods (unit lattice: no even-branch fix-up after rounding, no
+// curve alignment), and search rounding never does worse than direct rounding.
+TEST(PeriodMatrix, PredictsHarmonicEnergyOfTheMap) {
+  for (const char* name : {"bunny_3k", "3holes_genus3"}) {
+    const Mesh mesh = load_test_mesh(name);
+    const FrameField field = compute_frame_field(mesh);
+    ParamOptions o;
+    o.lattice = Lattice::Unit;
+    o.align_curves = false;
+    for (RoundingStrategy s : {RoundingStrategy::Greedy, RoundingStrategy::Search3}) {
+      o.rounding.strategy = s;
+      const Parameterization P = parameterize(mesh, field, o);
+      ASSERT_GT(P.rounding.variables, 0) << name;
+      EXPECT_NEAR(P.energy_harmonic, P.rounding.energy_rounded, 1e-7 * (1 + P.energy_harmonic)) << name;
+      EXPECT_LE(P.rounding.energy_rounded, P.rounding.energy_direct * (1 + 1e-12)) << name;
+      for (std::size_t j = 0; j < P.rounded_periods.size(); ++j) {
+        EXPECT_NEAR(P.rounded_periods[j].real(), std::round(P.rounded_periods[j].real()), 1e-12);
+        EXPECT_NEAR(P.rounded_periods[j].imag(), std::round(P.rounded_periods[j].imag()), 1e-12);
+      }
+    }
+    o.rounding.strategy = RoundingStrategy::Direct;
+    const Parameterization D = parameterize(mesh, field, o);
+    o.rounding.strategy = RoundingStrategy::Search3;
+    const Parameterization S = parameterize(mesh, field, o);
+    EXPECT_LE(S.energy_harmonic, D.energy_harmonic * (1 + 1e-9)) << name;
+    EXPECT_EQ(D.rounding.strategy, "direct");
+  }
+}
+
+// On the rotated lattice the rounded periods lie in (1+i)Z[i] (a + b even), whatever the strategy.
+TEST(PeriodMatrix, RotatedLatticeRounding) {
+  const Mesh mesh = load_test_mesh("fertility_genus4");
+  const FrameField field = compute_frame_field(mesh);
+  ParamOptions o;
+  o.rounding.strategy = RoundingStrategy::Search3;
+  const Parameterization P = parameterize(mesh, field, o);
+  ASSERT_GT(P.rounding.variables, 0);
+  EXPECT_LE(P.rounding.energy_rounded, P.rounding.energy_direct * (1 + 1e-12));
+  for (const Complex c : P.rounded_periods) {
+    const long a = std::lround(c.real()), b = std::lround(c.imag());
+    EXPECT_NEAR(c.real(), a, 1e-12);
+    EXPECT_NEAR(c.imag(), b, 1e-12);
+    EXPECT_EQ(((a + b) % 2 + 2) % 2, 0) << c;
+  }
+}
+
+}  // namespace
+}  // namespace quadcover
