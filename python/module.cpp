@@ -14,6 +14,7 @@
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 #include "metrics/param_quality.h"
+#include "optimize/optimize_field.h"
 #include "metrics/quad_quality.h"
 #include "metrics/report.h"
 #include "param/parameterize.h"
@@ -60,12 +61,35 @@ FieldOptions field_options(double trusted_fraction, double lambda, int smoothing
   return o;
 }
 
-ParamOptions param_options(double edge_length, int quads, const std::string& lattice) {
+ParamOptions param_options(double edge_length, int quads, const std::string& lattice, const std::string& rounding) {
   ParamOptions o;
   o.edge_length = edge_length;
   o.target_quads = quads;
   o.lattice = parse_lattice(lattice);
+  o.rounding.strategy = parse_rounding_strategy(rounding);
   return o;
+}
+
+OptimizeOptions optimize_options(const std::string& optimize, long max_iterations, const ParamOptions& popt) {
+  if (max_iterations < 0) throw InputError("max_iterations", 0, "must be >= 0 (0 = until converged)");
+  OptimizeOptions o;
+  o.mode = parse_optimize_mode(optimize);
+  o.max_evaluations = max_iterations;
+  o.param = popt;
+  return o;
+}
+
+/// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object.
+FrameField optimized_field(const Mesh& mesh, const OptimizeOptions& oopt, ProgressSink& progress,
+                           nlohmann::json& report) {
+  const FrameFieldResult f = compute_frame_field_detailed(mesh, {}, progress);
+  OptimizeResult r = optimize_field(mesh, f, oopt, progress);
+  report = to_json(r, oopt.mode);
+  return std::move(r.field);
+}
+
+nlohmann::json rounding_json(const ParamOptions& popt, const Parameterization& p) {
+  return {{"strategy", to_string(popt.rounding.strategy)}, {"E_H", p.energy_harmonic}, {"h_sym", p.h_sym}};
 }
 
 py::dict info(const RowMatrixX3d& V, const RowMatrixX3i& F) {
@@ -159,15 +183,18 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
 }
 
 py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
-                          const std::string& lattice) {
+                          const std::string& lattice, const std::string& optimize, const std::string& rounding,
+                          long max_iterations) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
+  const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   Parameterization p;
   ParamQuality q;
+  nlohmann::json optimize_report;
   {
     py::gil_scoped_release release;
-    const FrameField f = compute_frame_field(mesh, {}, progress);
+    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report);
     p = parameterize(mesh, f, popt, progress);
     q = param_quality(mesh, p);
   }
@@ -176,20 +203,26 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   report["faces"] = mesh.num_faces();
   report["lattice"] = to_string(popt.lattice);
   report["edge_length"] = target_edge_length(mesh, popt);
+  report["optimize"] = optimize_report;
+  report["rounding"] = rounding_json(popt, p);
   return py::make_tuple(corner_uv_array(p.uv), to_python(report));
 }
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
-                    const std::string& lattice) {
+                    const std::string& lattice, const std::string& optimize, const std::string& rounding,
+                    long max_iterations) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
+  const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   ExtractionResult ex;
   Report report;
+  nlohmann::json optimize_report, rounding_report;
   {
     py::gil_scoped_release release;
-    const FrameField f = compute_frame_field(mesh, {}, progress);
+    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report);
     const Parameterization p = parameterize(mesh, f, popt, progress);
+    rounding_report = rounding_json(popt, p);
     ex = extract_quads(mesh, p, {}, progress);
     report.parameterization = param_quality(mesh, p);
     report.extraction = ex.report;
@@ -209,7 +242,10 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
       for (int k = 0; k < 4; ++k) M(static_cast<Eigen::Index>(i), k) = ex.mesh.faces[i][static_cast<std::size_t>(k)];
     Q = py::cast(M);
   }
-  return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(to_json(report)));
+  nlohmann::json j = to_json(report);
+  j["optimize"] = optimize_report;
+  j["rounding"] = rounding_report;
+  return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(j));
 }
 
 }  // namespace
@@ -242,12 +278,19 @@ PYBIND11_MODULE(quadcover, m) {
         "Curvature-guided cross field (thesis Chapter 5): dict with X, Y (#F complex, face basis basis1/basis2), "
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
-        py::arg("quads") = 0, py::arg("lattice") = "rotated",
+        py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
+        py::arg("rounding") = "search3", py::arg("max_iterations") = 3000,
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
-        "Density: edge_length h, or quads N, or by default twice the mean edge length.");
+        "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
+        "(Algorithm 6.1 moving/cancelling branch points) or full (with creation and balancing, 6.4), at most "
+        "max_iterations E_D evaluations (0 = until converged); report['optimize'] has E_D and branch points before "
+        "and after and the per-iteration log. rounding of the periods (6.3): direct, greedy, search1, search2, "
+        "search3 or exact; report['rounding'] has the strategy and E_H. Ctrl-C stops the optimization early.");
   m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
-        py::arg("lattice") = "rotated",
-        "Quad remeshing (field -> parameterization -> extraction): returns (QV #Q×3, faces, report) where faces is a "
-        "#faces×4 int array when every face is a quad, else a list of polygons.");
+        py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+        py::arg("max_iterations") = 3000,
+        "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
+        "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, rounding "
+        "and max_iterations as in parameterize(); the report has the same 'optimize' and 'rounding' objects.");
 }

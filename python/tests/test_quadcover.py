@@ -129,3 +129,42 @@ def test_remesh_torus_gives_a_closed_quad_mesh():
     assert len(edges) == 2 * Q.shape[0]
     assert QV.shape[0] - len(edges) + Q.shape[0] == 0
     assert report["quad_mesh"] is not None and report["extraction"]["quads"] == Q.shape[0]
+
+
+def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
+    V, F = mesh("bunny_3k")
+    _, none = quadcover.parameterize(V, F, optimize="none")
+    uv, reloc = quadcover.parameterize(V, F)  # defaults: optimize="relocate", rounding="search3"
+    assert none["optimize"]["mode"] == "none" and reloc["optimize"]["mode"] == "relocate"
+    assert reloc["rounding"]["strategy"] == "search3"
+    assert reloc["rounding"]["E_H"] == pytest.approx(reloc["energy_harmonic"], rel=1e-12)
+    o = reloc["optimize"]
+    # Algorithm 6.1 without creation: never more branch points, never a higher E_D along the log. The count
+    # before is the field's (measured independently by field()); the cones of the map follow.
+    assert o["branch_points_before"] == len(quadcover.field(V, F)["branch_points"])
+    assert o["branch_points_after"] <= o["branch_points_before"]
+    assert reloc["branch_points"] <= none["branch_points"]
+    eds = [o["E_D_before"]] + [e["E_D"] for e in o["log"]]
+    assert all(b <= a * (1 + 1e-12) for a, b in zip(eds, eds[1:]))
+    # ... and the parameterization's own E_D (curl removal on the covering) follows.
+    assert reloc["energy_curl"] < none["energy_curl"]
+    worst, _ = seam_defect(F, uv)
+    assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
+    with pytest.raises(ValueError, match="optimiz"):
+        quadcover.parameterize(V, F, optimize="everything")
+    with pytest.raises(ValueError, match="rounding"):
+        quadcover.parameterize(V, F, rounding="nearest")
+    with pytest.raises(ValueError):
+        quadcover.parameterize(V, F, max_iterations=-1)
+
+
+def test_remesh_full_optimization_respects_the_budget():
+    V, F = mesh("bunny_3k")
+    QV, Q, report = quadcover.remesh(V, F, optimize="full", rounding="exact", max_iterations=150)
+    o = report["optimize"]
+    assert o["mode"] == "full" and o["stopped_early"]
+    assert 0 < o["evaluations"] <= 150
+    assert o["E_D_after"] <= o["E_D_before"]
+    assert report["rounding"]["strategy"] == "exact"
+    assert report["rounding"]["E_H"] == pytest.approx(report["parameterization"]["energy_harmonic"], rel=1e-12)
+    assert report["quad_mesh"]["faces"] == len(Q) > 0
