@@ -82,22 +82,38 @@ PolygonTopology polygon_topology(int num_vertices, const std::vector<std::vector
 // Around cut-out folds two distinct traced segments can join the same two vertices in the same direction; the
 // polygon mesh would then be non-manifold. Keep the smallest face on such an edge and drop the others.
 int drop_faces_on_duplicate_edges(QuadMesh& qm) {
-  int dropped = 0;
-  std::unordered_map<long long, std::vector<int>> users;
+  // (directed edge, face) for every face side, sorted: equal edges are adjacent (no per-edge allocation).
+  std::vector<std::pair<unsigned long long, int>> sides;
+  std::size_t total = 0;
+  for (const auto& F : qm.faces) total += F.size();
+  sides.reserve(total);
   for (int f = 0; f < qm.num_faces(); ++f) {
     const auto& F = qm.faces[f];
     for (std::size_t i = 0; i < F.size(); ++i)
-      users[(static_cast<long long>(F[i]) << 32) | static_cast<unsigned>(F[(i + 1) % F.size()])].push_back(f);
+      sides.emplace_back((static_cast<unsigned long long>(static_cast<unsigned>(F[i])) << 32) |
+                             static_cast<unsigned>(F[(i + 1) % F.size()]),
+                         f);
   }
+  std::sort(sides.begin(), sides.end());
   std::vector<char> drop(qm.num_faces(), 0);
-  for (auto& [key, fs] : users) {
-    if (fs.size() < 2) continue;
-    std::sort(fs.begin(), fs.end(), [&](int a, int b) {
-      return qm.faces[a].size() != qm.faces[b].size() ? qm.faces[a].size() < qm.faces[b].size() : a < b;
-    });
-    for (std::size_t i = 1; i < fs.size(); ++i) drop[fs[i]] = 1;
+  auto smaller = [&](int a, int b) {
+    return qm.faces[a].size() != qm.faces[b].size() ? qm.faces[a].size() < qm.faces[b].size() : a < b;
+  };
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i + 1;
+    while (j < sides.size() && sides[j].first == sides[i].first) ++j;
+    if (j - i > 1) {
+      int keep = sides[i].second;
+      for (std::size_t k = i + 1; k < j; ++k)
+        if (smaller(sides[k].second, keep)) keep = sides[k].second;
+      for (std::size_t k = i; k < j; ++k)
+        if (sides[k].second != keep) drop[sides[k].second] = 1;
+    }
+    i = j;
   }
+  int dropped = 0;
   std::vector<std::vector<int>> kept;
+  kept.reserve(qm.faces.size());
   for (int f = 0; f < qm.num_faces(); ++f)
     if (drop[f])
       ++dropped;
