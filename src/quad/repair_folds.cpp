@@ -85,6 +85,41 @@ std::vector<Complex> ring_kernel(const std::vector<std::pair<Complex, Complex>>&
   return poly;
 }
 
+// 2 · signed area of the triangle (x, q1, q2).
+double twice_area(Complex q1, Complex q2, Complex x) {
+  const Complex d = q2 - q1;
+  return d.real() * (x - q1).imag() - d.imag() * (x - q1).real();
+}
+
+// argmax_x min_i 2·area(x, q1_i, q2_i): a 2D linear program (max t s.t. g_i(x) ≥ t); its optimum is where three
+// of the affine g_i are equal, so all triples are tried (rings are small). t returns the optimal value.
+Complex max_min_area_point(const std::vector<std::pair<Complex, Complex>>& edges, double& t) {
+  const int n = static_cast<int>(edges.size());
+  // g_i(x) = a_i·x + b_i
+  std::vector<double> ax(n), ay(n), b(n);
+  for (int i = 0; i < n; ++i) {
+    const auto [q1, q2] = edges[i];
+    const Complex d = q2 - q1;
+    ax[i] = -d.imag(), ay[i] = d.real(), b[i] = d.imag() * q1.real() - d.real() * q1.imag();
+  }
+  Complex best{0, 0};
+  t = -INFINITY;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k) {
+        // g_i = g_j = g_k: (a_i − a_j)·x = b_j − b_i, (a_i − a_k)·x = b_k − b_i
+        const double m11 = ax[i] - ax[j], m12 = ay[i] - ay[j], m21 = ax[i] - ax[k], m22 = ay[i] - ay[k];
+        const double det = m11 * m22 - m12 * m21;
+        if (std::abs(det) < 1e-300) continue;
+        const double r1 = b[j] - b[i], r2 = b[k] - b[i];
+        const Complex x((r1 * m22 - m12 * r2) / det, (m11 * r2 - r1 * m21) / det);
+        double mn = INFINITY;
+        for (int l = 0; l < n; ++l) mn = std::min(mn, ax[l] * x.real() + ay[l] * x.imag() + b[l]);
+        if (mn > t) t = mn, best = x;
+      }
+  return best;
+}
+
 // Area centroid of a convex polygon (its vertex mean if the area vanishes).
 Complex centroid(const std::vector<Complex>& poly) {
   Complex c{0, 0}, mean{0, 0};
@@ -206,8 +241,24 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
       if (!ok) {
         if (!has_bad) continue;
         const std::vector<Complex> kernel = ring_kernel(edges, margin);
-        if (kernel.empty()) continue;
-        p = centroid(kernel);
+        if (!kernel.empty()) {
+          p = centroid(kernel);
+        } else {
+          // No valid position: the one maximizing the smallest incident area, taken only if that area grows and
+          // no more incident triangles are bad than before (local untangling; the ring may follow later).
+          const Complex old_p = fan->from_first[0].inverse(r.uv(fan->corners[0].first, fan->corners[0].second));
+          double t_best = 0;
+          const Complex q = max_min_area_point(edges, t_best);
+          double t_old = INFINITY;
+          int bad_old = 0, bad_new = 0;
+          for (const auto& [q1, q2] : edges) {
+            t_old = std::min(t_old, twice_area(q1, q2, old_p));
+            bad_old += twice_area(q1, q2, old_p) <= 2 * options.min_area;
+            bad_new += twice_area(q1, q2, q) <= 2 * options.min_area;
+          }
+          if (!(t_best > t_old + 1e-12) || bad_new > bad_old) continue;
+          p = q;
+        }
       }
       for (std::size_t j = 0; j < fan->corners.size(); ++j) {
         const auto [f, c] = fan->corners[j];
