@@ -13,8 +13,19 @@ section=$(cat <<MD
 ## Table 7.1
 
 Thesis Table 7.1 reproduced on \`tests/data/bunny_3k.obj\` (closed Stanford bunny, 3k faces) at about 6500 output
-vertices: frame field (ch. 5) → QuadCover parameterization (ch. 2-4, rotated lattice) → [optimization, ch. 6] →
-quad extraction (\`src/quad\`). Made by \`bench/table71.sh $build\` on $(date -u +%Y-%m-%d), $cpu.
+vertices: frame field (ch. 5) → [optimization of the matching, ch. 6] → QuadCover parameterization (ch. 2-4, rotated
+lattice, period rounding 6.3) → quad extraction (\`src/quad\`). Made by \`bench/table71.sh $build\` (Release build with
+\`-DQUADCOVER_BUILD_BENCH=ON\`, target \`bench_table71\`, which prints the table with \`--table\`) on
+$(date -u +%Y-%m-%d), $cpu, $(nproc) cores shared with other jobs, commit $(git rev-parse --short HEAD).
+
+Columns (\`bench/table71_bench.cpp\`; each density calibrated once so that the output has about 6500 vertices):
+- **QuadCover**: plain [KNP07], no optimization, direct rounding of the periods (\`--optimize none --rounding direct\`).
+- **Relocation**: Algorithm 6.1 without creation of branch points (cancellation + sorted curl reduction, until
+  converged) and the r = 3 rounding search (\`--optimize relocate --rounding search3 --max-iterations 0\`; the CLI
+  default, whose 3000-evaluation budget is not reached here).
+- **Balancing (full)**: Algorithm 6.1 with creation, then balancing (6.4) until no cancellation pays, r = 3 rounding
+  (\`--optimize full --max-iterations 0\`).
+- **full, CLI budget 3000**: as the previous one but stopped after 3000 E_D evaluations (\`--optimize full\`).
 
 $table
 
@@ -22,9 +33,10 @@ Definitions (\`src/metrics\`): RSD = standard deviation / mean, in percent, over
 and over all face corners (angle) of the quad mesh. **ARAP**: scale the map globally so that its total UV area
 equals the 3D area, then ARAP = ½ × area-weighted mean over triangles of min over rotations ‖J − R‖²_F (J the
 Jacobian of the scaled map). The thesis's ARAP column (0.50 / 0.36 / 0.33) does not state its normalization and is
-not comparable. Branch points are cones of the map (parameter angle sum ≠ 2π); irregular vertices are interior quad
-vertices of valence ≠ 4. Peer reference (issue 7): libigl MIQ + QEx on this mesh reaches RSD edge 9.2 %, RSD angle
-7.0 %, 34 irregular vertices, ARAP 0.0123, 0 flips.
+not comparable. "branch points" are cones of the map (parameter angle sum ≠ 2π); "field branch points" are the
+singular vertices of the cross field before and after Algorithm 6.1; irregular vertices are interior quad vertices of
+valence ≠ 4. Peer reference (issue 7): libigl MIQ + QEx on this mesh reaches RSD edge 9.2 %, RSD angle 7.0 %, 34
+irregular vertices, ARAP 0.0123, 0 flips, in 0.4 s.
 MD
 )
 python3 - "$section" <<'PY'
