@@ -1,6 +1,10 @@
 // Table 6.1 (thesis 6.2.1): average time of one E_D re-evaluation after a matching change, from scratch and via
 // Cholesky updates, split by stage; plus the plain CXSparse route (two cs_ci_updown + a full forward solve) and the
 // reach-limited evaluation (fixed field, sparse right-hand side: only the etree paths of the changed rows).
+// Local estimate (CurlEnergy::estimate: patch re-smoothing, sparse curl* change, reach-limited solve, first-order
+// far field), serially and as 2-thread batches. With QUADCOVER_BENCH_PIPELINE=1 also the whole optimized
+// pipeline per mesh (field, optimize_field full, parameterize), once; with QUADCOVER_BENCH_SWEEP=1 the Figure 6.5
+// sweep (balancing_sweep with creation) is printed for the first mesh.
 // Meshes: the non-flag arguments, else tests/data/bunny_3k.obj and bunny_20k_holes.obj plus the ':'-separated
 // list in $QUADCOVER_BENCH_MESHES (e.g. /work/shared/meshes/armadillo_86k.obj:/work/shared/meshes/igea_270k.obj).
 //   bench_optimize [--benchmark_flags...] [mesh...]
@@ -18,7 +22,9 @@
 #include "cover/complex_stiffness.h"
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
+#include "optimize/balancing_sweep.h"
 #include "optimize/curl_energy.h"
+#include "optimize/optimize_field.h"
 #include "param/period_rounding.h"
 
 namespace {
@@ -44,7 +50,8 @@ std::unique_ptr<BenchMesh> load(const std::string& path) {
   b->field = compute_frame_field_detailed(b->mesh);
   b->smoother = std::make_unique<FrameSmoother>(b->mesh, b->field.field, b->field.stability, b->field.trusted,
                                                 b->field.constrained, FieldOptions{}.lambda);
-  b->energy = std::make_unique<CurlEnergy>(b->mesh, *b->smoother);
+  b->energy = std::make_unique<CurlEnergy>(
+      b->mesh, *b->smoother, SmoothingWeights{FieldOptions{}.lambda, b->field.stability, b->field.trusted});
   for (int e = 0; e < b->mesh.num_edges(); ++e)
     if (!b->mesh.is_boundary_edge(e)) b->edges.push_back(e);
   return b;
@@ -137,6 +144,75 @@ void BM_ReachLimited(benchmark::State& state, BenchMesh* b) {
   state.counters["reach_columns"] = static_cast<double>(reach) / std::max(1L, n);
 }
 
+// Local estimate of a random single-edge change (serial workspace; stages: local CG = minE, curl* change, star
+// updates, reach-limited forward solve).
+void BM_LocalEstimate(benchmark::State& state, BenchMesh* b) {
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<std::size_t> pick(0, b->edges.size() - 1);
+  b->energy->prepare_estimates();
+  EstimateWorkspace ws;
+  for (auto _ : state) {
+    const MatchingChange c{b->edges[pick(rng)], rng() % 2 ? 1 : -1};
+    benchmark::DoNotOptimize(b->energy->estimate(std::span(&c, 1), ws));
+  }
+  const auto& t = ws.timings;
+  set_ms(state, "minE_ms", t.smoothing, t.evaluations), set_ms(state, "curl_ms", t.curl, t.evaluations);
+  set_ms(state, "update_ms", t.update, t.evaluations), set_ms(state, "solve_ms", t.solve, t.evaluations);
+  state.counters["patch_faces"] = static_cast<double>(ws.patch_faces) / std::max(1L, t.evaluations);
+  state.counters["reach_columns"] = static_cast<double>(ws.reach_columns) / std::max(1L, t.evaluations);
+}
+
+// 64 candidates per batch on 2 threads (CurlEnergy::estimate_batch); time per candidate = time / 64.
+void BM_EstimateBatch2(benchmark::State& state, BenchMesh* b) {
+  std::mt19937 rng(6);
+  std::uniform_int_distribution<std::size_t> pick(0, b->edges.size() - 1);
+  std::vector<std::vector<MatchingChange>> cands(64);
+  std::vector<double> out(cands.size());
+  double seconds = 0;
+  long n = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    for (auto& c : cands) c.assign(1, MatchingChange{b->edges[pick(rng)], rng() % 2 ? 1 : -1});
+    state.ResumeTiming();
+    const auto t = Clock::now();
+    b->energy->estimate_batch(cands, out, 2);
+    seconds += since(t), n += static_cast<long>(cands.size());
+  }
+  set_ms(state, "per_candidate_ms", seconds, n);
+}
+
+// The whole optimized pipeline (wall clock): field (Chapter 5), optimize_field full (Algorithm 6.1 + balancing),
+// parameterize (Chapter 4 + rounding 6.3).
+void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
+  for (auto _ : state) {
+    auto t = Clock::now();
+    const Mesh mesh = build_mesh(read_mesh(path)).mesh;
+    const FrameFieldResult field = compute_frame_field_detailed(mesh);
+    const double t_field = since(t);
+    t = Clock::now();
+    OptimizeOptions o;
+    o.mode = OptimizeMode::Full;
+    const OptimizeResult r = optimize_field(mesh, field, o);
+    const double t_opt = since(t);
+    t = Clock::now();
+    const Parameterization p = parameterize(mesh, r.field);
+    const double t_param = since(t);
+    state.counters["field_s"] = t_field, state.counters["optimize_s"] = t_opt, state.counters["param_s"] = t_param;
+    state.counters["total_s"] = t_field + t_opt + t_param;
+    state.counters["evaluations"] = static_cast<double>(r.reduction.evaluations + r.balancing.evaluations);
+    state.counters["exact_evals"] =
+        static_cast<double>(r.reduction.exact_evaluations + r.balancing.exact_evaluations);
+    state.counters["bp_before"] = r.reduction.initial_branch_points;
+    state.counters["bp_after"] = r.balancing.log.empty() ? r.reduction.final_branch_points
+                                                         : r.balancing.final_branch_points;
+    state.counters["E_D_before"] = r.reduction.initial_energy;
+    state.counters["E_D_after"] = r.balancing.log.empty() ? r.reduction.final_energy : r.balancing.final_energy;
+    state.counters["E_H"] = p.energy_harmonic;
+    state.counters["stopped_early"] = r.reduction.stopped_early || r.balancing.stopped_early;
+    state.counters["faces"] = mesh.num_faces();
+  }
+}
+
 // Rounding on synthetic period-like instances (correlated SPD P, periods uniform in [-3,3]): candidates per second.
 void BM_RoundingSearch3(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
@@ -180,6 +256,29 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("ReachLimited/" + b->name).c_str(), BM_ReachLimited, b)
         ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("LocalEstimate/" + b->name).c_str(), BM_LocalEstimate, b)
+        ->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("EstimateBatch2/" + b->name).c_str(), BM_EstimateBatch2, b)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    if (std::getenv("QUADCOVER_BENCH_PIPELINE"))
+      benchmark::RegisterBenchmark(("OptimizedPipeline/" + b->name).c_str(), BM_OptimizedPipeline, p)
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1)
+          ->UseRealTime();
+  }
+  if (std::getenv("QUADCOVER_BENCH_SWEEP") && !g_meshes.empty()) {
+    // Figure 6.5 (thesis 6.4) on the first mesh: one row per branch point count.
+    BalancingSweepOptions o;
+    o.optimize.max_evaluations = 0;
+    o.max_rows = std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) > 1 ? std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) : 0;
+    const auto t = Clock::now();
+    const auto rows = balancing_sweep(g_meshes[0]->mesh, g_meshes[0]->field, o);
+    std::printf("Figure 6.5 sweep, %s (%.1f s)\n| branch points | E_D | E_H | E_D + E_H | h_sym |\n|---|---|---|---|---|\n",
+                g_meshes[0]->name.c_str(), since(t));
+    for (const auto& r : rows)
+      std::printf("| %d | %.4f | %.3f | %.3f | %d |\n", r.branch_points, r.energy_curl, r.energy_harmonic, r.total,
+                  r.h_sym);
   }
   benchmark::RegisterBenchmark("RoundingSearch3", BM_RoundingSearch3)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();

@@ -31,12 +31,17 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   ro.allow_creation = options.mode == OptimizeMode::Full;
   ro.cancellation_neighbours = options.cancellation_neighbours;
   ro.max_evaluations = options.max_evaluations;
+  // full: a third of the evaluation budget is kept for balancing, which also runs when the first reduction used up
+  // its share (otherwise a budget-limited run would only create branch points).
+  if (options.mode == OptimizeMode::Full && options.max_evaluations > 0)
+    ro.max_evaluations = std::max(1L, options.max_evaluations - options.max_evaluations / 3);
   ro.time_limit_seconds = options.time_limit_seconds;
   ro.local_estimates = options.local_estimates;
   ro.threads = options.threads;
   out.reduction = reduce_curl(mesh, energy, ro, progress);
   long evaluations = out.reduction.evaluations;
-  if (options.mode == OptimizeMode::Full && !out.reduction.stopped_early) {
+  const bool out_of_time = options.time_limit_seconds > 0 && out.reduction.seconds >= options.time_limit_seconds;
+  if (options.mode == OptimizeMode::Full && !progress.cancelled() && !out_of_time) {
     // 6.4: measure E_H once after curl reduction, Δ_EH = E_H / (2 h_sym), then balance without creation.
     const Parameterization p = parameterize(mesh, energy.field(), options.param, progress);
     out.energy_harmonic_estimate = p.energy_harmonic;
@@ -45,7 +50,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
     if (out.delta_eh > 0) {
       ro.allow_creation = false;
       ro.delta_eh = out.delta_eh;
-      if (ro.max_evaluations > 0) ro.max_evaluations = std::max(1L, ro.max_evaluations - evaluations);
+      if (options.max_evaluations > 0) ro.max_evaluations = std::max(1L, options.max_evaluations - evaluations);
       if (ro.time_limit_seconds > 0)
         ro.time_limit_seconds = std::max(1e-3, ro.time_limit_seconds - out.reduction.seconds);
       out.balancing = reduce_curl(mesh, energy, ro, progress);

@@ -24,7 +24,8 @@ struct OptimizeOptions {
   /// λ of the re-smoothing E(α) (5.3) after each matching change; the field stage's default.
   double lambda = FieldOptions{}.lambda;
   int cancellation_neighbours = 3;  ///< k of Algorithm 6.1
-  /// Budget: E_D evaluations (0 = unlimited) and seconds (0 = unlimited); the best state so far is returned.
+  /// Budget: E_D evaluations (screened candidates; 0 = unlimited) and seconds (0 = unlimited); the best state so
+  /// far is returned. `full` gives the first reduction two thirds of the evaluations and balancing the rest.
   long max_evaluations = 3000;
   double time_limit_seconds = 0;
   CurlEnergyOptions energy;

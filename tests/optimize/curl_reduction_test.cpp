@@ -115,7 +115,9 @@ TEST(CurlReduction, BalancingCancelsPairsBelowTheExpectedContinuityGain) {
   EXPECT_GT(r.result.cancelled_pairs, 0);
   int prev = r.result.initial_branch_points;
   for (const auto& entry : r.result.log) {
-    if (entry.phase == "balancing") EXPECT_EQ(entry.branch_points, prev - 2);
+    if (entry.phase == "balancing") {
+      EXPECT_EQ(entry.branch_points, prev - 2);
+    }
     prev = entry.branch_points;
   }
 }
