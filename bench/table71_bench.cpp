@@ -67,7 +67,8 @@ qc::ExtractionResult pipeline(const qc::Mesh& mesh, const Setup& setup, int quad
 // One column of Table 7.1. The density is calibrated once so that the output has about `target_vertices`
 // vertices (a closed quad mesh has as many vertices as faces up to χ, and the face count ∝ target_quads).
 Column run_column(const qc::Mesh& mesh, const Setup& setup) {
-  Column c{setup.name};
+  Column c;
+  c.name = setup.name;
   qc::Parameterization P;
   const auto t0 = std::chrono::steady_clock::now();
   qc::ExtractionResult ex = pipeline(mesh, setup, target_vertices, P, c.optimize);
