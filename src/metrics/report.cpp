@@ -68,6 +68,7 @@ nlohmann::json to_json(const ExtractionReport& r) {
           {"boundary_vertices", r.boundary_vertices},
           {"unfolded_triangles", r.unfolded_triangles},
           {"moved_vertices", r.moved_vertices},
+          {"collapsed_edges", r.collapsed_edges},
           {"flipped_triangles", r.flipped_triangles},
           {"degenerate_triangles", r.degenerate_triangles},
           {"torn_seams", r.torn_seams},
@@ -113,7 +114,8 @@ std::string to_text(const Report& r) {
     const auto& e = *r.extraction;
     os << " extraction\n";
     line("quads: %d, other polygons: %d, boundary vertices: %d", e.quads, e.non_quads, e.boundary_vertices);
-    line("untangled: %d triangles (%d vertices moved)", e.unfolded_triangles, e.moved_vertices);
+    line("untangled: %d triangles (%d vertices moved, %d edges mapped to a point collapsed)", e.unfolded_triangles,
+         e.moved_vertices, e.collapsed_edges);
     line("cut out: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
          e.flipped_triangles, e.degenerate_triangles, e.torn_seams, e.failed_traces, e.dropped_faces);
   }
