@@ -47,8 +47,13 @@ struct Parameterization {
     double energy_direct = 0, energy_rounded = 0;
     long long candidates = 0;
     bool proven_optimal = false;
+    bool stopped_early = false;  ///< cancelled: the direct rounding or the search's best periods so far were kept
     double period_matrix_asymmetry = 0;  ///< max |P_ij − P_ji| / max P_ii (round-off)
   } rounding;
+  /// Closed components without branch points whose field has rotational holonomy (the gauged matching ≢ 0 around a
+  /// handle). No seamless immersion exists there (a cone-free flat metric on a closed surface has trivial rotational
+  /// holonomy): the map degenerates and the caller should warn; the cure is a field with branch points.
+  std::vector<int> holonomy_without_branch_points;
   /// Even branch points the fix-up could not move to an integer point (rotated lattice), normally empty.
   std::vector<int> unfixed_even_branch_points;
   /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
@@ -84,12 +85,15 @@ Eigen::MatrixXd lattice_basis(Lattice lattice, int m) {
 }
 
 /// Rounds the free periods with options.rounding (P.rounded_periods holds the direct rounding on entry).
+/// Cancellation (progress.cancelled()) keeps the direct rounding or the search's best periods so far.
 PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
-                                        const ParamOptions& options, Parameterization& P) {
+                                        const ParamOptions& options, ProgressSink& progress, Parameterization& P) {
   PeriodRounding r;
   r.variable_of_path.assign(static_cast<std::size_t>(cc.num_paths()), -1);
   if (options.rounding.strategy == RoundingStrategy::Direct) return r;
-  r.pm = period_matrix(mesh, cc, correction);
+  const std::function<bool()> stop = [&progress] { return progress.cancelled(); };
+  r.pm = period_matrix(mesh, cc, correction, 32, stop);
+  P.rounding.stopped_early = progress.cancelled();
   const int m = static_cast<int>(r.pm.paths.size());
   if (m == 0) return r;
   r.active = true;
@@ -104,8 +108,10 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
     beta[m + a] = P.periods[r.pm.paths[a]].imag();
   }
   RoundingResult rr;
+  RoundingOptions ro = options.rounding;
+  ro.stop = stop;
   try {
-    rr = round_periods(T.transpose() * r.pm.P * T, T.partialPivLu().solve(beta), options.rounding);
+    rr = round_periods(T.transpose() * r.pm.P * T, T.partialPivLu().solve(beta), ro);
   } catch (const NumericalError&) {
     P.rounding.energy_rounded = P.rounding.energy_direct;  // singular P: keep the direct rounding
     return r;
@@ -115,6 +121,7 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   P.rounding.strategy = to_string(rr.used);
   P.rounding.candidates = rr.candidates;
   P.rounding.proven_optimal = rr.proven_optimal;
+  P.rounding.stopped_early = rr.stopped_early;
   P.rounding.energy_rounded = r.energy(P);
   return r;
 }
@@ -184,6 +191,13 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     if (cc.branch[v]) P.branch_points.push_back({v, cc.quarter_index[v]});
   P.h_sym = cc.h_sym();
   const std::vector<char> trivial = trivial_holonomy(mesh, cc);
+  {
+    std::vector<char> has_branch(trivial.size(), 0);
+    for (const BranchPoint& bp : P.branch_points) has_branch[mesh.vertex_component()[bp.vertex]] = 1;
+    for (int comp = 0; comp < mesh.num_components(); ++comp)
+      if (!trivial[comp] && !has_branch[comp] && mesh.components()[comp].boundary_loops == 0)
+        P.holonomy_without_branch_points.push_back(comp);
+  }
   lap("cut");
 
   // Density: scale so that one grid unit is h along the RMS-normalized field.
@@ -255,7 +269,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   // The factor of 𝔏̄ serves the period matrix (6.3.2) and the final harmonic correction.
   const HarmonicCorrection correction(mesh, cc, trivial);
   lap("harmonic_factor");
-  const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, P);
+  const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, progress, P);
   if (rounding.active) lap("period_rounding");
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
     // Even branch point q sits at D_q / 2 (D_q the translation around q); it is integral iff D_q ∈ 2Z[i]. Over the

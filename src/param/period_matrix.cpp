@@ -35,7 +35,7 @@ SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path)
 }
 
 PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
-                           int block_size) {
+                           int block_size, const std::function<bool()>& stop) {
   PeriodMatrix pm;
   for (int j = 0; j < cut.num_paths(); ++j)
     if (cut.dependent_path[cut.path_component[j]] != j) pm.paths.push_back(j);
@@ -50,6 +50,7 @@ PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const Harmonic
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
   const Eigen::VectorXd& A = mesh.face_areas();
   for (int a0 = 0; a0 < m; a0 += block_size) {
+    if (stop && stop()) return PeriodMatrix{};
     const int a1 = std::min(m, a0 + block_size);
     // One harmonic field H_i = Σ_i − ∇u_i per path of the block: 𝔏̄ u_i = b_i, b_i from the sparse Σ_i.
     Eigen::MatrixXcd B(nv, a1 - a0);

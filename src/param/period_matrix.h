@@ -7,6 +7,7 @@
 // H_i = Σ_i − ∇u_i at a time, the Σ_j stored sparsely (their support is the faces along the cut). The imaginary
 // unit acts on frame pairs as the quarter turn i(X, Y) = (−Y, X), so the Im columns need no extra solves.
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "param/harmonic_correction.h"
@@ -29,8 +30,9 @@ struct SparseJumpField {
 SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path);
 
 /// P for the free paths of `cut`; `correction` must have been built for the same cut. Solves in blocks of
-/// `block_size` right-hand sides. \throw NumericalError if a solve fails.
+/// `block_size` right-hand sides; `stop` (if set) is asked between blocks, and a stopped computation returns an
+/// empty `paths` (no matrix). \throw NumericalError if a solve fails.
 PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
-                           int block_size = 32);
+                           int block_size = 32, const std::function<bool()>& stop = {});
 
 }  // namespace quadcover

@@ -48,12 +48,17 @@ Eigen::VectorXi round_direct(const Eigen::VectorXd& b) {
 // dᵀPd for a move σ on the index set S is δ = Σ_S (P_ii + 2σ_i g_i) + 2 Σ_{i<j ∈ S} σ_iσ_j P_ij.
 class Search {
  public:
-  Search(const Eigen::MatrixXd& P, const Eigen::VectorXd& b, Eigen::VectorXi c, double tol)
-      : P_(P), c_(std::move(c)), n_(static_cast<int>(P.rows())), tol_(tol) {
+  Search(const Eigen::MatrixXd& P, const Eigen::VectorXd& b, Eigen::VectorXi c, double tol,
+         const std::function<bool()>& stop)
+      : P_(P), c_(std::move(c)), n_(static_cast<int>(P.rows())), tol_(tol), stop_(stop) {
     g_ = P_ * (c_.cast<double>() - b);
   }
   void run(int r) {
     for (;;) {
+      if (stop_ && stop_()) {
+        stopped = true;
+        break;
+      }
       if (pass1()) continue;
       if (r >= 2 && pass2()) continue;
       if (r >= 3 && pass3()) continue;
@@ -63,6 +68,7 @@ class Search {
   const Eigen::VectorXi& c() const { return c_; }
   long long candidates = 0;
   int moves = 0;
+  bool stopped = false;
 
  private:
   void apply(int i, int s) {
@@ -136,6 +142,7 @@ class Search {
   std::vector<double> diag_;
   int n_;
   double tol_;
+  const std::function<bool()>& stop_;
 };
 
 // MIQ-style greedy rounding [BZK09] as described in 6.3.3: starting from the relaxed optimum y = b, repeatedly fix
@@ -182,10 +189,11 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
   out.used = options.strategy;
   const double tol = options.relative_tolerance * std::max(P.trace(), std::numeric_limits<double>::min());
   auto search = [&](int r, Eigen::VectorXi start) {
-    Search s(P, b, std::move(start), tol);
+    Search s(P, b, std::move(start), tol, options.stop);
     s.run(r);
     out.candidates += s.candidates;
     out.moves += s.moves;
+    out.stopped_early = out.stopped_early || s.stopped;
     return s.c();
   };
   switch (options.strategy) {
@@ -197,7 +205,7 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
       // Beyond the thesis: the r = 3 search is started from direct rounding (6.3.1) and from the greedy solution
       // (when P is definite), and the better local minimum is kept.
       out.c = search(3, round_direct(b));
-      if (options.search3_from_greedy && Eigen::LLT<Eigen::MatrixXd>(P).info() == Eigen::Success) {
+      if (options.search3_from_greedy && !out.stopped_early && Eigen::LLT<Eigen::MatrixXd>(P).info() == Eigen::Success) {
         int greedy_moves = 0;
         const Eigen::VectorXi other = search(3, round_greedy(P, b, greedy_moves));
         if (rounding_energy(P, b, other) < rounding_energy(P, b, out.c)) out.c = other;
@@ -210,8 +218,9 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
       h.strategy = RoundingStrategy::Search3;
       const RoundingResult hr = round_periods(P, b, h);
       out.candidates += hr.candidates;
+      out.stopped_early = hr.stopped_early;
       const Eigen::VectorXi heuristic = hr.c;
-      if (P.rows() > options.exact_max_dimension) {
+      if (P.rows() > options.exact_max_dimension || hr.stopped_early) {
         out.c = heuristic;
         out.used = RoundingStrategy::Search3;
         break;

@@ -3,6 +3,7 @@
 //   E_H = ½ dᵀ P d,  d = c - b,  P_ij = ⟨H_i, H_j⟩ the period matrix of the harmonic basis fields.
 // Minimizing E_H over c ∈ Zⁿ is a closest-vector problem (6.3: B = Cholesky factor of P, target B b).
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -31,6 +32,9 @@ struct RoundingOptions {
   long long exact_max_nodes = 200'000'000;
   /// Search: a move must lower dᵀPd by more than this times tr(P) (prevents cycling on round-off).
   double relative_tolerance = 1e-13;
+  /// Asked between search passes (Ctrl-C, time limit): when it returns true the search stops with the best vector
+  /// so far (each accepted move lowers E_H, so that is never worse than the start).
+  std::function<bool()> stop;
 };
 
 struct RoundingResult {
@@ -39,6 +43,7 @@ struct RoundingResult {
   long long candidates = 0;     ///< candidate vectors whose energy change was evaluated (search strategies)
   int moves = 0;                ///< accepted search moves / fixed variables
   bool proven_optimal = false;  ///< true if the exact CVP solver ran and its result was not beaten
+  bool stopped_early = false;   ///< options.stop asked the search to stop
   RoundingStrategy used = RoundingStrategy::Direct;  ///< the strategy that actually ran (Exact may fall back)
 };
 

@@ -176,9 +176,47 @@ TEST(Parameterize, TorusWithoutBranchPoints) {
   field.matching = testing::matching_51(mesh, field.X);
   const Parameterization P = parameterize(mesh, field);
   EXPECT_TRUE(P.branch_points.empty());
+  EXPECT_TRUE(P.holonomy_without_branch_points.empty());
   EXPECT_EQ(P.h_sym, 4);
   EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless);
   EXPECT_EQ(flipped_triangles(P.uv).flipped, 0);
+}
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// No branch points but a quarter-turn holonomy around the major circle: the frame turns by θ/4 as θ goes once around
+// the torus. A cone-free flat metric on a torus has trivial rotational holonomy, so no seamless immersion follows this
+// field: parameterize flags the component, and the map it still returns is seamless but collapses.
+TEST(Parameterize, TorusWithQuarterTurnHolonomy) {
+  const Mesh mesh = testing::make_torus(64, 20);
+  FrameField field;
+  field.X.resize(mesh.num_faces());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d c = (mesh.V().row(mesh.F()(f, 0)) + mesh.V().row(mesh.F()(f, 1)) +
+                               mesh.V().row(mesh.F()(f, 2))).transpose() / 3;
+    const Complex z = mesh.to_local(f, Eigen::Vector3d(-c.y(), c.x(), 0));
+    const double theta = std::atan2(c.y(), c.x());
+    field.X[f] = z / std::abs(z) * std::polar(1.0, theta / 4);
+  }
+  field.Y = Complex(0, 1) * field.X;
+  field.matching = testing::matching_51(mesh, field.X);
+  int turned = 0;
+  for (int e = 0; e < mesh.num_edges(); ++e) turned += ((field.matching[e] % 4) + 4) % 4 != 0;
+  ASSERT_GT(turned, 0);  // the holonomy shows as a seam of quarter-turn matchings
+  for (const Lattice lattice : {Lattice::Unit, Lattice::Rotated}) {
+    ParamOptions o;
+    o.lattice = lattice;
+    const Parameterization P = parameterize(mesh, field, o);
+    EXPECT_TRUE(P.branch_points.empty());
+    EXPECT_EQ(P.holonomy_without_branch_points, std::vector<int>{0});
+    const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
+    EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
+    EXPECT_LT(std::abs(flipped_triangles(P.uv).parameter_area), 1e-6 * mesh.total_area() * P.scale * P.scale);
+  }
 }
 
 }  // namespace

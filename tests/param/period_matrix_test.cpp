@@ -7,6 +7,7 @@
 
 #include "field/compute_frame_field.h"
 #include "param/parameterize.h"
+#include "param/seams.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -95,6 +96,61 @@ TEST(PeriodMatrix, RotatedLatticeRounding) {
     EXPECT_NEAR(c.imag(), b, 1e-12);
     EXPECT_EQ(((a + b) % 2 + 2) % 2, 0) << c;
   }
+}
+
+// A sink that asks to stop once the pipeline has reported `after` stages.
+class StopAfter final : public ProgressSink {
+ public:
+  explicit StopAfter(int after) : after_(after) {}
+  void report(std::string_view, double, std::string_view) override { ++reports_; }
+  bool cancelled() const override { return reports_ >= after_; }
+
+ private:
+  int after_, reports_ = 0;
+};
+
+// Cancellation during rounding keeps a valid seamless map: the direct periods (stopped before the period matrix) or
+// the search's best so far, never worse than direct rounding.
+TEST(PeriodMatrix, CancellationKeepsAValidMap) {
+  const Mesh mesh = load_test_mesh("bunny_3k");
+  const FrameField field = compute_frame_field(mesh);
+  ParamOptions o;
+  o.lattice = Lattice::Unit;
+  o.rounding.strategy = RoundingStrategy::Search3;
+  const Parameterization full = parameterize(mesh, field, o);
+  EXPECT_FALSE(full.rounding.stopped_early);
+  o.rounding.strategy = RoundingStrategy::Direct;
+  const Parameterization direct = parameterize(mesh, field, o);
+  o.rounding.strategy = RoundingStrategy::Search3;
+  for (int after : {1, 4}) {  // before the period matrix (after cut, ..., harmonic_factor)
+    StopAfter stop(after);
+    const Parameterization P = parameterize(mesh, field, o, stop);
+    EXPECT_TRUE(P.rounding.stopped_early) << after;
+    EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless) << after;
+    EXPECT_LE(P.energy_harmonic, direct.energy_harmonic * (1 + 1e-9)) << after;
+    EXPECT_GE(P.energy_harmonic, full.energy_harmonic * (1 - 1e-9)) << after;
+  }
+}
+
+// The search honours RoundingOptions::stop between passes and returns a vector no worse than its start.
+TEST(PeriodRounding, StopReturnsBestSoFar) {
+  const int n = 30;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, n);
+  const Eigen::MatrixXd P = B.transpose() * B + 0.1 * Eigen::MatrixXd::Identity(n, n);
+  const Eigen::VectorXd b = 3 * Eigen::VectorXd::Random(n);
+  RoundingOptions o;
+  o.strategy = RoundingStrategy::Search3;
+  const RoundingResult full = round_periods(P, b, o);
+  int calls = 0;
+  o.stop = [&calls] { return ++calls > 2; };
+  const RoundingResult part = round_periods(P, b, o);
+  EXPECT_TRUE(part.stopped_early);
+  EXPECT_FALSE(full.stopped_early);
+  o.strategy = RoundingStrategy::Direct;
+  const double direct = round_periods(P, b, o).energy;
+  EXPECT_LE(part.energy, direct);
+  EXPECT_GE(part.energy, full.energy * (1 - 1e-12));
+  EXPECT_LT(part.moves, full.moves);
 }
 
 }  // namespace
