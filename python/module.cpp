@@ -85,6 +85,9 @@ FrameField optimized_field(const Mesh& mesh, const OptimizeOptions& oopt, Progre
   const FrameFieldResult f = compute_frame_field_detailed(mesh, {}, progress);
   OptimizeResult r = optimize_field(mesh, f, oopt, progress);
   report = to_json(r, oopt.mode);
+  // Timings under "seconds", as in the CLI's reports.
+  report["seconds"] = {{"total", r.seconds}, {"evaluations_per_second", r.evaluations_per_second}};
+  report.erase("evaluations_per_second");
   return std::move(r.field);
 }
 

@@ -32,7 +32,8 @@ OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOp
 void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param);
 
 /// Runs the optimization on a computed field and returns the field to parameterize; `report` receives the
-/// "optimize" object of to_json() (E_D before/after each phase, branch points, evaluations per second, log).
+/// "optimize" object of to_json() (E_D before/after each phase, branch points, log) with the wall-clock values
+/// moved under "seconds": {"total", "evaluations_per_second"} (reports keep timings under "seconds" keys).
 /// Reports a start and a summary line to `progress` (stage "optimize").
 FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,
                         const ParamOptions& param, ProgressSink& progress, nlohmann::json& report);
