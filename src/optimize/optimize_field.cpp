@@ -46,7 +46,9 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
     const Parameterization p = parameterize(mesh, energy.field(), options.param, progress);
     out.energy_harmonic_estimate = p.energy_harmonic;
     out.h_sym = p.h_sym;
-    out.delta_eh = p.h_sym > 0 ? p.energy_harmonic / (2.0 * p.h_sym) : 0;
+    // E_H is measured in grid units (the field scaled by p.scale); Δ_ED is in the optimizer's units of the unscaled
+    // field, so Δ_EH is brought to those: energies scale with the square of the field.
+    out.delta_eh = p.h_sym > 0 ? p.energy_harmonic / (2.0 * p.h_sym) / (p.scale * p.scale) : 0;
     if (out.delta_eh > 0) {
       ro.allow_creation = false;
       ro.delta_eh = out.delta_eh;
