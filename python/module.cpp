@@ -79,16 +79,36 @@ OptimizeOptions optimize_options(const std::string& optimize, long max_iteration
   return o;
 }
 
-/// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object.
+/// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object and
+/// `original` the field before the optimization.
 FrameField optimized_field(const Mesh& mesh, const OptimizeOptions& oopt, ProgressSink& progress,
-                           nlohmann::json& report) {
+                           nlohmann::json& report, FrameField& original) {
   const FrameFieldResult f = compute_frame_field_detailed(mesh, {}, progress);
+  original = f.field;
   OptimizeResult r = optimize_field(mesh, f, oopt, progress);
   report = to_json(r, oopt.mode);
   // Timings under "seconds", as in the CLI's reports.
   report["seconds"] = {{"total", r.seconds}, {"evaluations_per_second", r.evaluations_per_second}};
   report.erase("evaluations_per_second");
   return std::move(r.field);
+}
+
+/// The map of the optimized field or, with keep_better, of the original one when its E_D + E_H (6.1.1) is lower
+/// (as the CLI's --keep-better); records "kept" and both totals in `report`.
+Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                   const ParamOptions& popt, bool optimizing, bool keep_better, ProgressSink& progress,
+                                   nlohmann::json& report) {
+  Parameterization p = parameterize(mesh, optimized, popt, progress);
+  if (!optimizing) return p;
+  report["kept"] = "optimized";
+  if (!keep_better) return p;
+  Parameterization q = parameterize(mesh, original, popt, progress);
+  const double total = p.energy_curl + p.energy_harmonic, total_original = q.energy_curl + q.energy_harmonic;
+  report["E_D_plus_E_H_optimized"] = total;
+  report["E_D_plus_E_H_original"] = total_original;
+  if (total_original >= total) return p;
+  report["kept"] = "original";
+  return q;
 }
 
 nlohmann::json rounding_json(const ParamOptions& popt, const Parameterization& p) {
@@ -187,7 +207,7 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
 
 py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                           const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                          long max_iterations) {
+                          long max_iterations, bool keep_better) {
   const Mesh mesh = make_mesh(V, F);
   const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
@@ -197,8 +217,10 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   nlohmann::json optimize_report;
   {
     py::gil_scoped_release release;
-    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report);
-    p = parameterize(mesh, f, popt, progress);
+    FrameField original;
+    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
+    p = parameterize_best(mesh, original, f, popt, oopt.mode != OptimizeMode::None, keep_better, progress,
+                          optimize_report);
     q = param_quality(mesh, p);
   }
   progress.raise_if_interrupted();
@@ -213,7 +235,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                     const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations) {
+                    long max_iterations, bool keep_better) {
   const Mesh mesh = make_mesh(V, F);
   const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
@@ -223,8 +245,10 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
   nlohmann::json optimize_report, rounding_report;
   {
     py::gil_scoped_release release;
-    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report);
-    const Parameterization p = parameterize(mesh, f, popt, progress);
+    FrameField original;
+    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
+    const Parameterization p = parameterize_best(mesh, original, f, popt, oopt.mode != OptimizeMode::None,
+                                                 keep_better, progress, optimize_report);
     rounding_report = rounding_json(popt, p);
     ex = extract_quads(mesh, p, {}, progress);
     report.parameterization = param_quality(mesh, p);
@@ -282,18 +306,21 @@ PYBIND11_MODULE(quadcover, m) {
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
         py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
-        py::arg("rounding") = "search3", py::arg("max_iterations") = 3000,
+        py::arg("rounding") = "search3", py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
         "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
         "(Algorithm 6.1 moving/cancelling branch points) or full (with creation and balancing, 6.4), at most "
         "max_iterations E_D evaluations (0 = until converged); report['optimize'] has E_D and branch points before "
         "and after and the per-iteration log. rounding of the periods (6.3): direct, greedy, search1, search2, "
-        "search3 or exact; report['rounding'] has the strategy and E_H. Ctrl-C stops the optimization early.");
+        "search3 or exact; report['rounding'] has the strategy and E_H. keep_better: also parameterize the original "
+        "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). Ctrl-C stops the "
+        "optimization early.");
   m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
         py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-        py::arg("max_iterations") = 3000,
+        py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
         "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
-        "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, rounding "
-        "and max_iterations as in parameterize(); the report has the same 'optimize' and 'rounding' objects.");
+        "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, "
+        "rounding, max_iterations and keep_better as in parameterize(); the report has the same 'optimize' and "
+        "'rounding' objects.");
 }

@@ -134,7 +134,8 @@ def test_remesh_torus_gives_a_closed_quad_mesh():
 def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
     V, F = mesh("bunny_3k")
     _, none = quadcover.parameterize(V, F, optimize="none")
-    uv, reloc = quadcover.parameterize(V, F)  # defaults: optimize="relocate", rounding="search3"
+    # defaults: optimize="relocate", rounding="search3"; keep_better=False always returns the optimized field's map
+    uv, reloc = quadcover.parameterize(V, F, keep_better=False)
     assert none["optimize"]["mode"] == "none" and reloc["optimize"]["mode"] == "relocate"
     assert reloc["rounding"]["strategy"] == "search3"
     assert reloc["rounding"]["E_H"] == pytest.approx(reloc["energy_harmonic"], rel=1e-12)
@@ -150,6 +151,12 @@ def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
     assert reloc["energy_curl"] < none["energy_curl"]
     worst, _ = seam_defect(F, uv)
     assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
+    assert reloc["optimize"]["kept"] == "optimized"
+    # keep_better (default): the map with the lower E_D + E_H of the two fields.
+    _, best = quadcover.parameterize(V, F)
+    total = lambda r: r["energy_curl"] + r["energy_harmonic"]
+    assert total(best) == pytest.approx(min(total(none), total(reloc)), rel=1e-9)
+    assert best["optimize"]["kept"] == ("original" if total(none) < total(reloc) else "optimized")
     with pytest.raises(ValueError, match="optimiz"):
         quadcover.parameterize(V, F, optimize="everything")
     with pytest.raises(ValueError, match="rounding"):

@@ -29,6 +29,10 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "stop it, keeping the best field so far")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd.add_option("--keep-better", options.keep_better,
+                 "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
+                 "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
+      ->capture_default_str();
 }
 
 OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOptions& param) {
@@ -74,6 +78,29 @@ FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, cons
                            ProgressSink& progress, nlohmann::json& optimize_report) {
   const FrameFieldResult field = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
   return run_optimize(mesh, field, cli, param, progress, optimize_report);
+}
+
+Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                   const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
+                                   nlohmann::json& optimize_report) {
+  Parameterization p = parameterize(mesh, optimized, param, progress);
+  const double total = p.energy_curl + p.energy_harmonic;
+  if (cli.optimize == "none" || !cli.keep_better) {
+    if (cli.optimize != "none") optimize_report["kept"] = "optimized";
+    return p;
+  }
+  progress.report("optimize", -1, "parameterizing the original field for comparison (--keep-better)");
+  Parameterization q = parameterize(mesh, original, param, progress);
+  const double total_original = q.energy_curl + q.energy_harmonic;
+  optimize_report["E_D_plus_E_H_optimized"] = total;
+  optimize_report["E_D_plus_E_H_original"] = total_original;
+  const bool keep_original = total_original < total;
+  optimize_report["kept"] = keep_original ? "original" : "optimized";
+  if (keep_original)
+    progress.report("optimize", 1,
+                    "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
+                        std::to_string(total) + " of the optimized one");
+  return keep_original ? std::move(q) : std::move(p);
 }
 
 nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param) {

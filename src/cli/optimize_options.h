@@ -20,6 +20,7 @@ struct OptimizeCliOptions {
   std::string optimize = "relocate";  ///< see optimize/optimize_field.h
   std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = 3000;         ///< E_D evaluations of Algorithm 6.1 (0 = unlimited)
+  bool keep_better = true;            ///< see parameterize_best()
 };
 
 /// Adds --optimize, --rounding and --max-iterations to `cmd` (validated by CLI11).
@@ -42,6 +43,14 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
 /// `optimize_report` receives the "optimize" object.
 FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
                            ProgressSink& progress, nlohmann::json& optimize_report);
+
+/// The parameterization of the optimized field; with cli.keep_better (and an optimization that ran) also that of
+/// the original field, keeping the one with the lower total distortion E_D + E_H = ½‖X̃ - ∇φ̃‖² (6.1.1): Algorithm
+/// 6.1 lowers E_D of the field's own curl energy, which on meshes with boundaries or aligned feature curves does not
+/// always lower the map's. Adds "kept" ("optimized" or "original") and both totals to `optimize_report`.
+Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                   const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
+                                   nlohmann::json& optimize_report);
 
 /// The report's "rounding" object: strategy asked for, E_H = ½‖H̃_d‖² (6.1.1) and h_sym of the parameterization.
 nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param);

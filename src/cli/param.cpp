@@ -93,7 +93,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   lap("field");
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
   lap("optimize");
-  const Parameterization P = parameterize(mesh, field, po, progress);
+  const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
   for (const auto& [stage, s] : P.stage_seconds) seconds["param_" + stage] = s;
   t = Clock::now();
 

@@ -80,7 +80,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   nlohmann::json optimize;
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
   lap("optimize");
-  const Parameterization P = parameterize(mesh, field, po, progress);
+  const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
   lap("param");
   ExtractionResult ex = extract_quads(mesh, P, ExtractOptions{}, progress);
   lap("extract");
