@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "quad/collapse_degenerate.h"
 #include "quad/integer_grid_map.h"
+#include "quad/quadrangulate.h"
 #include "quad/repair_folds.h"
 
 namespace quadcover {
@@ -531,6 +532,8 @@ class Extractor {
     qm.faces = std::move(faces);
     rep_.dropped_faces += drop_faces_on_duplicate_edges(qm);
     rep_.split_vertices = split_pinched_vertices(qm);
+    const QuadrangulateReport qr = opt_.quadrangulate ? quadrangulate_polygons(qm) : QuadrangulateReport{};
+    rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
     remove_unused_vertices(qm);  // after the clean-up: dropped faces leave no orphans
     rep_.quads = qm.num_quads();
     rep_.non_quads = qm.num_faces() - rep_.quads;

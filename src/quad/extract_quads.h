@@ -25,6 +25,8 @@ struct ExtractOptions {
   /// Collapse edges whose two ends the map sends to one point (see collapse_degenerate.h) before the repair
   /// (default on).
   bool collapse_zero_edges = true;
+  /// Split interior even polygons into quads and merge adjacent odd ones first (see quadrangulate.h; default on).
+  bool quadrangulate = true;
 };
 
 /// What extraction found and repaired. A valid seamless map on a closed surface with integer branch points gives
@@ -44,6 +46,8 @@ struct ExtractionReport {
   int dropped_faces = 0;         ///< faces not emitted: a bounding segment failed, or an edge twice (near folds)
   int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
+  int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
+  int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting
   /// Parameter area of the triangles that were extracted (not cut out): the quad count of a valid closed map.
   double active_parameter_area = 0;
 };

@@ -1,0 +1,119 @@
+// Splitting / merging polygons into quads (quad/quadrangulate.h) on a known closed quad mesh: the extraction of the
+// cube map (6·5² planar unit squares). Polygons made by removing edges must come back as the original quads.
+#include "quad/quadrangulate.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "quad/extract_quads.h"
+#include "quad/polygon_check.h"
+#include "quad/quad_test_maps.h"
+
+namespace quadcover {
+namespace {
+
+QuadMesh cube_quads() {
+  const auto [mesh, param] = testing::cube_map(3, 5);
+  QuadMesh q = extract_quads(mesh, param).mesh;
+  EXPECT_EQ(q.num_faces(), 150);
+  return q;
+}
+
+std::multiset<std::set<int>> face_sets(const QuadMesh& q) {
+  std::multiset<std::set<int>> s;
+  for (const auto& f : q.faces) s.insert(std::set<int>(f.begin(), f.end()));
+  return s;
+}
+
+// Merges face f with the face across its side i (removes that edge); returns the index of the merged polygon.
+int merge_across(QuadMesh& q, int f, int i) {
+  const std::vector<int> F = q.faces[f];
+  const int n = static_cast<int>(F.size()), a = F[i], b = F[(i + 1) % n];
+  int g = -1;
+  for (int h = 0; h < q.num_faces() && g < 0; ++h) {
+    const auto& G = q.faces[h];
+    for (std::size_t k = 0; k < G.size(); ++k)
+      if (G[k] == b && G[(k + 1) % G.size()] == a) g = h;
+  }
+  EXPECT_GE(g, 0);
+  const std::vector<int> G = q.faces[g];
+  const int m = static_cast<int>(G.size());
+  std::vector<int> merged;
+  for (int k = 0; k < n; ++k) merged.push_back(F[(i + 1 + k) % n]);
+  const int ja = static_cast<int>(std::find(G.begin(), G.end(), a) - G.begin());
+  for (int k = 1; k < m - 1; ++k) merged.push_back(G[(ja + k) % m]);
+  q.faces[f] = merged;
+  q.faces.erase(q.faces.begin() + g);
+  return g < f ? f - 1 : f;
+}
+
+void expect_closed_all_quad_sphere(const QuadMesh& q) {
+  const testing::PolygonCheck c = testing::check_polygons(q.num_vertices(), q.faces);
+  EXPECT_EQ(c.problems, 0);
+  EXPECT_EQ(c.boundary_edges, 0);
+  EXPECT_EQ(c.euler(), 2);
+  EXPECT_EQ(q.num_quads(), q.num_faces());
+}
+
+// Hexagons (two squares without their shared edge) are split back along the missing edge: the only split with
+// right angles (the other two diagonals give 45°/135° corners).
+TEST(Quadrangulate, HexagonsSplitBackIntoTheSquares) {
+  const QuadMesh original = cube_quads();
+  QuadMesh q = original;
+  for (int f : {0, 40, 80, 120}) merge_across(q, f, 1);
+  ASSERT_EQ(q.num_faces(), 146);
+  ASSERT_EQ(q.num_quads(), 142);
+  const QuadrangulateReport r = quadrangulate_polygons(q);
+  EXPECT_EQ(r.split_polygons, 4);
+  EXPECT_EQ(r.merged_pairs, 0);
+  expect_closed_all_quad_sphere(q);
+  EXPECT_EQ(face_sets(q), face_sets(original));
+}
+
+// A square cut into two triangles by a diagonal: the odd pair is merged back into the square. A triangle next to a
+// pentagon (two squares re-cut) is merged into a hexagon and split into two squares again.
+TEST(Quadrangulate, OddPairsAreMergedAndSplit) {
+  const QuadMesh original = cube_quads();
+  QuadMesh q = original;
+  {
+    const std::vector<int> F = q.faces[7];
+    q.faces[7] = {F[0], F[1], F[2]};
+    q.faces.push_back({F[0], F[2], F[3]});
+  }
+  {
+    const int h = merge_across(q, 60, 2);  // hexagon [b0..b5] from squares 60 and its neighbour
+    const std::vector<int> H = q.faces[h];
+    q.faces[h] = {H[0], H[1], H[2]};  // triangle + pentagon
+    q.faces.push_back({H[0], H[2], H[3], H[4], H[5]});
+  }
+  const QuadrangulateReport r = quadrangulate_polygons(q);
+  EXPECT_EQ(r.merged_pairs, 2);
+  EXPECT_EQ(r.split_polygons, 1);
+  expect_closed_all_quad_sphere(q);
+  EXPECT_EQ(q.num_faces(), 150);
+  EXPECT_EQ(face_sets(q), face_sets(original));
+}
+
+// A polygon with a side on a boundary (here a hole next to it) is a clipped cell and stays as it is.
+TEST(Quadrangulate, LeavesBoundaryPolygonsAlone) {
+  QuadMesh q = cube_quads();
+  const int h = merge_across(q, 10, 1);
+  const std::vector<int> H = q.faces[h];
+  int across = -1;  // the face across the hexagon's side H0-H1
+  for (int f = 0; f < q.num_faces(); ++f)
+    for (std::size_t k = 0; k < q.faces[f].size(); ++k)
+      if (q.faces[f][k] == H[1] && q.faces[f][(k + 1) % q.faces[f].size()] == H[0]) across = f;
+  ASSERT_GE(across, 0);
+  q.faces.erase(q.faces.begin() + across);
+  const QuadrangulateReport r = quadrangulate_polygons(q);
+  EXPECT_EQ(r.split_polygons, 0);
+  EXPECT_EQ(std::count_if(q.faces.begin(), q.faces.end(), [](const auto& f) { return f.size() == 6; }), 1);
+  const testing::PolygonCheck c = testing::check_polygons(q.num_vertices(), q.faces);
+  EXPECT_EQ(c.problems, 0);
+  EXPECT_EQ(c.boundary_loops, 1);
+}
+
+}  // namespace
+}  // namespace quadcover
