@@ -134,13 +134,12 @@ Eigen::SparseMatrix<Complex> UpdatableCholesky::factor() const {
 
 // ---------------------------------------------------------------------------------------------------------------
 
-FactorTrial::FactorTrial(int n) : slot_(n, -1), w_(n), w2_(n), acc_(n), db_(n), xnew_(n) {}
+FactorTrial::FactorTrial(int n) : slot_(n, -1), w_(n), acc_(n), db_(n), xnew_(n) {}
 
 void FactorTrial::reset() {
   for (int j : touched_) {
     slot_[j] = -1;
     w_[j] = acc_[j] = db_[j] = xnew_[j] = 0.0;
-    w2_[j] = 0.0;
   }
   touched_.clear();
   vals_.clear();
@@ -166,69 +165,48 @@ void FactorTrial::touch_path(const UpdatableCholesky& F, int j) {
 // L̃L̃ᴴ = LLᴴ + σ w wᴴ column by column along the etree path from the first nonzero of w. With α = w_j / L_jj and
 // d = 1 + σ|α|²: L̃_jj = L_jj √d, L̃_ij = (L_ij + σ ᾱ w_i)/√d, w_i <- w_i - α L_ij (old L_ij), σ <- σ/d.
 // (Elimination of column j leaves the Schur complement update σ/d · w̄w̄ᴴ; derived from A₂₂ - l̃l̃ᴴ.)
-//
-// The update w₁ (σ = +1) and the downdate w₂ (σ = -1) of a Deng split in one sweep over the common etree path:
-// at column j, w₁'s step uses column j as left by the earlier columns of w₁ only, and w₂'s step column j after
-// w₁'s step, exactly as two consecutive sweeps would, so the arithmetic is that of two separate sweeps while
-// every column is read and written once.
-bool FactorTrial::rank2(const UpdatableCholesky& F, const std::vector<SparseEntry>& w1,
-                        const std::vector<SparseEntry>& w2) {
+bool FactorTrial::rank1(const UpdatableCholesky& F, const std::vector<SparseEntry>& w, double sigma) {
   const auto& pinv = F.inverse_perm();
   int f = F.size();
-  for (const auto& e : w1) {
+  for (const auto& e : w) {
     const int j = pinv[e.index];
     touch_path(F, j);
     w_[j] += e.value;
     f = std::min(f, j);
   }
-  for (const auto& e : w2) {
-    const int j = pinv[e.index];
-    touch_path(F, j);
-    w2_[j] += e.value;
-    f = std::min(f, j);
-  }
   const int* Lp = F.col_ptr();
   const int* Li = F.row_idx();
-  double s1 = 1.0, s2 = -1.0;
+  double s = sigma;
   for (int j = f; j != -1; j = F.etree()[j]) {
     Complex* col = vals_.data() + slot_[j];
     const int len = Lp[j + 1] - Lp[j];
     const double c = col[0].real();
-    const Complex a1 = w_[j] / c;
+    const Complex alpha = w_[j] / c;
     w_[j] = 0.0;
-    const double d1 = 1.0 + s1 * std::norm(a1);
-    const double sd1 = std::sqrt(d1);
-    const double c1 = a1 == 0.0 ? c : c * sd1;
-    const Complex a2 = w2_[j] / c1;
-    w2_[j] = 0.0;
-    const double d2 = 1.0 + s2 * std::norm(a2);
-    if (!(d1 > 0) || !(d2 > 0)) {
+    if (alpha == 0.0) continue;  // nothing to propagate from this column
+    const double d = 1.0 + s * std::norm(alpha);
+    if (!(d > 0)) {
       valid_ = false;
-      break;
+      return false;
     }
-    if (a1 == 0.0 && a2 == 0.0) continue;
-    const double sd2 = std::sqrt(d2);
-    col[0] = a2 == 0.0 ? c1 : c1 * sd2;
-    const Complex sa1 = s1 * std::conj(a1), sa2 = s2 * std::conj(a2);
+    const double sd = std::sqrt(d);
+    col[0] = c * sd;
+    const Complex sa = s * std::conj(alpha);
     const int* rows = Li + Lp[j];
     for (int p = 1; p < len; ++p) {
-      const int r = rows[p];
       const Complex l = col[p];
-      const Complex u1 = w_[r], u2 = w2_[r];
-      const Complex l1 = a1 == 0.0 ? l : (l + sa1 * u1) / sd1;
-      if (a1 != 0.0) w_[r] = u1 - a1 * l;
-      if (a2 != 0.0) col[p] = (l1 + sa2 * u2) / sd2, w2_[r] = u2 - a2 * l1;
-      else col[p] = l1;
+      Complex& wi = w_[rows[p]];
+      col[p] = (l + sa * wi) / sd;
+      wi -= alpha * l;
     }
-    if (a1 != 0.0) s1 /= d1;
-    if (a2 != 0.0) s2 /= d2;
+    s /= d;
   }
-  // Every entry must have been consumed on the path: otherwise wwᴴ leaves the pattern of L.
-  for (const auto& e : w1) w_[pinv[e.index]] = w_[pinv[e.index]] != 0.0 ? (valid_ = false, 0.0) : 0.0;
-  for (const auto& e : w2) w2_[pinv[e.index]] = w2_[pinv[e.index]] != 0.0 ? (valid_ = false, 0.0) : 0.0;
-  if (!valid_) {  // clear what a failed sweep left behind
-    for (int j : touched_) w_[j] = w2_[j] = 0.0;
-  }
+  // Every entry of w must have been consumed on the path: otherwise wwᴴ leaves the pattern of L.
+  for (const auto& e : w)
+    if (w_[pinv[e.index]] != 0.0) {
+      w_[pinv[e.index]] = 0.0;
+      valid_ = false;
+    }
   return valid_;
 }
 
@@ -237,7 +215,7 @@ bool FactorTrial::add_star_change(const UpdatableCholesky& F, const StarChange& 
   auto [w1, w2] = deng_split(change);
   if (w1.empty()) return true;
   evaluated_ = false;
-  return rank2(F, w1, w2);  // decreasing eigenvalue order (Deng), fused
+  return rank1(F, w1, +1.0) && rank1(F, w2, -1.0);  // decreasing eigenvalue order (Deng)
 }
 
 void FactorTrial::add_rhs_change(const UpdatableCholesky& F, std::span<const SparseEntry> delta) {
