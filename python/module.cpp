@@ -112,7 +112,17 @@ Parameterization parameterize_best(const Mesh& mesh, const FrameField& original,
 }
 
 nlohmann::json rounding_json(const ParamOptions& popt, const Parameterization& p) {
-  return {{"strategy", to_string(popt.rounding.strategy)}, {"E_H", p.energy_harmonic}, {"h_sym", p.h_sym}};
+  const auto& r = p.rounding;
+  return {{"strategy", to_string(popt.rounding.strategy)},
+          {"strategy_used", r.strategy},
+          {"E_H", p.energy_harmonic},
+          {"h_sym", p.h_sym},
+          {"variables", r.variables},
+          {"E_H_predicted_direct", r.energy_direct},
+          {"E_H_predicted", r.energy_rounded},
+          {"candidates", r.candidates},
+          {"proven_optimal", r.proven_optimal},
+          {"stopped_early", r.stopped_early}};
 }
 
 py::dict info(const RowMatrixX3d& V, const RowMatrixX3i& F) {

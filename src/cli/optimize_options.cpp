@@ -104,7 +104,17 @@ Parameterization parameterize_best(const Mesh& mesh, const FrameField& original,
 }
 
 nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param) {
-  return {{"strategy", cli.rounding}, {"E_H", param.energy_harmonic}, {"h_sym", param.h_sym}};
+  const auto& r = param.rounding;
+  return {{"strategy", cli.rounding},
+          {"strategy_used", r.strategy},
+          {"E_H", param.energy_harmonic},
+          {"h_sym", param.h_sym},
+          {"variables", r.variables},
+          {"E_H_predicted_direct", r.energy_direct},
+          {"E_H_predicted", r.energy_rounded},
+          {"candidates", r.candidates},
+          {"proven_optimal", r.proven_optimal},
+          {"stopped_early", r.stopped_early}};
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

@@ -52,7 +52,9 @@ Parameterization parameterize_best(const Mesh& mesh, const FrameField& original,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
                                    nlohmann::json& optimize_report);
 
-/// The report's "rounding" object: strategy asked for, E_H = ½‖H̃_d‖² (6.1.1) and h_sym of the parameterization.
+/// The report's "rounding" object: strategy asked for and the one that ran, E_H = ½‖H̃_d‖² (6.1.1) of the map and
+/// h_sym, and the period matrix's prediction of E_H for direct and for the chosen rounding (6.3), candidates,
+/// proven_optimal (exact), stopped_early (--time-limit / Ctrl-C during the search).
 nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations

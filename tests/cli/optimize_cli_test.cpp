@@ -167,8 +167,14 @@ TEST_F(OptimizeCli, RoundingStrategiesAreSelectableAndBadOptionsFailWithoutOutpu
                          " --json -q");
     ASSERT_EQ(r.code, 0) << strategy;
     const auto j = nlohmann::json::parse(r.out);
-    EXPECT_EQ(j["rounding"]["strategy"], strategy);
-    EXPECT_GE(j["rounding"]["E_H"].get<double>(), 0.0);
+    const auto& rr = j["rounding"];
+    EXPECT_EQ(rr["strategy"], strategy);
+    EXPECT_EQ(rr["strategy_used"], strategy);  // eight_genus2 is small enough for the exact solver
+    EXPECT_GE(rr["E_H"].get<double>(), 0.0);
+    EXPECT_FALSE(rr["stopped_early"].get<bool>());
+    // The period matrix's prediction: the chosen rounding is never worse than direct rounding (6.3).
+    EXPECT_LE(rr["E_H_predicted"].get<double>(), rr["E_H_predicted_direct"].get<double>() * (1 + 1e-12));
+    if (strategy == "exact") EXPECT_TRUE(rr["proven_optimal"].get<bool>());
   }
   fs::remove(path("p.obj"));
   EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize everything").code, 2);
