@@ -50,7 +50,8 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
                                           const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
                                           const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
                                           const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift) {
+                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
+                                          double min_length) {
   const int nv = mesh.num_vertices();
   conflicts = 0;
   curves.clear();
@@ -107,13 +108,15 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     curves.back().coordinate = slots[root].coordinate;
     curve_of[root] = k;
     queue.assign(1, root);
-    double sum = 0, anchor = 0;
+    double sum = 0, anchor = 0, length = 0;
     int count = 0;
     bool anchored = false;  // a branch point on the line fixes its value (its position is set by the periods)
     bool consistent = true;  // two branch points on one line at different integers: the line cannot be kept
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const int i = queue[q];
       curves[k].edges.push_back(slots[i].edge);
+      length += std::abs(phi_at(u0, slots[i].face, corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, 1))) -
+                         phi_at(u0, slots[i].face, corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, 0))));
       for (int end = 0; end < 2; ++end) {  // estimate of n_root from slot i: σ_i (coordinate - τ_i)
         const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
         const double estimate =
@@ -136,7 +139,10 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     curves[k].value = std::round(anchored ? anchor : sum / count);
     // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
     // collapses the strip between them) stay free.
-    curves[k].enforced = consistent && (anchored || std::abs(sum / count - curves[k].value) <= max_shift);
+    // Curves shorter than `min_length` grid units (fragments of noisy creases on organic meshes) are not worth
+    // the distortion of pinning them either.
+    curves[k].enforced = consistent && length >= min_length &&
+                         (anchored || std::abs(sum / count - curves[k].value) <= max_shift);
   }
   std::vector<double> n_of(static_cast<std::size_t>(ns));
   for (auto& c : curves) c.edges.clear();

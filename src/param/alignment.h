@@ -35,12 +35,14 @@ std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z
 /// the corner values `known` = φ̂ + σ, the corner layers of u, and the unconstrained solution u0 (for rounding the
 /// iso-line values). `kernel_pins`: one vertex per component with trivial holonomy (𝔏̄ has the constants in its
 /// kernel there); its real / imaginary part is pinned to 0 unless a constraint already fixes that part somewhere in
-/// the component. Lines whose mean must move by more than `max_shift` grid units are left free. Fills `curves`
+/// the component. Lines whose mean must move by more than `max_shift` grid units, or shorter than `min_length` grid
+/// units, are left free. Fills `curves`
 /// (deviations measured on the result). \return u.
 Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
                                           const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
                                           const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
                                           const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift);
+                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
+                                          double min_length = 0);
 
 }  // namespace quadcover

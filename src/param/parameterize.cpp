@@ -337,7 +337,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
       const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;
       u = solve_aligned_correction(mesh, cc, correction.stiffness(), b, correction.layers().layer, known, u,
                                    correction.kernel_pins(), slots, P.aligned_curves, P.alignment_conflicts,
-                                   options.align_max_shift);
+                                   options.align_max_shift, options.align_min_length);
     }
   }
   const Eigen::MatrixX3cd ucorner = correction.corner_values(u);

@@ -39,6 +39,9 @@ struct ParamOptions {
   /// A curve is put on its nearest integer line only if that moves it by at most this many grid units on average
   /// (unless a branch point on it fixes the line); farther ones stay free and their deviation is reported.
   double align_max_shift = 0.35;
+  /// Curves shorter than this many grid units (quad edge lengths) stay free: pinning short crease fragments costs
+  /// distortion and folds for no visible gain.
+  double align_min_length = 3.0;
 };
 
 /// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.

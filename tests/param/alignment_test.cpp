@@ -28,7 +28,9 @@ TEST_P(WithCurves, CurvesLieOnIntegerIsoLines) {
   ParamOptions free_opt;
   free_opt.align_curves = false;
   const Parameterization F = parameterize(mesh, field, free_opt);
-  const Parameterization P = parameterize(mesh, field);
+  ParamOptions all_opt;
+  all_opt.align_min_length = 0;  // every curve, however short (the default leaves short fragments free)
+  const Parameterization P = parameterize(mesh, field, all_opt);
   ASSERT_FALSE(P.aligned_curves.empty());
   EXPECT_TRUE(F.aligned_curves.empty());
   EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless);
@@ -70,6 +72,37 @@ TEST_P(WithCurves, CurvesLieOnIntegerIsoLines) {
       }
     }
   EXPECT_GT(off, 0);
+}
+
+// ParamOptions::align_min_length: short curves (in grid units, measured on the unconstrained map) stay free, so the
+// default enforces a subset of the lines enforced with no minimum, each at least that long, and E_H can only drop.
+TEST_P(WithCurves, ShortCurvesStayFree) {
+  const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
+  const FrameField field = compute_frame_field(mesh);
+  ParamOptions all_opt;
+  all_opt.align_min_length = 0;
+  const Parameterization A = parameterize(mesh, field, all_opt);
+  const Parameterization D = parameterize(mesh, field);  // default minimum length
+  ASSERT_GT(ParamOptions{}.align_min_length, 0);
+  int enforced_all = 0, enforced_default = 0;
+  for (const auto& c : A.aligned_curves) enforced_all += c.enforced;
+  for (const auto& c : D.aligned_curves) {
+    if (!c.enforced) continue;
+    ++enforced_default;
+    // The line's length in grid units on the final map is at least the minimum (up to the small shift of pinning).
+    double length = 0;
+    for (std::size_t i = 0; i < c.edges.size(); ++i) {
+      const int e = c.edges[i];
+      const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+      int k0 = 0, k1 = 0;
+      while (mesh.F()(f, k0) != mesh.E()(e, 0)) ++k0;
+      while (mesh.F()(f, k1) != mesh.E()(e, 1)) ++k1;
+      length += std::abs(D.uv(f, k1) - D.uv(f, k0));
+    }
+    EXPECT_GT(length, 0.5 * ParamOptions{}.align_min_length) << GetParam().mesh;
+  }
+  EXPECT_LE(enforced_default, enforced_all) << GetParam().mesh;
+  EXPECT_LE(D.energy_harmonic, A.energy_harmonic * (1 + 1e-9)) << GetParam().mesh;
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, WithCurves,
