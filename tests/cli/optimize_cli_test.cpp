@@ -214,4 +214,31 @@ TEST_F(OptimizeCli, PicturesPlotAndHtmlReport) {
   EXPECT_NE(qhtml.find("quad_mesh.rsd_edge_length"), std::string::npos);
 }
 
+TEST_F(OptimizeCli, BatchWritesPicturesAndReportsPerFileIntoFolders) {
+  fs::create_directories(dir / "in");
+  fs::create_directories(dir / "out");
+  fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "in" / "a.obj");
+  fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "in" / "b.obj");
+  const std::string out = path("out");
+  const Result r = run("param " + path("in") + " -o " + out + " --report " + out + " --png " + out + " --size 64x64" +
+                       " --plot " + out + " --report-html " + out + " -j 2 --json");
+  ASSERT_EQ(r.code, 0);
+  EXPECT_EQ(nlohmann::json::parse(r.out)["succeeded"], 2);
+  for (const char* name : {"a", "b"}) {
+    const std::string n = name;
+    EXPECT_TRUE(fs::exists(dir / "out" / (n + ".param.obj")));
+    EXPECT_EQ(png_size(dir / "out" / (n + ".param.png")), std::make_pair(64, 64));
+    EXPECT_EQ(png_size(dir / "out" / (n + ".optimize.png")), std::make_pair(640, 400));
+    EXPECT_NE(slurp(dir / "out" / (n + ".param.html")).find("thesis Fig. 6.1"), std::string::npos);
+    EXPECT_EQ(load_json(dir / "out" / (n + ".param.json"))["optimize"]["mode"], "relocate");
+  }
+  // Same input, same options: the two reports agree apart from timings and names (deterministic with -j 2).
+  auto strip = [](nlohmann::json j) {
+    for (const char* k : {"seconds", "file", "output"}) j.erase(k);
+    j["optimize"].erase("seconds");
+    return j;
+  };
+  EXPECT_EQ(strip(load_json(dir / "out" / "a.param.json")), strip(load_json(dir / "out" / "b.param.json")));
+}
+
 }  // namespace
