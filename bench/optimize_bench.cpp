@@ -105,12 +105,11 @@ void BM_ViaUpdates(benchmark::State& state, BenchMesh* b) {
 
 // Plain CXSparse: two cs_ci_updown (Deng order) + one full forward solve, then the inverse change (not timed).
 void BM_PlainCxsparse(benchmark::State& state, BenchMesh* b) {
-  UpdatableCholesky F(complex_nonconforming_stiffness(b->mesh, b->energy->matching()) +
-                      [&] {
-                        Eigen::SparseMatrix<Complex> I(b->mesh.num_edges(), b->mesh.num_edges());
-                        I.setIdentity();
-                        return 1e-10 * I;
-                      }());
+  UpdatableCholesky F(complex_nonconforming_stiffness(b->mesh, b->energy->matching()) + [&] {
+    Eigen::SparseMatrix<Complex> I(b->mesh.num_edges(), b->mesh.num_edges());
+    I.setIdentity();
+    return 1e-10 * I;
+  }());
   F.set_rhs(-complex_curl_star(b->mesh, b->energy->field()));
   std::mt19937 rng(2);
   std::uniform_int_distribution<std::size_t> pick(0, b->edges.size() - 1);
@@ -200,11 +199,10 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
     state.counters["field_s"] = t_field, state.counters["optimize_s"] = t_opt, state.counters["param_s"] = t_param;
     state.counters["total_s"] = t_field + t_opt + t_param;
     state.counters["evaluations"] = static_cast<double>(r.reduction.evaluations + r.balancing.evaluations);
-    state.counters["exact_evals"] =
-        static_cast<double>(r.reduction.exact_evaluations + r.balancing.exact_evaluations);
+    state.counters["exact_evals"] = static_cast<double>(r.reduction.exact_evaluations + r.balancing.exact_evaluations);
     state.counters["bp_before"] = r.reduction.initial_branch_points;
-    state.counters["bp_after"] = r.balancing.log.empty() ? r.reduction.final_branch_points
-                                                         : r.balancing.final_branch_points;
+    state.counters["bp_after"] =
+        r.balancing.log.empty() ? r.reduction.final_branch_points : r.balancing.final_branch_points;
     state.counters["E_D_before"] = r.reduction.initial_energy;
     state.counters["E_D_after"] = r.balancing.log.empty() ? r.reduction.final_energy : r.balancing.final_energy;
     state.counters["E_H"] = p.energy_harmonic;
@@ -271,16 +269,21 @@ int main(int argc, char** argv) {
     // Figure 6.5 (thesis 6.4) on the first mesh: one row per branch point count.
     BalancingSweepOptions o;
     o.optimize.max_evaluations = 0;
-    o.max_rows = std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) > 1 ? std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) : 0;
+    o.max_rows =
+        std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) > 1 ? std::atoi(std::getenv("QUADCOVER_BENCH_SWEEP")) : 0;
     const auto t = Clock::now();
     const auto rows = balancing_sweep(g_meshes[0]->mesh, g_meshes[0]->field, o);
-    std::printf("Figure 6.5 sweep, %s (%.1f s)\n| branch points | E_D | E_H | E_D + E_H | h_sym |\n|---|---|---|---|---|\n",
-                g_meshes[0]->name.c_str(), since(t));
+    std::printf(
+        "Figure 6.5 sweep, %s (%.1f s)\n| branch points | E_D | E_H | E_D + E_H | h_sym |\n|---|---|---|---|---|\n",
+        g_meshes[0]->name.c_str(), since(t));
     for (const auto& r : rows)
       std::printf("| %d | %.4f | %.3f | %.3f | %d |\n", r.branch_points, r.energy_curl, r.energy_harmonic, r.total,
                   r.h_sym);
   }
-  benchmark::RegisterBenchmark("RoundingSearch3", BM_RoundingSearch3)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("RoundingSearch3", BM_RoundingSearch3)
+      ->Arg(100)
+      ->Arg(200)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -236,8 +236,10 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
     if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
     int m = field_.matching[c.edge];
     double theta = smoother_->curvature()[c.edge];
-    for (auto& [e, v] : ws.m_override) if (e == c.edge) m = v;
-    for (auto& [e, v] : ws.theta_override) if (e == c.edge) theta = v;
+    for (auto& [e, v] : ws.m_override)
+      if (e == c.edge) m = v;
+    for (auto& [e, v] : ws.theta_override)
+      if (e == c.edge) theta = v;
     FaceEntry fe[2];
     const int n = system_->rhs_change(c.edge, c.delta, theta, fe);  // Δb of (5.4), θ_e updated
     ws.db_smooth.insert(ws.db_smooth.end(), fe, fe + n);
@@ -301,9 +303,8 @@ void CurlEnergy::estimate_batch(std::span<const std::vector<MatchingChange>> can
   }
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
-      out[i] = estimate(candidates[i], workspaces_->per_thread.local());
-    });
+    tbb::parallel_for(std::size_t{0}, candidates.size(),
+                      [&](std::size_t i) { out[i] = estimate(candidates[i], workspaces_->per_thread.local()); });
   });
 }
 

@@ -51,8 +51,8 @@ struct CurlEnergyTimings {
 struct EstimateWorkspace {
   FactorTrial trial;
   LocalSmoothingWork smoothing;
-  std::vector<FaceEntry> db_smooth;               // Δb of (5.4)
-  std::vector<std::pair<int, int>> m_override;    // (edge, new m_e)
+  std::vector<FaceEntry> db_smooth;                    // Δb of (5.4)
+  std::vector<std::pair<int, int>> m_override;         // (edge, new m_e)
   std::vector<std::pair<int, double>> theta_override;  // (edge, new θ_e)
   std::vector<std::tuple<int, int, int>> mu_override;  // (face, slot, new μ)
   std::vector<int> face_stamp, edge_stamp, edge_slot;
@@ -90,8 +90,7 @@ class CurlEnergy {
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
   /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
   /// not depend on the thread count. Calls prepare_estimates().
-  void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out,
-                      int threads = 0);
+  void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out, int threads = 0);
   /// Timings and sizes of all estimates so far (summed over the workspaces).
   CurlEnergyTimings estimate_timings() const;
   /// Makes the last evaluate() the current state.
@@ -130,8 +129,8 @@ class CurlEnergy {
   FrameSmoother* smoother_;
   CurlEnergyOptions options_;
   double shift_ = 0;
-  Eigen::MatrixX3i mu_;  // edge layers (cover/complex_stiffness.h) of the current matching
-  Eigen::VectorXcd X0_;  // unrotated first frame vectors of the smoother
+  Eigen::MatrixX3i mu_;         // edge layers (cover/complex_stiffness.h) of the current matching
+  Eigen::VectorXcd X0_;         // unrotated first frame vectors of the smoother
   Eigen::MatrixX3cd edge_vec_;  // face edge vectors in the face basis
   Eigen::VectorXd alpha_;
   FrameField field_;

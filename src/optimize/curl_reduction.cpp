@@ -62,18 +62,14 @@ class Reducer {
  private:
   using Path = std::vector<MatchingChange>;
 
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
+  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
   bool stop() {
     if ((opt_.max_evaluations > 0 && res_.evaluations >= opt_.max_evaluations) ||
         (opt_.time_limit_seconds > 0 && elapsed() >= opt_.time_limit_seconds) || progress_.cancelled())
       res_.stopped_early = true;
     return res_.stopped_early;
   }
-  void log(const char* phase) {
-    res_.log.push_back({res_.evaluations, ed_.energy(), bp_, res_.accepted, phase});
-  }
+  void log(const char* phase) { res_.log.push_back({res_.evaluations, ed_.energy(), bp_, res_.accepted, phase}); }
   bool is_branch(int v) const { return !mesh_.is_boundary_vertex(v) && mod4(q_[v]) != 0; }
   // Branch point count after a change set (only the endpoints of changed edges are affected).
   int branch_points_after(const Path& path) {
@@ -82,7 +78,8 @@ class Reducer {
     for (const auto& c : path) {
       for (int s = 0; s < 2; ++s) {
         const int v = mesh_.E()(c.edge, s);
-        if (std::find(touched_.begin(), touched_.end(), v) == touched_.end()) touched_.push_back(v), delta -= is_branch(v);
+        if (std::find(touched_.begin(), touched_.end(), v) == touched_.end())
+          touched_.push_back(v), delta -= is_branch(v);
         q_[v] += s == 0 ? c.delta : -c.delta;
       }
     }

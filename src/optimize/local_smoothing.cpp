@@ -30,7 +30,8 @@ SmoothingSystem::SmoothingSystem(const Mesh& mesh, const FrameSmoother& smoother
   double sum = 0;
   int count = 0;
   for (int t = 0; t < nf; ++t)
-    if (w.trusted[static_cast<std::size_t>(t)]) align[t] = w.stability[t] * mesh.face_areas()[t], sum += align[t], ++count;
+    if (w.trusted[static_cast<std::size_t>(t)])
+      align[t] = w.stability[t] * mesh.face_areas()[t], sum += align[t], ++count;
   if (sum > 0) align *= count / sum;
   unknown_of_face_.assign(static_cast<std::size_t>(nf), -1);
   for (int t = 0; t < nf; ++t)
@@ -95,10 +96,10 @@ Eigen::VectorXd SmoothingSystem::multiply(const Eigen::VectorXd& x) const {
   return y;
 }
 
-void SmoothingSystem::solve_local(std::span<const FaceEntry> rhs, int rings, double tol,
-                                  LocalSmoothingWork& w) const {
+void SmoothingSystem::solve_local(std::span<const FaceEntry> rhs, int rings, double tol, LocalSmoothingWork& w) const {
   const int nf = mesh_->num_faces();
-  if (static_cast<int>(w.stamp.size()) != nf) w.stamp.assign(static_cast<std::size_t>(nf), 0), w.local.resize(w.stamp.size()), w.current = 0;
+  if (static_cast<int>(w.stamp.size()) != nf)
+    w.stamp.assign(static_cast<std::size_t>(nf), 0), w.local.resize(w.stamp.size()), w.current = 0;
   if (++w.current == 0) std::fill(w.stamp.begin(), w.stamp.end(), 0), w.current = 1;
   w.faces.clear();
   auto add = [&](int f) {

@@ -19,9 +19,9 @@ namespace quadcover {
 
 /// What the FrameSmoother was built from, needed to assemble its matrix A (5.4) (the smoother keeps A private).
 struct SmoothingWeights {
-  double lambda = 0.5;          ///< λ of (5.3)
-  Eigen::VectorXd stability;    ///< #F, ω_t^stable (5.2)
-  std::vector<char> trusted;    ///< #F, faces of E_A
+  double lambda = 0.5;        ///< λ of (5.3)
+  Eigen::VectorXd stability;  ///< #F, ω_t^stable (5.2)
+  std::vector<char> trusted;  ///< #F, faces of E_A
 };
 
 /// One face-local right-hand side entry Δb_t.
@@ -34,7 +34,7 @@ struct FaceEntry {
 struct LocalSmoothingWork {
   std::vector<int> stamp, local;  // face -> stamp / local index
   int current = 0;
-  std::vector<int> faces;         // patch faces in BFS order
+  std::vector<int> faces;  // patch faces in BFS order
   std::vector<double> x, r, p, q, diag;
 };
 

@@ -88,8 +88,11 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
   nlohmann::json log = nlohmann::json::array();
   for (const auto* part : {&r.reduction, &r.balancing})
     for (const auto& e : part->log)
-      log.push_back({{"phase", e.phase}, {"evaluation", e.evaluation}, {"E_D", e.energy},
-                     {"branch_points", e.branch_points}, {"accepted", e.accepted}});
+      log.push_back({{"phase", e.phase},
+                     {"evaluation", e.evaluation},
+                     {"E_D", e.energy},
+                     {"branch_points", e.branch_points},
+                     {"accepted", e.accepted}});
   j["log"] = std::move(log);
   return j;
 }

@@ -37,12 +37,12 @@ struct OptimizeOptions {
 };
 
 struct OptimizeResult {
-  FrameField field;                 ///< optimized cross field with its matching
-  CurlReductionResult reduction;    ///< first curl reduction (with creation for `full`)
-  CurlReductionResult balancing;    ///< `full` only: the balancing run (creation disallowed)
+  FrameField field;                     ///< optimized cross field with its matching
+  CurlReductionResult reduction;        ///< first curl reduction (with creation for `full`)
+  CurlReductionResult balancing;        ///< `full` only: the balancing run (creation disallowed)
   double energy_harmonic_estimate = 0;  ///< `full`: E_H measured after the first reduction
-  int h_sym = 0;                    ///< `full`: h_sym of that parameterization
-  double delta_eh = 0;              ///< `full`: Δ_EH = E_H / (2 h_sym), in the unscaled field's units (÷ scale²)
+  int h_sym = 0;                        ///< `full`: h_sym of that parameterization
+  double delta_eh = 0;                  ///< `full`: Δ_EH = E_H / (2 h_sym), in the unscaled field's units (÷ scale²)
   double evaluations_per_second = 0;
   double seconds = 0;
 };

@@ -1,10 +1,11 @@
 // Figure 6.5 sweep (thesis 6.4): along balancing, cancelling pairs raises E_D; rows are sorted by branch point
 // count, E_H is a parameterization's continuity distortion (>= 0) and the total is their sum.
+#include "optimize/balancing_sweep.h"
+
 #include <gtest/gtest.h>
 
 #include "field/compute_frame_field.h"
 #include "field/indices.h"
-#include "optimize/balancing_sweep.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {

@@ -1,12 +1,13 @@
 // Algorithm 6.1 (thesis 6.2.2) on a real curvature field: E_D never increases over accepted moves, with creation
 // disallowed the branch point count never rises, locally tracked indices equal a recomputation, and the run is
 // reproducible.
+#include "optimize/curl_reduction.h"
+
 #include <gtest/gtest.h>
 
+#include "common/errors.h"
 #include "field/compute_frame_field.h"
 #include "field/indices.h"
-#include "common/errors.h"
-#include "optimize/curl_reduction.h"
 #include "optimize/optimize_field.h"
 #include "support/test_meshes.h"
 
