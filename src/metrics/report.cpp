@@ -71,6 +71,7 @@ nlohmann::json to_json(const ExtractionReport& r) {
           {"collapsed_edges", r.collapsed_edges},
           {"split_polygons", r.split_polygons},
           {"merged_polygons", r.merged_polygons},
+          {"filled_holes", r.filled_holes},
           {"flipped_triangles", r.flipped_triangles},
           {"degenerate_triangles", r.degenerate_triangles},
           {"torn_seams", r.torn_seams},
@@ -118,7 +119,8 @@ std::string to_text(const Report& r) {
     line("quads: %d, other polygons: %d, boundary vertices: %d", e.quads, e.non_quads, e.boundary_vertices);
     line("untangled: %d triangles (%d vertices moved, %d edges mapped to a point collapsed)", e.unfolded_triangles,
          e.moved_vertices, e.collapsed_edges);
-    line("polygons split into quads: %d (%d odd pairs merged first)", e.split_polygons, e.merged_polygons);
+    line("polygons split into quads: %d (%d odd pairs merged first), fold holes closed: %d", e.split_polygons,
+         e.merged_polygons, e.filled_holes);
     line("cut out: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
          e.flipped_triangles, e.degenerate_triangles, e.torn_seams, e.failed_traces, e.dropped_faces);
   }

@@ -136,7 +136,7 @@ class Extractor {
       // A straight boundary running along an iso-line: the line passes through (no output vertex).
       if (!integer && !s.cyclic && s.slots.size() == 3 && sl.size() == 2 && fwd && bwd) continue;
       GVert v;
-          v.type = GVType::Vertex;
+      v.type = GVType::Vertex;
       v.sector = static_cast<int>(si);
       v.face = f0;
       v.p = p;
@@ -475,6 +475,19 @@ class Extractor {
     }
   }
 
+  // Closed debris of folds is dropped, small fold holes away from the input's boundary closed, polygons made quads.
+  void repair_polygons(QuadMesh& qm) {
+    rep_.dropped_faces += drop_closed_debris(qm);
+    rep_.filled_holes = fill_small_holes(qm, 8, [&](const std::vector<int>& loop) {
+      for (int v : loop)
+        for (int c = 0; c < 3; ++c)
+          if (mesh_.is_boundary_vertex(mesh_.F()(qm.source_face[v], c))) return false;
+      return true;
+    });
+    const QuadrangulateReport qr = quadrangulate_polygons(qm);
+    rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
+  }
+
   ExtractionResult assemble() {
     std::vector<char> visited(slots_.size(), 0);
     std::vector<std::vector<int>> faces;
@@ -532,21 +545,17 @@ class Extractor {
     qm.faces = std::move(faces);
     rep_.dropped_faces += drop_faces_on_duplicate_edges(qm);
     rep_.split_vertices = split_pinched_vertices(qm);
-    const QuadrangulateReport qr = opt_.quadrangulate ? quadrangulate_polygons(qm) : QuadrangulateReport{};
-    rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
+    if (opt_.quadrangulate) repair_polygons(qm);
     remove_unused_vertices(qm);  // after the clean-up: dropped faces leave no orphans
-    rep_.quads = qm.num_quads();
-    rep_.non_quads = qm.num_faces() - rep_.quads;
-    rep_.flipped_triangles = g_.flipped_faces;
+    rep_.quads = qm.num_quads(), rep_.non_quads = qm.num_faces() - rep_.quads;
+    rep_.flipped_triangles = g_.flipped_faces, rep_.degenerate_triangles = g_.degenerate_faces;
+    rep_.torn_seams = g_.torn_edges, rep_.non_integer_translations = g_.non_integer_translations;
     for (int f = 0; f < nf(); ++f)
       if (g_.active[f]) {
         const double sc = static_cast<double>(S());
         rep_.active_parameter_area +=
             0.5 * static_cast<double>(orient(g_.corner(f, 0), g_.corner(f, 1), g_.corner(f, 2))) / sc / sc;
       }
-    rep_.degenerate_triangles = g_.degenerate_faces;
-    rep_.torn_seams = g_.torn_edges;
-    rep_.non_integer_translations = g_.non_integer_translations;
     res.report = rep_;
     return res;
   }
@@ -587,15 +596,6 @@ ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, 
   if (use_collapsed)  // source faces refer to the input mesh
     for (int v = 0; v < r.mesh.num_vertices(); ++v) r.mesh.source_face[v] = collapsed.face_origin[r.mesh.source_face[v]];
   return r;
-}
-
-double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
-  double a = 0;
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const Complex e1 = uv(f, 1) - uv(f, 0), e2 = uv(f, 2) - uv(f, 0);
-    a += 0.5 * std::abs(e1.real() * e2.imag() - e1.imag() * e2.real());
-  }
-  return a;
 }
 
 }  // namespace quadcover

@@ -25,7 +25,8 @@ struct ExtractOptions {
   /// Collapse edges whose two ends the map sends to one point (see collapse_degenerate.h) before the repair
   /// (default on).
   bool collapse_zero_edges = true;
-  /// Split interior even polygons into quads and merge adjacent odd ones first (see quadrangulate.h; default on).
+  /// Close small holes of cut-out folds, split interior even polygons into quads and merge adjacent odd ones
+  /// first (see quadrangulate.h; default on).
   bool quadrangulate = true;
 };
 
@@ -48,6 +49,7 @@ struct ExtractionReport {
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
   int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
   int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting
+  int filled_holes = 0;          ///< small holes of cut-out folds closed by one polygon (away from the boundary)
   /// Parameter area of the triangles that were extracted (not cut out): the quad count of a valid closed map.
   double active_parameter_area = 0;
 };

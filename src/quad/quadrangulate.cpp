@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -15,6 +16,26 @@ using Key = unsigned long long;
 Key edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<Key>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
+}
+
+// F and G share exactly one edge (a→b in F, b→a in G) and no other vertex: the loop of their union, and the key of
+// the edge that disappears. false otherwise (merging would pinch or fold).
+bool merge_loops(const std::vector<int>& F, const std::vector<int>& G, std::vector<int>& merged, Key& removed) {
+  int shared = 0;
+  for (int u : F) shared += static_cast<int>(std::count(G.begin(), G.end(), u));
+  if (shared != 2) return false;
+  const int n = static_cast<int>(F.size()), m = static_cast<int>(G.size());
+  for (int i = 0; i < n; ++i) {
+    const int a = F[i], b = F[(i + 1) % n];
+    const int ja = static_cast<int>(std::find(G.begin(), G.end(), a) - G.begin());
+    if (ja == m || G[(ja + m - 1) % m] != b) continue;
+    merged.clear();
+    for (int k = 0; k < n; ++k) merged.push_back(F[(i + 1 + k) % n]);  // b round to a
+    for (int k = 1; k < m - 1; ++k) merged.push_back(G[(ja + k) % m]);  // after a, up to before b
+    removed = edge_key(a, b);
+    return true;
+  }
+  return false;
 }
 
 class Splitter {
@@ -125,51 +146,51 @@ QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
     commit(q.faces[f], quads);
     ++rep.split_polygons;
   }
-  // Odd pairs sharing exactly one edge: merge across it, then split (or keep the quad).
-  for (int f = 0; f < nf; ++f) {
+  // Odd polygons: merged with an odd neighbour, or through one quad with an odd polygon beyond it, then split.
+  auto neighbours = [&](int f) {
+    std::vector<int> out;
     const auto& F = q.faces[f];
-    const int n = static_cast<int>(F.size());
-    if (consumed[f] || n % 2 == 0 || n > max_size || !interior(f)) continue;
-    for (int i = 0; i < n && !consumed[f]; ++i) {
-      const int a = F[i], b = F[(i + 1) % n];
-      const auto [f1, f2] = faces_of[edge_key(a, b)];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      const auto [f1, f2] = faces_of[edge_key(F[i], F[(i + 1) % F.size()])];
       const int g = f1 == f ? f2 : f1;
-      if (g < 0 || g == f || consumed[g] || q.faces[g].size() % 2 == 0 || !interior(g)) continue;
-      const auto& G = q.faces[g];
-      const int m = static_cast<int>(G.size());
-      if (n + m - 2 > max_size) continue;
-      int shared = 0;
-      for (int u : F)
-        shared += static_cast<int>(std::count(G.begin(), G.end(), u));
-      if (shared != 2) continue;  // more contact than the edge a-b: merging would pinch
-      // F = [.., a, b, ..], G = [.., b, a, ..]: merged = F from b round to a, then G after a up to before b.
-      std::vector<int> merged;
-      for (int k = 0; k < n; ++k) merged.push_back(F[(i + 1 + k) % n]);
-      const int ja = static_cast<int>(std::find(G.begin(), G.end(), a) - G.begin());
-      for (int k = 1; k < m - 1; ++k) merged.push_back(G[(ja + k) % m]);
-      std::vector<std::vector<int>> quads;
-      bool ok = false;
-      if (merged.size() == 4) {
-        ok = true;
-        quads.push_back(merged);
-        Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
-        for (int k = 0; k < 4; ++k)
-          nrm += Eigen::Vector3d(q.V.row(merged[k])).cross(Eigen::Vector3d(q.V.row(merged[(k + 1) % 4])));
-        for (int k = 0; k < 4 && ok; ++k) {
-          const Eigen::Vector3d p0 = q.V.row(merged[(k + 3) % 4]), p1 = q.V.row(merged[k]), p2 = q.V.row(merged[(k + 1) % 4]);
-          ok = (p1 - p0).cross(p2 - p1).dot(nrm) > 0;
-        }
-      } else {
-        ok = splitter.split(merged, quads);
-      }
-      if (!ok) continue;
-      uses.erase(edge_key(a, b));  // the shared edge goes away
-      consumed[f] = consumed[g] = 1;
-      commit(merged, quads);
-      ++rep.merged_pairs;
-      if (merged.size() > 4) ++rep.split_polygons;
+      if (g >= 0 && g != f && std::find(out.begin(), out.end(), g) == out.end()) out.push_back(g);
     }
-  }
+    return out;
+  };
+  auto usable = [&](int g, bool odd) {
+    return !consumed[g] && (q.faces[g].size() % 2 == 1) == odd && static_cast<int>(q.faces[g].size()) <= max_size &&
+           interior(g);
+  };
+  auto take = [&](const std::vector<int>& loop, const std::vector<Key>& removed, const std::vector<int>& from) {
+    std::vector<std::vector<int>> quads;
+    if (static_cast<int>(loop.size()) > max_size + 2 || !splitter.split(loop, quads)) return false;
+    for (Key k : removed) uses.erase(k);
+    for (int g : from) consumed[g] = 1;
+    commit(loop, quads);
+    ++rep.merged_pairs;
+    if (loop.size() > 4) ++rep.split_polygons;
+    return true;
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (int f = 0; f < nf; ++f) {
+      if (!usable(f, true)) continue;
+      for (int g : neighbours(f)) {
+        if (consumed[f] || !usable(g, pass == 0)) continue;
+        std::vector<int> m1;
+        Key k1 = 0;
+        if (!merge_loops(q.faces[f], q.faces[g], m1, k1)) continue;
+        if (pass == 0) {
+          take(m1, {k1}, {f, g});
+          continue;
+        }
+        for (int h : neighbours(g)) {  // f + quad g + odd h
+          std::vector<int> m2;
+          Key k2 = 0;
+          if (h == f || !usable(h, true) || !merge_loops(m1, q.faces[h], m2, k2)) continue;
+          if (take(m2, {k1, k2}, {f, g, h})) break;
+        }
+      }
+    }
   if (added.empty()) return rep;
   std::vector<std::vector<int>> faces;
   faces.reserve(nf + added.size());
@@ -178,6 +199,109 @@ QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
   for (auto& Q : added) faces.push_back(std::move(Q));
   q.faces = std::move(faces);
   return rep;
+}
+
+int drop_closed_debris(QuadMesh& q, int min_faces) {
+  const int nf = q.num_faces();
+  std::vector<int> parent(nf);
+  for (int f = 0; f < nf; ++f) parent[f] = f;
+  auto root = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  std::unordered_map<Key, std::pair<int, int>> sides;  // undirected edge -> (first face, uses)
+  for (int f = 0; f < nf; ++f) {
+    const auto& F = q.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      auto [it, fresh] = sides.emplace(edge_key(F[i], F[(i + 1) % F.size()]), std::pair{f, 0});
+      ++it->second.second;
+      if (!fresh) parent[root(f)] = root(it->second.first);
+    }
+  }
+  std::vector<int> size(nf, 0);
+  std::vector<char> open(nf, 0);
+  for (int f = 0; f < nf; ++f) ++size[root(f)];
+  for (const auto& [k, s] : sides)
+    if (s.second == 1) open[root(s.first)] = 1;
+  std::vector<std::vector<int>> kept;
+  int dropped = 0;
+  for (int f = 0; f < nf; ++f) {
+    const int r = root(f);
+    if (!open[r] && size[r] < min_faces)
+      ++dropped;
+    else
+      kept.push_back(std::move(q.faces[f]));
+  }
+  q.faces = std::move(kept);
+  return dropped;
+}
+
+int fill_small_holes(QuadMesh& q, int max_loop, const std::function<bool(const std::vector<int>&)>& allowed) {
+  // Directed sides; a side a→b whose reverse is missing is a boundary half-edge (the face on its left).
+  std::unordered_map<Key, int> directed;
+  auto dkey = [](int a, int b) {
+    return (static_cast<Key>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
+  };
+  for (const auto& F : q.faces)
+    for (std::size_t i = 0; i < F.size(); ++i) ++directed[dkey(F[i], F[(i + 1) % F.size()])];
+  // Components through shared edges: only holes of a component with at least a quarter of the faces are closed
+  // (a small piece cut off by folds would otherwise become a closed blob).
+  const int nf = q.num_faces();
+  std::vector<int> parent(nf);
+  for (int f = 0; f < nf; ++f) parent[f] = f;
+  auto root = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  std::unordered_map<Key, int> side_face;
+  for (int f = 0; f < nf; ++f) {
+    const auto& F = q.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      const auto [it, fresh] = side_face.emplace(edge_key(F[i], F[(i + 1) % F.size()]), f);
+      if (!fresh) parent[root(f)] = root(it->second);
+    }
+  }
+  std::vector<int> comp_size(nf, 0);
+  for (int f = 0; f < nf; ++f) ++comp_size[root(f)];
+  std::unordered_map<int, std::vector<int>> next;  // boundary half-edges leaving a vertex
+  std::vector<std::tuple<int, int, int>> starts;   // (a, b, face)
+  for (int f = 0; f < nf; ++f) {
+    const auto& F = q.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      const int a = F[i], b = F[(i + 1) % F.size()];
+      if (!directed.count(dkey(b, a))) next[a].push_back(b), starts.emplace_back(a, b, f);
+    }
+  }
+  std::sort(starts.begin(), starts.end());  // deterministic order
+  std::unordered_set<Key> used;
+  int filled = 0;
+  for (const auto& [a0, b0, f0] : starts) {
+    if (used.count(dkey(a0, b0))) continue;
+    const bool big = 4 * comp_size[root(f0)] >= nf;
+    std::vector<int> loop = {a0};
+    bool ok = true;
+    int a = a0, b = b0;
+    while (b != a0) {
+      used.insert(dkey(a, b));
+      const auto it = next.find(b);
+      if (it == next.end() || it->second.size() != 1 || static_cast<int>(loop.size()) >= max_loop) {
+        ok = false;  // pinched boundary vertex or a long loop (a real boundary): leave it
+        break;
+      }
+      loop.push_back(b);
+      a = b;
+      b = it->second[0];
+    }
+    used.insert(dkey(a, b));
+    if (!ok || !big || loop.size() < 3) continue;
+    std::vector<int> sorted = loop;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end() || !allowed(loop)) continue;
+    std::reverse(loop.begin(), loop.end());
+    q.faces.push_back(std::move(loop));
+    ++filled;
+  }
+  return filled;
 }
 
 }  // namespace quadcover

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "quad/extract_quads.h"
+
 namespace quadcover {
 
 namespace {
@@ -55,6 +57,16 @@ Parameterization parameterization_from_uv(const Mesh& mesh, const Eigen::MatrixX
     p.cut_edges[e] = (fit.rotation[e] != 0 || std::abs(p.transition_translation[e]) > 0) ? 1 : 0;
   }
   return p;
+}
+
+// Declared in quad/extract_quads.h: Σ_t |area(φ(t))|.
+double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+  double a = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Complex e1 = uv(f, 1) - uv(f, 0), e2 = uv(f, 2) - uv(f, 0);
+    a += 0.5 * std::abs(e1.real() * e2.imag() - e1.imag() * e2.real());
+  }
+  return a;
 }
 
 }  // namespace quadcover

@@ -86,4 +86,30 @@ inline PolygonCheck check_polygons(int nv, const std::vector<std::vector<int>>& 
   return c;
 }
 
+/// The faces grouped by connected component (through shared undirected edges), in order of first face.
+inline std::vector<std::vector<std::vector<int>>> split_components(const std::vector<std::vector<int>>& faces) {
+  const int nf = static_cast<int>(faces.size());
+  std::vector<int> parent(nf);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::pair<int, int>, int> first;
+  for (int f = 0; f < nf; ++f)
+    for (std::size_t j = 0; j < faces[f].size(); ++j) {
+      const int a = faces[f][j], b = faces[f][(j + 1) % faces[f].size()];
+      const auto [it, fresh] = first.emplace(std::pair{std::min(a, b), std::max(a, b)}, f);
+      if (!fresh) parent[root(f)] = root(it->second);
+    }
+  std::map<int, int> index;
+  std::vector<std::vector<std::vector<int>>> out;
+  for (int f = 0; f < nf; ++f) {
+    const auto [it, fresh] = index.emplace(root(f), static_cast<int>(out.size()));
+    if (fresh) out.emplace_back();
+    out[it->second].push_back(faces[f]);
+  }
+  return out;
+}
+
 }  // namespace quadcover::testing

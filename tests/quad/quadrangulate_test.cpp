@@ -115,5 +115,30 @@ TEST(Quadrangulate, LeavesBoundaryPolygonsAlone) {
   EXPECT_EQ(c.boundary_loops, 1);
 }
 
+// Holes: removing two adjacent squares leaves a hexagonal hole; closing it gives a hexagon face that is split back
+// into the squares. A loop longer than max_loop, or one the predicate refuses, stays open.
+TEST(Quadrangulate, SmallHolesAreClosedAndSplit) {
+  const QuadMesh original = cube_quads();
+  QuadMesh q = original;
+  const int h = merge_across(q, 33, 0);
+  q.faces.erase(q.faces.begin() + h);  // a hole with 6 boundary edges
+  QuadMesh refused = q, too_long = q;
+  EXPECT_EQ(fill_small_holes(refused, 8, [](const std::vector<int>&) { return false; }), 0);
+  EXPECT_EQ(fill_small_holes(too_long, 5, [](const std::vector<int>&) { return true; }), 0);
+  EXPECT_EQ(refused.num_faces(), q.num_faces());
+  EXPECT_EQ(too_long.num_faces(), q.num_faces());
+  std::vector<int> seen_loop;
+  EXPECT_EQ(fill_small_holes(q, 8, [&](const std::vector<int>& loop) {
+              seen_loop = loop;
+              return true;
+            }),
+            1);
+  EXPECT_EQ(seen_loop.size(), 6u);
+  const QuadrangulateReport r = quadrangulate_polygons(q);
+  EXPECT_EQ(r.split_polygons, 1);
+  expect_closed_all_quad_sphere(q);
+  EXPECT_EQ(face_sets(q), face_sets(original));
+}
+
 }  // namespace
 }  // namespace quadcover
