@@ -155,6 +155,16 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                            {"max_curve_deviation", worst_curve},
                            {"alignment_conflicts", P.alignment_conflicts},
                            {"seconds", seconds}};
+  nlohmann::json warnings = nlohmann::json::array();
+  for (int comp : P.holonomy_without_branch_points)
+    warnings.push_back("component " + std::to_string(comp) +
+                       ": the field turns around a handle but has no branch points; no seamless immersion exists "
+                       "there (the map degenerates). Use a field with branch points (e.g. --optimize full).");
+  if (!P.unfixed_even_branch_points.empty())
+    warnings.push_back(std::to_string(P.unfixed_even_branch_points.size()) +
+                       " even branch points stay on half-integers (see unfixed_even_branch_points)");
+  for (const auto& w : warnings) progress.report("param", -1, "warning: " + w.get<std::string>());
+  report["warnings"] = warnings;
   if (!out.report.empty()) write_json_atomically(out.report, report);
   if (!out.png.empty()) {
     write_parameterization_png(out.png, mesh, P, views, render_options);

@@ -73,6 +73,9 @@ TEST(ParamCli, WritesSeamlessObjAndReport) {
       EXPECT_TRUE(report.contains(key)) << key;
     EXPECT_EQ(report["faces"], mesh.num_faces());
     EXPECT_TRUE(report["seamless"].get<bool>());
+    // Fields with branch points on these meshes: no degenerate-holonomy or half-integer warnings.
+    ASSERT_TRUE(report["warnings"].is_array());
+    EXPECT_TRUE(report["warnings"].empty()) << report["warnings"].dump();
     EXPECT_EQ(report["flipped_triangles"].get<int>(), static_cast<int>(report["flipped_faces"].size()));
     EXPECT_EQ(report["flipped_triangles"].get<int>(), flipped_triangles(uv).flipped);
     // --quads 400: about 400 unit squares of parameter area.
