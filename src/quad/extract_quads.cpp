@@ -12,9 +12,7 @@
 #include "quad/repair_folds.h"
 
 namespace quadcover {
-
 using namespace grid;
-
 namespace {
 
 enum class GVType { Vertex, Edge, Face, Crossing };
@@ -477,17 +475,19 @@ class Extractor {
 
   // Closed debris of folds is dropped, small fold holes away from the input's boundary closed, polygons made quads.
   void repair_polygons(QuadMesh& qm) {
-    rep_.dropped_faces += drop_closed_debris(qm);
-    rep_.filled_holes = fill_small_holes(qm, 8, [&](const std::vector<int>& loop) {
+    auto inside = [&](const std::vector<int>& loop) {  // no vertex on a triangle at the input's boundary
       for (int v : loop)
         for (int c = 0; c < 3; ++c)
           if (mesh_.is_boundary_vertex(mesh_.F()(qm.source_face[v], c))) return false;
       return true;
-    });
+    };
+    if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces > 0) {  // else no fold holes
+      rep_.dropped_faces += drop_closed_debris(qm);
+      rep_.filled_holes = fill_small_holes(qm, 8, inside);
+    }
     const QuadrangulateReport qr = quadrangulate_polygons(qm);
     rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
   }
-
   ExtractionResult assemble() {
     std::vector<char> visited(slots_.size(), 0);
     std::vector<std::vector<int>> faces;
@@ -547,7 +547,7 @@ class Extractor {
     rep_.split_vertices = split_pinched_vertices(qm);
     if (opt_.quadrangulate) repair_polygons(qm);
     remove_unused_vertices(qm);  // after the clean-up: dropped faces leave no orphans
-    rep_.quads = qm.num_quads(), rep_.non_quads = qm.num_faces() - rep_.quads;
+    rep_.quads = qm.num_quads(), rep_.non_quads = qm.num_faces() - rep_.quads;  // reported after every repair
     rep_.flipped_triangles = g_.flipped_faces, rep_.degenerate_triangles = g_.degenerate_faces;
     rep_.torn_seams = g_.torn_edges, rep_.non_integer_translations = g_.non_integer_translations;
     for (int f = 0; f < nf(); ++f)

@@ -107,6 +107,7 @@ class Splitter {
 QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
   QuadrangulateReport rep;
   const int nf = q.num_faces();
+  if (q.num_quads() == nf) return rep;
   std::unordered_map<Key, int> uses;
   std::unordered_map<Key, std::pair<int, int>> faces_of;  // undirected edge -> (first face, second face)
   for (int f = 0; f < nf; ++f) {
