@@ -49,19 +49,20 @@ Eigen::VectorXi round_direct(const Eigen::VectorXd& b) {
 class Search {
  public:
   Search(const Eigen::MatrixXd& P, const Eigen::VectorXd& b, Eigen::VectorXi c, double tol,
-         const std::function<bool()>& stop)
-      : P_(P), c_(std::move(c)), n_(static_cast<int>(P.rows())), tol_(tol), stop_(stop) {
+         const std::function<bool()>& stop, long long max_candidates)
+      : P_(P), c_(std::move(c)), n_(static_cast<int>(P.rows())), tol_(tol), stop_(stop), budget_(max_candidates) {
     g_ = P_ * (c_.cast<double>() - b);
   }
   void run(int r) {
     for (;;) {
-      if (stop_ && stop_()) {
+      if (out_of_budget() || (stop_ && stop_())) {
         stopped = true;
         break;
       }
       if (pass1()) continue;
       if (r >= 2 && pass2()) continue;
       if (r >= 3 && pass3()) continue;
+      stopped = out_of_budget();  // a pass cut short by the budget is not a proven local minimum
       break;
     }
   }
@@ -71,6 +72,7 @@ class Search {
   bool stopped = false;
 
  private:
+  bool out_of_budget() const { return budget_ > 0 && candidates >= budget_; }
   void apply(int i, int s) {
     c_[i] += s;
     g_ += s * P_.col(i);
@@ -108,7 +110,7 @@ class Search {
   bool pass3() {
     diag_.resize(n_);
     for (int k = 0; k < n_; ++k) diag_[k] = P_(k, k);
-    for (int i = 0; i < n_; ++i) {
+    for (int i = 0; i < n_ && !out_of_budget(); ++i) {
       const double* Pi = P_.col(i).data();
       for (int j = i + 1; j < n_; ++j) {
         const double* Pj = P_.col(j).data();
@@ -143,6 +145,7 @@ class Search {
   int n_;
   double tol_;
   const std::function<bool()>& stop_;
+  long long budget_;
 };
 
 // MIQ-style greedy rounding [BZK09] as described in 6.3.3: starting from the relaxed optimum y = b, repeatedly fix
@@ -189,7 +192,7 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
   out.used = options.strategy;
   const double tol = options.relative_tolerance * std::max(P.trace(), std::numeric_limits<double>::min());
   auto search = [&](int r, Eigen::VectorXi start) {
-    Search s(P, b, std::move(start), tol, options.stop);
+    Search s(P, b, std::move(start), tol, options.stop, options.max_candidates);
     s.run(r);
     out.candidates += s.candidates;
     out.moves += s.moves;

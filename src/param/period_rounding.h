@@ -35,6 +35,9 @@ struct RoundingOptions {
   /// Asked between search passes (Ctrl-C, time limit): when it returns true the search stops with the best vector
   /// so far (each accepted move lowers E_H, so that is never worse than the start).
   std::function<bool()> stop;
+  /// Search strategies stop (best so far, stopped_early) after this many candidate evaluations: the r = 3 pass is
+  /// O(n³), so huge instances (thousands of periods on 10⁶-face meshes) stay within seconds.
+  long long max_candidates = 2'000'000'000;
 };
 
 struct RoundingResult {

@@ -151,6 +151,15 @@ TEST(PeriodRounding, StopReturnsBestSoFar) {
   EXPECT_LE(part.energy, direct);
   EXPECT_GE(part.energy, full.energy * (1 - 1e-12));
   EXPECT_LT(part.moves, full.moves);
+  // The candidate budget stops the search the same way.
+  o.strategy = RoundingStrategy::Search3;
+  o.stop = nullptr;
+  o.max_candidates = full.candidates / 4;
+  const RoundingResult budget = round_periods(P, b, o);
+  EXPECT_TRUE(budget.stopped_early);
+  EXPECT_LE(budget.energy, direct);
+  EXPECT_GE(budget.energy, full.energy * (1 - 1e-12));
+  EXPECT_LE(budget.candidates, full.candidates);
 }
 
 }  // namespace
