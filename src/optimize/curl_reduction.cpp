@@ -184,7 +184,8 @@ class Reducer {
       const std::vector<double> est = screen(paths);
       for (std::size_t i = 0; i < paths.size(); ++i) {
         if (stop()) return;
-        if (exact_if_promising(paths[i], est[i], ed_.energy()) < ed_.energy()) {
+        const double bound = ed_.energy() * (1 + opt_.path_screening_margin);
+        if (exact_if_promising(paths[i], est[i], bound) < ed_.energy()) {
           accept(paths[i], "cancellation");
           break;
         }

