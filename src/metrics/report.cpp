@@ -72,6 +72,7 @@ nlohmann::json to_json(const ExtractionReport& r) {
           {"split_polygons", r.split_polygons},
           {"merged_polygons", r.merged_polygons},
           {"filled_holes", r.filled_holes},
+          {"removed_spikes", r.removed_spikes},
           {"flipped_triangles", r.flipped_triangles},
           {"degenerate_triangles", r.degenerate_triangles},
           {"torn_seams", r.torn_seams},

@@ -473,7 +473,7 @@ class Extractor {
     }
   }
 
-  // Closed debris of folds is dropped, small fold holes away from the input's boundary closed, polygons made quads.
+  // Closed fold debris dropped, small fold holes (if any was cut) closed away from the boundary, polygons to quads.
   void repair_polygons(QuadMesh& qm) {
     auto inside = [&](const std::vector<int>& loop) {  // no vertex on a triangle at the input's boundary
       for (int v : loop)
@@ -481,7 +481,7 @@ class Extractor {
           if (mesh_.is_boundary_vertex(mesh_.F()(qm.source_face[v], c))) return false;
       return true;
     };
-    if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces > 0) {  // else no fold holes
+    if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces + rep_.degenerate_faces > 0) {
       rep_.dropped_faces += drop_closed_debris(qm);
       rep_.filled_holes = fill_small_holes(qm, 8, inside);
     }
@@ -516,10 +516,10 @@ class Extractor {
         ++rep_.dropped_faces;
         continue;
       }
-      // remove self-loop links (a boundary loop with a single vertex)
-      std::vector<int> clean;
+      std::vector<int> clean;  // without self-loop links (a boundary loop with a single vertex)
       for (std::size_t i = 0; i < verts.size(); ++i)
         if (verts[i] != verts[(i + 1) % verts.size()]) clean.push_back(verts[i]);
+      rep_.removed_spikes += remove_spikes(clean);  // x, v, x: v of valence 1 (e.g. three cones merged)
       std::vector<int> sorted = clean;
       std::sort(sorted.begin(), sorted.end());
       if (clean.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {

@@ -46,6 +46,7 @@ struct ExtractionReport {
   int failed_traces = 0;         ///< iso-line segments that could not be followed (e.g. into a non-integer branch point)
   int dropped_faces = 0;         ///< faces not emitted: a bounding segment failed, or an edge twice (near folds)
   int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
+  int removed_spikes = 0;        ///< face loops x → v → x shortened (v an output vertex of valence 1, dropped)
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
   int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
   int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting

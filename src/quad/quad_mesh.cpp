@@ -175,6 +175,25 @@ int split_pinched_vertices(QuadMesh& qm) {
   return added;
 }
 
+int remove_spikes(std::vector<int>& loop) {
+  int removed = 0;
+  for (bool again = true; again && loop.size() >= 3;) {
+    again = false;
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i)
+      if (loop[(i + n - 1) % n] == loop[(i + 1) % n]) {  // drop v = loop[i] and the second x = loop[i + 1]
+        std::vector<int> kept;
+        for (std::size_t j = 0; j < n; ++j)
+          if (j != i && j != (i + 1) % n) kept.push_back(loop[j]);
+        loop.swap(kept);
+        ++removed;
+        again = true;
+        break;
+      }
+  }
+  return removed;
+}
+
 int remove_unused_vertices(QuadMesh& qm) {
   const int nv = qm.num_vertices();
   std::vector<int> remap(nv, -1);

@@ -46,6 +46,10 @@ int drop_faces_on_duplicate_edges(QuadMesh& q);
 /// Returns the number of vertices added.
 int split_pinched_vertices(QuadMesh& q);
 
+/// Cuts spikes out of a face loop: where the loop runs x → v → x (v is an end of the graph, a vertex of valence 1),
+/// v and the repeated x are removed. Returns the number of spikes removed.
+int remove_spikes(std::vector<int>& loop);
+
 /// Removes the vertices used by no face and numbers the others in order of first use by the faces.
 /// Returns the number of vertices removed.
 int remove_unused_vertices(QuadMesh& q);

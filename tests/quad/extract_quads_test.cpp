@@ -313,6 +313,22 @@ TEST(RepairFolds, KernelSweepsNeverIncreaseFolds) {
   EXPECT_EQ(res.mesh.num_quads(), 17 * 7);
 }
 
+// A face loop running out to a vertex of valence 1 and back (x → v → x) loses the spike; nested spikes too.
+TEST(QuadMesh, RemoveSpikes) {
+  std::vector<int> loop = {1, 2, 3, 2, 5};
+  EXPECT_EQ(remove_spikes(loop), 1);
+  EXPECT_EQ(loop, (std::vector<int>{1, 2, 5}));
+  loop = {1, 2, 3, 4, 3, 2, 6, 7};  // 2 → 3 → 4 → 3 → 2: two spikes
+  EXPECT_EQ(remove_spikes(loop), 2);
+  EXPECT_EQ(loop, (std::vector<int>{1, 2, 6, 7}));
+  loop = {4, 9, 4, 5, 6};  // across the start of the loop
+  EXPECT_EQ(remove_spikes(loop), 1);
+  EXPECT_EQ(loop, (std::vector<int>{4, 5, 6}));
+  loop = {1, 2, 3, 4};
+  EXPECT_EQ(remove_spikes(loop), 0);
+  EXPECT_EQ(loop.size(), 4u);
+}
+
 // Unused vertices are removed, the others renumbered in order of first use with their data.
 TEST(QuadMesh, RemoveUnusedVerticesKeepsDataAndOrder) {
   QuadMesh q;
