@@ -483,7 +483,7 @@ class Extractor {
     };
     if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces + rep_.degenerate_faces > 0) {
       rep_.dropped_faces += drop_closed_debris(qm);
-      rep_.filled_holes = fill_small_holes(qm, 8, inside);
+      rep_.filled_holes = fill_small_holes(qm, 10, inside);
     }
     const QuadrangulateReport qr = quadrangulate_polygons(qm);
     rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
