@@ -1,5 +1,6 @@
 #include "io/atomic_file.h"
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
@@ -9,11 +10,20 @@
 
 namespace quadcover {
 
+namespace {
+// Unique per call, not only per process: threads of a batch writing next to each other (or, by mistake, to the same
+// target) must never share a temporary file.
+std::string temporary_suffix() {
+  static std::atomic<unsigned long> counter{0};
+  return ".tmp" + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
+}
+}  // namespace
+
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
+  const fs::path tmp = dir / ("." + target.filename().string() + temporary_suffix());
   try {
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
