@@ -1,22 +1,34 @@
 #!/usr/bin/env bash
-# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer: configures build-asan/
-# (RelWithDebInfo, -DQUADCOVER_SANITIZE=ON), builds every target the tests need (test executables and the CLI
-# they call) and runs ctest there. Any sanitizer report aborts the test that triggered it, which fails the step.
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (leak checking on): configures
+# build-asan/ (-O1 -g1: less compile time than -O2 and fast enough to run; line tables for the reports,
+# -DQUADCOVER_SANITIZE=ON), builds the test executables of STAGES and runs their ctest labels there.
+# Any sanitizer report aborts the test that triggered it, which fails the step. Uses ccache when installed.
+# SANITIZE_LABELS (a ctest -L regex) narrows the run for local use, e.g. SANITIZE_LABELS='io|mesh'.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD=build-asan
-cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUADCOVER_SANITIZE=ON \
-  -DQUADCOVER_BUILD_BENCH=OFF >/dev/null
+launcher=()
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DQUADCOVER_SANITIZE=ON -DQUADCOVER_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
+# Labels run clean under ASan+UBSan (2026-11-23). Still out: param, optimize, quad, render and cli. Their only
+# sanitizer reports in a full run were "load of value N, which is not a valid value for type 'bool'" on
+# ParamOptions::align_curves (parameterize.cpp) and OptimizeOptions::allow_creation (balancing_sweep.cpp), caused by
+# headers (param/period_rounding.h, field/feature_alignment.h) edited mid-build, so object files disagreed on the
+# struct layout; a clean rebuild must confirm them (and their test failures) before they are added here.
+STAGES=(io mesh calculus topology field cover metrics)
+TARGETS=()
+for s in "${STAGES[@]}"; do TARGETS+=("test_$s"); done
 # -k 0: build every target that compiles, so one broken file still leaves the other tests running (the step
 # fails either way).
 build_status=0
-# Stages whose whole test suite has been run clean under ASan+UBSan so far; the others (field, cover, param,
-# optimize, quad, metrics, render, cli) are still to be verified and added here (see the issue notes).
-TARGETS=(test_io test_mesh test_calculus test_topology)
 cmake --build "$BUILD" -j"${JOBS:-$(nproc)}" --target "${TARGETS[@]}" -- -k 0 || build_status=$?
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+LABELS=${SANITIZE_LABELS:-$(IFS='|'; echo "${STAGES[*]}")}
 test_status=0
-ctest --test-dir "$BUILD" --output-on-failure -j"${JOBS:-$(nproc)}" --timeout 900 -L 'io|mesh|calculus|topology' || test_status=$?
+ctest --test-dir "$BUILD" --output-on-failure -j"${JOBS:-$(nproc)}" --timeout 900 -L "$LABELS" || test_status=$?
 if ((build_status)); then echo "10_sanitizers: the sanitizer build failed (see above)" >&2; fi
 exit $((build_status || test_status))
