@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "param/seams.h"
 #include "cli/optimize_options.h"
 #include "cli/pictures.h"
 #include "cli/registry.h"
@@ -92,8 +93,15 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   report.values["edge_length"] = P.edge_length;
   report.values["field_branch_points"] = static_cast<double>(P.branch_points.size());
   report.values["input_faces"] = mesh.num_faces();
-  if (ex.mesh.num_faces() == 0)
-    throw NumericalError("remesh", "the extraction produced no faces (map too coarse or broken)");
+  if (ex.mesh.num_faces() == 0) {
+    const double area = flipped_triangles(P.uv).parameter_area;  // ≈ number of quads the density asks for
+    if (area < 4)
+      throw InputError(input, 0,
+                       "the density asks for about " + std::to_string(static_cast<int>(std::lround(area))) +
+                           " quads, too few to extract a quad mesh; ask for more with --vertices N or a smaller "
+                           "--edge-length");
+    throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
+  }
   write_polygon_obj(output, ex.mesh.V, ex.mesh.faces);
   if (!out.param.empty()) write_param_obj(out.param, mesh, P.uv);
   lap("write");

@@ -138,6 +138,20 @@ TEST_F(AdversarialCli, SingleTriangle) {
   EXPECT_GT(remesh_["faces"].get<int>(), 20);
 }
 
+// At the default density (h = 2 × mean edge length) a single triangle asks for less than one quad: remesh exits 2
+// naming the options that fix it, and writes nothing.
+TEST_F(AdversarialCli, TooCoarseDensityIsAnInputError) {
+  Eigen::MatrixX3d V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  Eigen::MatrixX3i F(1, 3);
+  F << 0, 1, 2;
+  const std::string in = write("coarse", V, F), out = path("coarse.quads.obj");
+  const CliRun r = run("remesh " + in + " -o " + out);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--vertices"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(AdversarialCli, Tetrahedron) {
   Eigen::MatrixX3d V(4, 3);
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
