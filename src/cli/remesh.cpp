@@ -83,6 +83,17 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   lap("optimize");
   const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
   lap("param");
+  // The signed parameter area is the number of quads the map can hold; below a few there is nothing to extract
+  // (too coarse a density, or a map folded onto itself by a field without branch points, e.g. a flat fan).
+  const double area = flipped_triangles(P.uv).parameter_area;
+  if (area < 4)
+    throw InputError(input, 0,
+                     "the map holds about " + std::to_string(static_cast<int>(std::lround(std::max(0.0, area)))) +
+                         " quads, too few to extract a quad mesh; ask for more with --vertices N or a smaller "
+                         "--edge-length" +
+                         (P.branch_points.empty() && mesh.num_boundary_loops() > 0
+                              ? " (if the map folds onto itself, the field's singularities are whole turns)"
+                              : ""));
   ExtractionResult ex = extract_quads(mesh, P, ExtractOptions{}, progress);
   lap("extract");
   report.parameterization = param_quality(mesh, P);
@@ -93,15 +104,8 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   report.values["edge_length"] = P.edge_length;
   report.values["field_branch_points"] = static_cast<double>(P.branch_points.size());
   report.values["input_faces"] = mesh.num_faces();
-  if (ex.mesh.num_faces() == 0) {
-    const double area = flipped_triangles(P.uv).parameter_area;  // ≈ number of quads the density asks for
-    if (area < 4)
-      throw InputError(input, 0,
-                       "the density asks for about " + std::to_string(static_cast<int>(std::lround(area))) +
-                           " quads, too few to extract a quad mesh; ask for more with --vertices N or a smaller "
-                           "--edge-length");
+  if (ex.mesh.num_faces() == 0)
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
-  }
   write_polygon_obj(output, ex.mesh.V, ex.mesh.faces);
   if (!out.param.empty()) write_param_obj(out.param, mesh, P.uv);
   lap("write");

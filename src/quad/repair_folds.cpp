@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <vector>
 
 #include "quad/integer_grid_map.h"
 #include "quad/transitions.h"
@@ -149,9 +149,17 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
   std::vector<int> bad = bad_faces(options.min_area);
   r.bad_before = static_cast<int>(bad_faces(0.0).size());
   if (bad.empty()) return r;
-  std::set<int> moving;
+  // The vertex set grows ring by ring around the bad faces; each vertex's fan is walked once (a fan of valence d
+  // around a high-valence vertex would otherwise be re-walked for every bad face touching it).
+  const int nv = mesh.num_vertices();
+  std::vector<char> in_moving(nv, 0), expanded(nv, 0);
+  std::vector<int> moving;
+  auto add_moving = [&](int v) {
+    if (!in_moving[v]) in_moving[v] = 1, moving.push_back(v);
+  };
   for (int f : bad)
-    for (int c = 0; c < 3; ++c) moving.insert(mesh.F()(f, c));
+    for (int c = 0; c < 3; ++c) add_moving(mesh.F()(f, c));
+  std::sort(moving.begin(), moving.end());
   std::vector<char> touched(mesh.num_vertices(), 0);
   int best = r.bad_before;
   for (int round = 0; round < options.rounds && !bad.empty(); ++round) {
@@ -188,9 +196,14 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
     bad = bad_faces(options.min_area);
     // grow by one ring around what is still bad
     for (int f : bad)
-      for (int c = 0; c < 3; ++c)
-        for (const auto& fc : mesh.fan(mesh.F()(f, c)))
-          for (int cc = 0; cc < 3; ++cc) moving.insert(mesh.F()(fc.face, cc));
+      for (int c = 0; c < 3; ++c) {
+        const int v = mesh.F()(f, c);
+        if (expanded[v]) continue;
+        expanded[v] = 1;
+        for (const auto& fc : mesh.fan(v))
+          for (int cc = 0; cc < 3; ++cc) add_moving(mesh.F()(fc.face, cc));
+      }
+    std::sort(moving.begin(), moving.end());
   }
   // Kernel sweeps: each regular vertex near what is still bad moves to its one-ring's Tutte average when every
   // incident triangle stays positive there, else (if it has a bad incident triangle) into the kernel of its ring.
@@ -203,21 +216,27 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
     return regular[v] ? &fan_of[v] : nullptr;
   };
   bad = bad_faces(options.min_area);
-  std::vector<char> is_bad(nf, 0);
+  std::vector<char> is_bad(nf, 0), in_cand(nv, 0);
   int ring = 0, stalled = 0;
   for (int sweep = 0; sweep < options.kernel_sweeps && !bad.empty(); ++sweep) {
     std::fill(is_bad.begin(), is_bad.end(), 0);
     for (int f : bad) is_bad[f] = 1;
-    std::set<int> cand;
+    // Candidates: the vertices of the bad faces grown by `ring` rings (breadth first: each fan walked once).
+    std::vector<int> cand;
+    auto add_cand = [&](int v) {
+      if (!in_cand[v]) in_cand[v] = 1, cand.push_back(v);
+    };
     for (int f : bad)
-      for (int c = 0; c < 3; ++c) cand.insert(mesh.F()(f, c));
-    for (int g = 0; g < ring; ++g) {
-      std::set<int> grown = cand;
-      for (int v : cand)
-        for (const auto& fc : mesh.fan(v))
-          for (int cc = 0; cc < 3; ++cc) grown.insert(mesh.F()(fc.face, cc));
-      cand.swap(grown);
+      for (int c = 0; c < 3; ++c) add_cand(mesh.F()(f, c));
+    for (int g = 0, begin = 0; g < ring; ++g) {
+      const int end = static_cast<int>(cand.size());
+      for (int k = begin; k < end; ++k)
+        for (const auto& fc : mesh.fan(cand[k]))
+          for (int cc = 0; cc < 3; ++cc) add_cand(mesh.F()(fc.face, cc));
+      begin = end;
     }
+    for (int v : cand) in_cand[v] = 0;
+    std::sort(cand.begin(), cand.end());
     for (int v : cand) {
       const Fan* fan = fan_at(v);
       if (!fan) continue;
