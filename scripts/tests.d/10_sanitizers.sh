@@ -13,14 +13,11 @@ if command -v ccache >/dev/null; then
 fi
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DQUADCOVER_SANITIZE=ON -DQUADCOVER_BUILD_BENCH=OFF "${launcher[@]}" >/dev/null
-# Labels run clean under ASan+UBSan (2026-11-23). Still out: param, optimize, quad, render and cli. Their only
-# sanitizer reports in a full run were "load of value N, which is not a valid value for type 'bool'" on
-# ParamOptions::align_curves (parameterize.cpp) and OptimizeOptions::allow_creation (balancing_sweep.cpp), caused by
-# headers (param/period_rounding.h, field/feature_alignment.h) edited mid-build, so object files disagreed on the
-# struct layout; a clean rebuild must confirm them (and their test failures) before they are added here.
-STAGES=(io mesh calculus topology field cover metrics)
+# Every stage's tests (the CLI tests run the sanitized CLI binary).
+STAGES=(io mesh calculus topology field cover param optimize quad metrics render cli)
 TARGETS=()
 for s in "${STAGES[@]}"; do TARGETS+=("test_$s"); done
+TARGETS+=(quadcover)
 # -k 0: build every target that compiles, so one broken file still leaves the other tests running (the step
 # fails either way).
 build_status=0
