@@ -18,6 +18,7 @@
 
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -26,10 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
 
-struct CliRun {
-  int code;  ///< exit status; -1 if killed by a signal (crash) or by the timeout
-  std::string out, err;
-};
+using quadcover::testing::CliRun;
 
 class AdversarialCli : public ::testing::Test {
  protected:
@@ -43,23 +41,7 @@ class AdversarialCli : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
   // Runs the CLI with a hard timeout (a hang fails the test instead of blocking the suite).
-  CliRun run(const std::string& args) const {
-    const std::string err_file = path("stderr.txt");
-    const std::string cmd =
-        "timeout -s KILL 240 " + std::string(QUADCOVER_CLI) + " " + args + " 2>" + err_file;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe) return {-1, "", "popen failed"};
-    std::string out;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = ::pclose(pipe);
-    std::ifstream in(err_file);
-    std::stringstream err;
-    err << in.rdbuf();
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return {code == 124 || code == 137 ? -1 : code, out, err.str()};
-  }
+  CliRun run(const std::string& args) const { return quadcover::testing::run_cli(args, path("stderr.txt"), 240); }
 
   std::string write(const std::string& name, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) const {
     const std::string p = path(name + ".obj");

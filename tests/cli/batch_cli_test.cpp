@@ -8,28 +8,16 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code;
-  std::string out;
-};
+using quadcover::testing::CliRun;
 
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " 2>/dev/null";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, ""};
-  std::string out;
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+CliRun run(const std::string& args) { return quadcover::testing::run_cli(args); }
 
 TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
   const fs::path dir = fs::temp_directory_path() / ("quadcover_batch_cli_" + std::to_string(::getpid()));

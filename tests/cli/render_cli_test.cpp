@@ -9,27 +9,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code;
-  std::string out;
-};
+using Result = quadcover::testing::CliRun;
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " 2>/dev/null";
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Result run(const std::string& args) { return quadcover::testing::run_cli(args); }
 
 class RenderCli : public ::testing::Test {
  protected:

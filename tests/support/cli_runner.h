@@ -1,0 +1,46 @@
+#pragma once
+// Running the built CLI from tests: the binary is QUADCOVER_CLI (defined for every test executable). Header-only so
+// that the macro of the including test applies.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace quadcover::testing {
+
+struct CliRun {
+  int code;         ///< exit status; -1 if killed by a signal or by the timeout
+  std::string out;  ///< standard output
+  std::string err;  ///< standard error (when a stderr file was given)
+};
+
+/// The whole content of a file (binary).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs `quadcover ARGS` and captures stdout. stderr goes to `stderr_file` (read back into CliRun::err) or is
+/// discarded. timeout_seconds > 0 kills a hanging run (reported as code -1) instead of blocking the suite.
+inline CliRun run_cli(const std::string& args, const std::string& stderr_file = "", int timeout_seconds = 0) {
+  std::string cmd = std::string(QUADCOVER_CLI) + " " + args + " 2>" + (stderr_file.empty() ? "/dev/null" : stderr_file);
+  if (timeout_seconds > 0) cmd = "timeout -s KILL " + std::to_string(timeout_seconds) + " " + cmd;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "", "popen failed"};
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (timeout_seconds > 0 && (code == 124 || code == 137)) code = -1;
+  return {code, out, stderr_file.empty() ? std::string() : slurp(stderr_file)};
+}
+
+}  // namespace quadcover::testing
