@@ -18,29 +18,6 @@ std::string_view viewer_js();  // html/viewer.js
 
 namespace {
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 void flatten(const nlohmann::json& j, const std::string& prefix,
              std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
@@ -158,7 +135,7 @@ std::vector<std::pair<std::string, std::string>> polygon_mesh_figures(const Eige
 
 std::string html_report(const HtmlReport& r) {
   std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape(r.title)
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escape_markup(r.title)
     << "</title>\n<style>\n"
        "body{font-family:system-ui,sans-serif;margin:24px;color:#222;background:#fff}\n"
        "h1{font-size:22px}h2{font-size:17px;margin-top:28px}\n"
@@ -169,13 +146,13 @@ std::string html_report(const HtmlReport& r) {
        "canvas.qc-view{border:1px solid #ccc;cursor:grab;touch-action:none}\n"
        "#qc-status{font-size:11px;color:#999}\n"
        "</style>\n</head>\n<body>\n<h1>"
-    << escape(r.title) << "</h1>\n<p id=\"qc-status\" data-state=\"loading\">loading 3D views…</p>\n";
+    << escape_markup(r.title) << "</h1>\n<p id=\"qc-status\" data-state=\"loading\">loading 3D views…</p>\n";
   std::vector<std::pair<std::string, std::string>> rows;
   if (!r.metrics.is_null()) flatten(r.metrics, "", rows);
   if (!rows.empty()) {
     h << "<h2>Metrics</h2>\n<table id=\"qc-metrics\">\n<tr><th>quantity</th><th>value</th></tr>\n";
     for (const auto& [k, v] : rows)
-      h << "<tr><td>" << escape(k) << "</td><td class=\"v\">" << escape(v) << "</td></tr>\n";
+      h << "<tr><td>" << escape_markup(k) << "</td><td class=\"v\">" << escape_markup(v) << "</td></tr>\n";
     h << "</table>\n";
   }
   nlohmann::json data{{"meshes", nlohmann::json::array()}};
@@ -214,14 +191,14 @@ std::string html_report(const HtmlReport& r) {
       if (!edges.empty()) j["edges"] = edges;
       data["meshes"].push_back(std::move(j));
       h << "<figure><canvas class=\"qc-view\" data-mesh=\"" << k << "\" width=\"480\" height=\"420\"></canvas>"
-        << "<figcaption>" << escape(m.name) << "</figcaption></figure>\n";
+        << "<figcaption>" << escape_markup(m.name) << "</figcaption></figure>\n";
     }
     h << "</div>\n";
   }
   if (!r.figures.empty()) {
     h << "<h2>Plots</h2>\n<div class=\"figures\">\n";
     for (const auto& [caption, svg] : r.figures)
-      h << "<figure>" << svg << "<figcaption>" << escape(caption) << "</figcaption></figure>\n";
+      h << "<figure>" << svg << "<figcaption>" << escape_markup(caption) << "</figcaption></figure>\n";
     h << "</div>\n";
   }
   h << "<script type=\"application/json\" id=\"qc-data\">" << script_safe(data.dump()) << "</script>\n";

@@ -30,29 +30,6 @@ class Painter {
   virtual void text(double x, double y, const std::string& s, double size, Anchor anchor, bool vertical) = 0;
 };
 
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 class SvgPainter final : public Painter {
  public:
   SvgPainter(int w, int h) {
@@ -80,7 +57,7 @@ class SvgPainter final : public Painter {
     const char* anchor = a == Anchor::Start ? "start" : a == Anchor::Middle ? "middle" : "end";
     s_ << "<text x=\"" << x << "\" y=\"" << y << "\" font-size=\"" << size << "\" text-anchor=\"" << anchor << '"';
     if (vertical) s_ << " transform=\"rotate(-90 " << x << ' ' << y << ")\"";
-    s_ << '>' << xml_escape(t) << "</text>\n";
+    s_ << '>' << escape_markup(t) << "</text>\n";
   }
   std::string finish() {
     s_ << "</svg>\n";
@@ -278,6 +255,29 @@ bool ends_with_svg(const std::string& path) {
 }
 
 }  // namespace
+
+std::string escape_markup(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   std::vector<double> ticks;

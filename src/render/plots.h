@@ -37,6 +37,9 @@ struct Histogram {
 /// non-finite ones dropped). Exposed for tests and for reports.
 std::vector<double> histogram_counts(const Histogram& h, double* lo_out = nullptr, double* hi_out = nullptr);
 
+/// s with &, <, > and " escaped, for HTML and SVG text.
+std::string escape_markup(const std::string& s);
+
 /// "Nice" tick positions (1, 2, 5 × 10^k steps) covering [lo, hi] with about `target` ticks.
 std::vector<double> nice_ticks(double lo, double hi, int target = 5);
 
