@@ -87,42 +87,7 @@ FrameField optimized_field(const Mesh& mesh, const OptimizeOptions& oopt, Progre
   original = f.field;
   OptimizeResult r = optimize_field(mesh, f, oopt, progress);
   report = to_json(r, oopt.mode);
-  // Timings under "seconds", as in the CLI's reports.
-  report["seconds"] = {{"total", r.seconds}, {"evaluations_per_second", r.evaluations_per_second}};
-  report.erase("evaluations_per_second");
   return std::move(r.field);
-}
-
-/// The map of the optimized field or, with keep_better, of the original one when its E_D + E_H (6.1.1) is lower
-/// (as the CLI's --keep-better); records "kept" and both totals in `report`.
-Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
-                                   const ParamOptions& popt, bool optimizing, bool keep_better, ProgressSink& progress,
-                                   nlohmann::json& report) {
-  Parameterization p = parameterize(mesh, optimized, popt, progress);
-  if (!optimizing) return p;
-  report["kept"] = "optimized";
-  if (!keep_better) return p;
-  Parameterization q = parameterize(mesh, original, popt, progress);
-  const double total = p.energy_curl + p.energy_harmonic, total_original = q.energy_curl + q.energy_harmonic;
-  report["E_D_plus_E_H_optimized"] = total;
-  report["E_D_plus_E_H_original"] = total_original;
-  if (total_original >= total) return p;
-  report["kept"] = "original";
-  return q;
-}
-
-nlohmann::json rounding_json(const ParamOptions& popt, const Parameterization& p) {
-  const auto& r = p.rounding;
-  return {{"strategy", to_string(popt.rounding.strategy)},
-          {"strategy_used", r.strategy},
-          {"E_H", p.energy_harmonic},
-          {"h_sym", p.h_sym},
-          {"variables", r.variables},
-          {"E_H_predicted_direct", r.energy_direct},
-          {"E_H_predicted", r.energy_rounded},
-          {"candidates", r.candidates},
-          {"proven_optimal", r.proven_optimal},
-          {"stopped_early", r.stopped_early}};
 }
 
 py::dict info(const RowMatrixX3d& V, const RowMatrixX3i& F) {
@@ -229,8 +194,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
     py::gil_scoped_release release;
     FrameField original;
     const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
-    p = parameterize_best(mesh, original, f, popt, oopt.mode != OptimizeMode::None, keep_better, progress,
-                          optimize_report);
+    p = parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     q = param_quality(mesh, p);
   }
   progress.raise_if_interrupted();
@@ -239,7 +203,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   report["lattice"] = to_string(popt.lattice);
   report["edge_length"] = target_edge_length(mesh, popt);
   report["optimize"] = optimize_report;
-  report["rounding"] = rounding_json(popt, p);
+  report["rounding"] = rounding_to_json(popt, p);
   return py::make_tuple(corner_uv_array(p.uv), to_python(report));
 }
 
@@ -257,9 +221,9 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
     py::gil_scoped_release release;
     FrameField original;
     const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
-    const Parameterization p = parameterize_best(mesh, original, f, popt, oopt.mode != OptimizeMode::None,
-                                                 keep_better, progress, optimize_report);
-    rounding_report = rounding_json(popt, p);
+    const Parameterization p =
+        parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
+    rounding_report = rounding_to_json(popt, p);
     ex = extract_quads(mesh, p, {}, progress);
     report.parameterization = param_quality(mesh, p);
     report.extraction = ex.report;

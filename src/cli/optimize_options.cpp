@@ -58,10 +58,6 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
   OptimizeResult r = optimize_field(mesh, field, o, progress);
   report = to_json(r, o.mode);
   report["rounding"] = cli.rounding;
-  // Wall-clock values go under "seconds", the key that reports reserve for timings (outputs are otherwise
-  // byte-identical between runs, which the e2e determinism check relies on).
-  report["seconds"] = {{"total", r.seconds}, {"evaluations_per_second", r.evaluations_per_second}};
-  report.erase("evaluations_per_second");
   if (o.mode != OptimizeMode::None) {
     char line[200];
     std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s)%s",
@@ -83,38 +79,8 @@ FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, cons
 Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
                                    nlohmann::json& optimize_report) {
-  Parameterization p = parameterize(mesh, optimized, param, progress);
-  const double total = p.energy_curl + p.energy_harmonic;
-  if (cli.optimize == "none" || !cli.keep_better) {
-    if (cli.optimize != "none") optimize_report["kept"] = "optimized";
-    return p;
-  }
-  progress.report("optimize", -1, "parameterizing the original field for comparison (--keep-better)");
-  Parameterization q = parameterize(mesh, original, param, progress);
-  const double total_original = q.energy_curl + q.energy_harmonic;
-  optimize_report["E_D_plus_E_H_optimized"] = total;
-  optimize_report["E_D_plus_E_H_original"] = total_original;
-  const bool keep_original = total_original < total;
-  optimize_report["kept"] = keep_original ? "original" : "optimized";
-  if (keep_original)
-    progress.report("optimize", 1,
-                    "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
-                        std::to_string(total) + " of the optimized one");
-  return keep_original ? std::move(q) : std::move(p);
-}
-
-nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param) {
-  const auto& r = param.rounding;
-  return {{"strategy", cli.rounding},
-          {"strategy_used", r.strategy},
-          {"E_H", param.energy_harmonic},
-          {"h_sym", param.h_sym},
-          {"variables", r.variables},
-          {"E_H_predicted_direct", r.energy_direct},
-          {"E_H_predicted", r.energy_rounded},
-          {"candidates", r.candidates},
-          {"proven_optimal", r.proven_optimal},
-          {"stopped_early", r.stopped_early}};
+  return parameterize_keep_better(mesh, original, optimized, param, parse_optimize_mode(cli.optimize),
+                                  cli.keep_better, progress, optimize_report);
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

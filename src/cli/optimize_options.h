@@ -33,8 +33,7 @@ OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOp
 void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param);
 
 /// Runs the optimization on a computed field and returns the field to parameterize; `report` receives the
-/// "optimize" object of to_json() (E_D before/after each phase, branch points, log) with the wall-clock values
-/// moved under "seconds": {"total", "evaluations_per_second"} (reports keep timings under "seconds" keys).
+/// "optimize" object of to_json() (E_D before/after each phase, branch points, log, timings under "seconds").
 /// Reports a start and a summary line to `progress` (stage "optimize").
 FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,
                         const ParamOptions& param, ProgressSink& progress, nlohmann::json& report);
@@ -44,18 +43,10 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
 FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
                            ProgressSink& progress, nlohmann::json& optimize_report);
 
-/// The parameterization of the optimized field; with cli.keep_better (and an optimization that ran) also that of
-/// the original field, keeping the one with the lower total distortion E_D + E_H = ½‖X̃ - ∇φ̃‖² (6.1.1): Algorithm
-/// 6.1 lowers E_D of the field's own curl energy, which on meshes with boundaries or aligned feature curves does not
-/// always lower the map's. Adds "kept" ("optimized" or "original") and both totals to `optimize_report`.
+/// parameterize_keep_better() (optimize/optimize_field.h) with the command line's --optimize and --keep-better.
 Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
                                    nlohmann::json& optimize_report);
-
-/// The report's "rounding" object: strategy asked for and the one that ran, E_H = ½‖H̃_d‖² (6.1.1) of the map and
-/// h_sym, and the period matrix's prediction of E_H for direct and for the chosen rounding (6.3), candidates,
-/// proven_optimal (exact), stopped_early (--time-limit / Ctrl-C during the search).
-nlohmann::json rounding_report(const OptimizeCliOptions& cli, const Parameterization& param);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations
 /// of Algorithm 6.1. Written as SVG for a ".svg" path, else PNG (atomically). \throw InputError if the log is

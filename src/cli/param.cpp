@@ -133,7 +133,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                            {"genus", mesh.genus()},
                            {"boundary_loops", mesh.num_boundary_loops()},
                            {"lattice", to_string(po.lattice)},
-                           {"rounding", rounding_report(opt.optimize, P)},
+                           {"rounding", rounding_to_json(po, P)},
                            {"optimize", optimize},
                            {"edge_length", P.edge_length},
                            {"parameter_area", flips.parameter_area},

@@ -111,7 +111,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   lap("write");
   nlohmann::json j = to_json(report);
   j["optimize"] = optimize;
-  j["rounding"] = rounding_report(opt.optimize, P);
+  j["rounding"] = rounding_to_json(po, P);
   if (!out.report.empty()) write_json_atomically(out.report, j);
   if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
   if (!out.plot.empty()) write_optimization_plot(out.plot, optimize);

@@ -143,4 +143,18 @@ std::string to_text(const Report& r) {
   return os.str();
 }
 
+nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterization& p) {
+  const auto& r = p.rounding;
+  return {{"strategy", to_string(options.rounding.strategy)},
+          {"strategy_used", r.strategy},
+          {"E_H", p.energy_harmonic},
+          {"h_sym", p.h_sym},
+          {"variables", r.variables},
+          {"E_H_predicted_direct", r.energy_direct},
+          {"E_H_predicted", r.energy_rounded},
+          {"candidates", r.candidates},
+          {"proven_optimal", r.proven_optimal},
+          {"stopped_early", r.stopped_early}};
+}
+
 }  // namespace quadcover

@@ -9,6 +9,7 @@
 #include "metrics/param_quality.h"
 #include "metrics/quad_quality.h"
 #include "metrics/surface_distance.h"
+#include "param/parameterize.h"
 #include "quad/extract_quads.h"
 
 namespace quadcover {
@@ -30,6 +31,9 @@ nlohmann::json to_json(const ParamQuality& q);  ///< without the per-face array
 nlohmann::json to_json(const QuadQuality& q);
 nlohmann::json to_json(const SurfaceDistance& d);
 nlohmann::json to_json(const ExtractionReport& r);
+/// The period rounding of a map (6.3): the strategy asked for and the one used, E_H, h_sym, the number of real
+/// variables, E_H predicted for direct and for the chosen rounding, candidates, proven_optimal, stopped_early.
+nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterization& p);
 
 /// Human-readable lines ("RSD edge length: 8.1 %"), one per key number, for the CLI.
 std::string to_text(const Report& report);

@@ -82,8 +82,7 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
   j["E_H_estimate"] = r.energy_harmonic_estimate;
   j["h_sym"] = r.h_sym;
   j["delta_EH"] = r.delta_eh;
-  j["evaluations_per_second"] = r.evaluations_per_second;
-  j["seconds"] = r.seconds;
+  j["seconds"] = {{"total", r.seconds}, {"evaluations_per_second", r.evaluations_per_second}};
   j["stopped_early"] = r.reduction.stopped_early || r.balancing.stopped_early;
   nlohmann::json log = nlohmann::json::array();
   for (const auto* part : {&r.reduction, &r.balancing})
@@ -95,6 +94,26 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
                      {"accepted", e.accepted}});
   j["log"] = std::move(log);
   return j;
+}
+
+Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                          const ParamOptions& param, OptimizeMode mode, bool keep_better,
+                                          ProgressSink& progress, nlohmann::json& report) {
+  Parameterization p = parameterize(mesh, optimized, param, progress);
+  if (mode == OptimizeMode::None) return p;
+  report["kept"] = "optimized";
+  if (!keep_better) return p;
+  progress.report("optimize", -1, "parameterizing the original field for comparison (keep better)");
+  Parameterization q = parameterize(mesh, original, param, progress);
+  const double total = p.energy_curl + p.energy_harmonic, total_original = q.energy_curl + q.energy_harmonic;
+  report["E_D_plus_E_H_optimized"] = total;
+  report["E_D_plus_E_H_original"] = total_original;
+  if (total_original >= total) return p;
+  report["kept"] = "original";
+  progress.report("optimize", 1,
+                  "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
+                      std::to_string(total) + " of the optimized one");
+  return q;
 }
 
 }  // namespace quadcover

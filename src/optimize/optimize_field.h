@@ -53,8 +53,17 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
                               ProgressSink& progress = null_progress());
 
 /// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, exact_evaluations, accepted,
-/// cancelled_pairs, evaluations_per_second, seconds, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D,
-/// branch_points).
+/// cancelled_pairs, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the wall-clock
+/// values under "seconds": {total, evaluations_per_second} (reports keep timings under "seconds" keys, so that
+/// everything else is byte-identical between runs).
 nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
+
+/// parameterize() of the optimized field; when `mode` optimized and `keep_better` is set, also of the original
+/// field, keeping the map with the lower total distortion E_D + E_H = ½‖X̃ − ∇φ̃‖² (6.1.1): Algorithm 6.1 lowers
+/// the field's E_D, which need not lower the map's. Adds "kept" ("optimized" or "original") and, when compared,
+/// both totals to `report`.
+Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                          const ParamOptions& param, OptimizeMode mode, bool keep_better,
+                                          ProgressSink& progress, nlohmann::json& report);
 
 }  // namespace quadcover
