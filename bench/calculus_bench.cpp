@@ -4,6 +4,8 @@
 //   bench_calculus [--benchmark_flags...] [mesh]
 #include <benchmark/benchmark.h>
 
+#include "bench_mesh_path.h"
+
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -109,13 +111,7 @@ void register_benchmarks() {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  if (argc > 1) {
-    g_mesh_path = argv[1];
-  } else if (const char* env = std::getenv("QUADCOVER_BENCH_MESH"); env && *env) {
-    g_mesh_path = env;
-  } else {
-    g_mesh_path = std::string(QUADCOVER_SOURCE_DIR) + "/tests/data/bunny_20k_holes.obj";
-  }
+  g_mesh_path = bench_mesh_path(argc, argv);
   try {
     const Mesh& mesh = bench_mesh();
     benchmark::AddCustomContext("mesh", g_mesh_path);

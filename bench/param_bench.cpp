@@ -5,6 +5,8 @@
 //   bench_param [--benchmark_flags...] [mesh]        e.g. bench_param /work/shared/meshes/armadillo_86k.obj
 #include <benchmark/benchmark.h>
 
+#include "bench_mesh_path.h"
+
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -58,13 +60,7 @@ void BM_Parameterize(benchmark::State& state) {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
-  if (argc > 1) {
-    g_mesh_path = argv[1];
-  } else if (const char* env = std::getenv("QUADCOVER_BENCH_MESH"); env && *env) {
-    g_mesh_path = env;
-  } else {
-    g_mesh_path = std::string(QUADCOVER_SOURCE_DIR) + "/tests/data/bunny_20k_holes.obj";
-  }
+  g_mesh_path = bench_mesh_path(argc, argv);
   try {
     benchmark::AddCustomContext("mesh", g_mesh_path);
     benchmark::AddCustomContext("mesh_faces", std::to_string(bench_mesh().num_faces()));
