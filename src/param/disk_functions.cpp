@@ -84,15 +84,23 @@ Eigen::MatrixX3cd corner_values(const CoverCut& cut, const Eigen::VectorXcd& val
   return out;
 }
 
+std::pair<Complex, Complex> face_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi, int f) {
+  const double A2 = 2 * mesh.face_areas()[f];
+  Complex gx = 0, gy = 0;
+  for (int c = 0; c < 3; ++c) {
+    const Complex Je = Complex(0, 1) * mesh.edge_vector_local(f, c) / A2;  // ∇φ_c = J e_c / 2A
+    gx += phi(f, c).real() * Je;
+    gy += phi(f, c).imag() * Je;
+  }
+  return {gx, gy};
+}
+
 FramePairs corner_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi) {
-  FramePairs G = FramePairs::Zero(mesh.num_faces(), 2);
+  FramePairs G(mesh.num_faces(), 2);
   for (int f = 0; f < mesh.num_faces(); ++f) {
-    const double A2 = 2 * mesh.face_areas()[f];
-    for (int c = 0; c < 3; ++c) {
-      const Complex Je = Complex(0, 1) * mesh.edge_vector_local(f, c) / A2;  // ∇φ_c = J e_c / 2A
-      G(f, 0) += phi(f, c).real() * Je;
-      G(f, 1) += phi(f, c).imag() * Je;
-    }
+    const auto [gx, gy] = face_gradient(mesh, phi, f);
+    G(f, 0) = gx;
+    G(f, 1) = gy;
   }
   return G;
 }

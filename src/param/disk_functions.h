@@ -4,6 +4,7 @@
 // (the composition of the transitions around every vertex off B is the identity), and functions with prescribed
 // jumps (the potentials of the Σ̃ fields (1.13) on the covering).
 #include <Eigen/Core>
+#include <utility>
 
 #include "param/cover_cut.h"
 
@@ -26,6 +27,8 @@ Eigen::MatrixX3cd corner_values(const CoverCut& cut, const Eigen::VectorXcd& val
 
 /// Gradient per face of a frame-complex function given per corner: (∇Re φ, ∇Im φ), ∇φ_c = J e_c / 2A.
 FramePairs corner_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi);
+/// The same on one face f: (∇Re φ, ∇Im φ).
+std::pair<Complex, Complex> face_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi, int f);
 
 /// Translations c_e (#E, 0 off the cut) of a disk function across the cut edges, averaged over the two endpoints;
 /// `mismatch` (if given) receives the largest difference between the two endpoint estimates.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace quadcover {
 
@@ -17,20 +18,10 @@ SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path)
     if (sigma(f, 0) == Complex(0) && sigma(f, 1) == Complex(0) && sigma(f, 2) == Complex(0)) continue;
     s.support.push_back(f);
   }
-  // ∇σ on the support only, as corner_gradient: ∇φ_c = J e_c / 2A.
+  // ∇σ on the support only.
   s.X.resize(s.support.size());
   s.Y.resize(s.support.size());
-  for (std::size_t k = 0; k < s.support.size(); ++k) {
-    const int f = s.support[k];
-    Complex gx = 0, gy = 0;
-    for (int a = 0; a < 3; ++a) {
-      const Complex je = Complex(0, 1) * mesh.edge_vector_local(f, a) / (2 * mesh.face_areas()[f]);
-      gx += sigma(f, a).real() * je;
-      gy += sigma(f, a).imag() * je;
-    }
-    s.X[k] = gx;
-    s.Y[k] = gy;
-  }
+  for (std::size_t k = 0; k < s.support.size(); ++k) std::tie(s.X[k], s.Y[k]) = face_gradient(mesh, sigma, s.support[k]);
   return s;
 }
 
