@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -34,8 +36,13 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global) {
       ->check(CLI::NonNegativeNumber);
 }
 
+const char* const kBatchNamingHelp =
+    "Several files or a folder run as a batch; outputs are named after the input's stem (a/bunny.obj -> "
+    "bunny.<suffix>); inputs sharing an output name get their parent folder's name in front (a_bunny) and/or "
+    "their extension appended (bunny_obj, bunny_off), then _2, _3, ... in input order; never overwritten";
+
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std::string& description) {
-  cmd.add_option("mesh", inputs, description)->required()->check(CLI::ExistingPath);
+  cmd.add_option("mesh", inputs, description + ". " + kBatchNamingHelp)->required()->check(CLI::ExistingPath);
 }
 
 // ---- cancellation -------------------------------------------------------------------------------------------
@@ -202,6 +209,24 @@ bool is_mesh_file(const std::filesystem::path& p) {
   const std::string ext = file_extension(p.string());
   return ext == "obj" || ext == "off" || ext == "ply" || ext == "stl";
 }
+
+// The files of the batch being processed (set by process_files), so that batch_output_path can tell which other
+// inputs share an output name. Written before the workers start, read by them.
+std::mutex g_batch_mutex;
+std::vector<std::string> g_batch_files;
+std::map<std::string, std::vector<std::string>> g_batch_stems;  // batch_output_stems per output folder
+
+std::string normal_path(const std::filesystem::path& p) {
+  std::error_code ec;
+  const std::filesystem::path a = std::filesystem::absolute(p, ec);
+  return (ec ? p : a).lexically_normal().string();
+}
+
+// The name of the folder holding `input` ("" at the root).
+std::string parent_name(const std::string& input) {
+  return std::filesystem::path(normal_path(input)).parent_path().filename().string();
+}
+
 }  // namespace
 
 std::vector<std::string> expand_inputs(const std::vector<std::string>& args) {
@@ -223,6 +248,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& args) {
       files.push_back(arg);
     }
   }
+  // A file named twice (also as "./a.obj" and "a.obj", or in a folder and by name) is processed once.
+  std::set<std::string> seen;
+  std::erase_if(files, [&](const std::string& f) { return !seen.insert(normal_path(f)).second; });
   return files;
 }
 
@@ -230,11 +258,67 @@ bool is_batch(const std::vector<std::string>& args) {
   return args.size() > 1 || (args.size() == 1 && std::filesystem::is_directory(args[0]));
 }
 
+std::vector<std::string> batch_output_stems(const std::vector<std::string>& files, const std::string& output_dir) {
+  namespace fs = std::filesystem;
+  const std::size_t n = files.size();
+  // The output folder of each file ("" for the common output_dir) and its stem (rule 1).
+  std::vector<std::string> folder(n), stems(n), names(n);
+  std::map<std::pair<std::string, std::string>, std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < n; ++i) {
+    const fs::path in(files[i]);
+    folder[i] = output_dir.empty() ? normal_path(in.parent_path()) : std::string();
+    names[i] = stems[i] = in.stem().string();
+    groups[{folder[i], stems[i]}].push_back(i);
+  }
+  // Rules 2 and 3: within a group of files whose outputs share folder and stem, add what tells them apart.
+  for (const auto& [key, group] : groups) {
+    if (group.size() < 2) continue;
+    const std::size_t first = group.front();
+    bool folders_differ = false, extensions_differ = false;
+    for (std::size_t k : group) {
+      folders_differ |= parent_name(files[k]) != parent_name(files[first]);
+      extensions_differ |= fs::path(files[k]).extension() != fs::path(files[first]).extension();
+    }
+    for (std::size_t k : group) {
+      const std::string parent = parent_name(files[k]);
+      std::string ext = fs::path(files[k]).extension().string();
+      if (!ext.empty()) ext.erase(0, 1);
+      if (folders_differ && !parent.empty()) names[k] = parent + "_" + names[k];
+      if (extensions_differ && !ext.empty()) names[k] += "_" + ext;
+    }
+  }
+  // Rule 4: a name still taken (same folder name and extension, or a name made above that another input has as
+  // its own) gets _2, _3, ... in input order. Unchanged names are reserved first, so a renamed file never takes
+  // another input's plain name.
+  std::set<std::pair<std::string, std::string>> taken;
+  std::vector<std::string> result(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (names[i] == stems[i] && taken.insert({folder[i], names[i]}).second) result[i] = names[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!result[i].empty()) continue;
+    std::string name = names[i];
+    for (int copy = 2; !taken.insert({folder[i], name}).second; ++copy) name = names[i] + "_" + std::to_string(copy);
+    result[i] = name;
+  }
+  return result;
+}
+
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix) {
   namespace fs = std::filesystem;
   const fs::path in(input);
   const fs::path dir = output_dir.empty() ? in.parent_path() : fs::path(output_dir);
-  return (dir / (in.stem().string() + suffix)).string();
+  std::string stem = in.stem().string();
+  {
+    std::lock_guard lock(g_batch_mutex);
+    const auto it = std::find(g_batch_files.begin(), g_batch_files.end(), input);
+    if (it != g_batch_files.end()) {
+      auto cached = g_batch_stems.find(output_dir);
+      if (cached == g_batch_stems.end())
+        cached = g_batch_stems.emplace(output_dir, batch_output_stems(g_batch_files, output_dir)).first;
+      stem = cached->second[static_cast<std::size_t>(it - g_batch_files.begin())];
+    }
+  }
+  return (dir / (stem + suffix)).string();
 }
 
 int describe_current_exception(std::string& message) {
@@ -258,6 +342,16 @@ int describe_current_exception(std::string& message) {
 
 std::vector<FileResult> process_files(const std::vector<std::string>& files, const GlobalOptions& global,
                                       const FileJob& job, std::ostream& log) {
+  // While the batch runs, batch_output_path names its outputs apart (batch_output_stems); cleared on every exit.
+  struct BatchNames {
+    explicit BatchNames(const std::vector<std::string>& files) { set(files); }
+    ~BatchNames() { set({}); }
+    static void set(const std::vector<std::string>& files) {
+      std::lock_guard lock(g_batch_mutex);
+      g_batch_stems.clear();
+      g_batch_files = files;
+    }
+  } const batch_names(files);
   std::vector<FileResult> results(files.size());
   std::atomic<int> done{0};
   const int threads =

@@ -124,15 +124,31 @@ std::mutex& stderr_mutex();
 // ---- batch --------------------------------------------------------------------------------------------------
 
 /// Files named on the command line, with every folder replaced by its mesh files (.obj .off .ply .stl, not
-/// recursive, sorted by name). \throw InputError for a path that does not exist or a folder without meshes.
+/// recursive, sorted by name); a file named twice (same normalized path) is kept once, at its first place.
+/// \throw InputError for a path that does not exist or a folder without meshes.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& args);
 
 /// True if the arguments ask for batch mode: more than one argument or a folder.
 bool is_batch(const std::vector<std::string>& args);
 
-/// Where a batch writes the output of `input`: output_dir / (input's stem + suffix), e.g. ("a/bunny.obj", "out",
-/// ".quad.obj") -> "out/bunny.quad.obj". With an empty output_dir: next to the input.
+/// The output names (without suffix) of a batch's files, in order, distinct among files writing to one folder
+/// (output_dir, or each input's own folder when output_dir is empty). The rule (also in every command's --help):
+///  1. a file's name is its stem: "a/bunny.obj" -> "bunny";
+///  2. files sharing folder and stem whose parent folders' names differ get "<parent>_" in front: "a_bunny";
+///  3. ... whose extensions differ get "_<ext>" appended: "bunny_obj", "bunny_off" (both 2 and 3 may apply);
+///  4. a name still taken (by another input's own name or an earlier renamed file) gets "_2", "_3", ... in input
+///     order. Unrenamed files keep their plain names.
+/// Deterministic: depends only on the list and output_dir, not on the scheduling.
+std::vector<std::string> batch_output_stems(const std::vector<std::string>& files, const std::string& output_dir);
+
+/// Where a batch writes the output of `input`: output_dir / (name + suffix), e.g. ("a/bunny.obj", "out",
+/// ".quad.obj") -> "out/bunny.quad.obj". With an empty output_dir: next to the input. The name is the input's
+/// stem, or, while process_files runs a batch holding `input`, its batch_output_stems entry (two inputs of one
+/// batch never write the same file).
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix);
+
+/// The naming rule of batch_output_stems in one sentence, for --help.
+extern const char* const kBatchNamingHelp;
 
 /// What one file of a batch produced.
 struct FileResult {
