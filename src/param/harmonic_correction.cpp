@@ -26,17 +26,26 @@ HarmonicCorrection::HarmonicCorrection(const Mesh& mesh, const CoverCut& cut, co
   chol_.compute(Lp, "harmonic correction (complex conforming stiffness)");
 }
 
-Eigen::VectorXcd HarmonicCorrection::rhs(const FramePairs& Sigma, const std::vector<int>& faces) const {
+void HarmonicCorrection::add_rhs(int f, Complex X, Complex Y, Eigen::VectorXcd& b) const {
   const Mesh& mesh = *mesh_;
-  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh.num_vertices());
-  for (int f : faces)
-    for (int a = 0; a < 3; ++a) {
-      const int p = mesh.F()(f, a);
-      if (layers_.branch[p]) continue;
-      // ∫⟨∇φ_p, Σ⟩ with ∇φ_p = J e_p / 2A, read in p's gauge.
-      b[p] += ipow(-layers_.layer(f, a)) * 0.5 *
-              frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), Sigma(f, 0), Sigma(f, 1));
-    }
+  for (int a = 0; a < 3; ++a) {
+    const int p = mesh.F()(f, a);
+    if (layers_.branch[p]) continue;
+    // ∫⟨∇φ_p, Σ⟩ with ∇φ_p = J e_p / 2A, read in p's gauge.
+    b[p] += ipow(-layers_.layer(f, a)) * 0.5 * frame_dot(Complex(0, 1) * mesh.edge_vector_local(f, a), X, Y);
+  }
+}
+
+Eigen::VectorXcd HarmonicCorrection::rhs(const FramePairs& Sigma, const std::vector<int>& faces) const {
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_vertices());
+  for (int f : faces) add_rhs(f, Sigma(f, 0), Sigma(f, 1), b);
+  return b;
+}
+
+Eigen::VectorXcd HarmonicCorrection::rhs(const std::vector<int>& faces, const std::vector<Complex>& X,
+                                         const std::vector<Complex>& Y) const {
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_vertices());
+  for (std::size_t k = 0; k < faces.size(); ++k) add_rhs(faces[k], X[k], Y[k], b);
   return b;
 }
 

@@ -24,6 +24,9 @@ class HarmonicCorrection {
   /// listed faces contribute (pass all faces, or the support of a sparse Σ). Kernel pins are not zeroed here.
   Eigen::VectorXcd rhs(const FramePairs& Sigma, const std::vector<int>& faces) const;
   Eigen::VectorXcd rhs(const FramePairs& Sigma) const;
+  /// The same for a field given only on `faces` (X[k], Y[k] on faces[k]; zero elsewhere): no dense #F field.
+  Eigen::VectorXcd rhs(const std::vector<int>& faces, const std::vector<Complex>& X,
+                       const std::vector<Complex>& Y) const;
   /// u with 𝔏̄ u = b (rows of the kernel pins replaced by u_p = 0), all columns at once.
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B) const;
   /// Per-corner values i^λ u_p of a vertex function (0 at branch points).
@@ -36,6 +39,8 @@ class HarmonicCorrection {
   const std::vector<int>& kernel_pins() const { return kernel_pins_; }
 
  private:
+  void add_rhs(int f, Complex X, Complex Y, Eigen::VectorXcd& b) const;  ///< face f's terms of rhs()
+
   const Mesh* mesh_;
   VertexLayers layers_;
   Eigen::SparseMatrix<Complex> L_;

@@ -25,6 +25,35 @@ SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path)
   return s;
 }
 
+namespace {
+
+/// ⟨Σ_a, Σ_b⟩ and ⟨Σ_a, iΣ_b⟩ (iΣ = (−Y, X)) of two sparse jump fields: merge of the sorted supports.
+std::pair<double, double> sparse_inner(const Eigen::VectorXd& A, const SparseJumpField& s, const SparseJumpField& t) {
+  double same = 0, turned = 0;
+  std::size_t i = 0, k = 0;
+  while (i < s.support.size() && k < t.support.size()) {
+    if (s.support[i] < t.support[k]) {
+      ++i;
+    } else if (t.support[k] < s.support[i]) {
+      ++k;
+    } else {
+      const double a = A[s.support[i]];
+      same += a * std::real(std::conj(s.X[i]) * t.X[k] + std::conj(s.Y[i]) * t.Y[k]);
+      turned += a * std::real(-std::conj(s.X[i]) * t.Y[k] + std::conj(s.Y[i]) * t.X[k]);
+      ++i, ++k;
+    }
+  }
+  return {same, turned};
+}
+
+/// The right-hand side b_j = ⟨∇φ_p, Σ_j⟩ (HarmonicCorrection::rhs) as its non-zero entries, sorted by vertex.
+struct SparseRhs {
+  std::vector<int> vertex;
+  std::vector<Complex> value;
+};
+
+}  // namespace
+
 PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
                            int block_size, const std::function<bool()>& stop) {
   PeriodMatrix pm;
@@ -34,41 +63,44 @@ PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const Harmonic
   pm.P = Eigen::MatrixXd::Zero(2 * m, 2 * m);
   if (m == 0) return pm;
 
+  // Σ_j sparse, and b_j = ⟨∇φ_p, Σ_j⟩ sparse (the vertices of supp Σ_j).
   std::vector<SparseJumpField> sigma(static_cast<std::size_t>(m));
-  tbb::parallel_for(0, m, [&](int a) { sigma[a] = unit_jump_field(mesh, cut, pm.paths[a]); });
+  std::vector<SparseRhs> rhs(static_cast<std::size_t>(m));
+  tbb::parallel_for(0, m, [&](int a) {
+    sigma[a] = unit_jump_field(mesh, cut, pm.paths[a]);
+    const Eigen::VectorXcd b = correction.rhs(sigma[a].support, sigma[a].X, sigma[a].Y);
+    SparseRhs& r = rhs[a];
+    for (int f : sigma[a].support)
+      for (int k = 0; k < 3; ++k) r.vertex.push_back(mesh.F()(f, k));
+    std::sort(r.vertex.begin(), r.vertex.end());
+    r.vertex.erase(std::unique(r.vertex.begin(), r.vertex.end()), r.vertex.end());
+    r.value.reserve(r.vertex.size());
+    for (int p : r.vertex) r.value.push_back(b[p]);
+  });
   for (const SparseJumpField& s : sigma) pm.sigma_support += static_cast<long long>(s.support.size());
 
-  const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+  const int nv = mesh.num_vertices();
   const Eigen::VectorXd& A = mesh.face_areas();
   for (int a0 = 0; a0 < m; a0 += block_size) {
     if (stop && stop()) return PeriodMatrix{};
     const int a1 = std::min(m, a0 + block_size);
-    // One harmonic field H_i = Σ_i − ∇u_i per path of the block: 𝔏̄ u_i = b_i, b_i from the sparse Σ_i.
-    Eigen::MatrixXcd B(nv, a1 - a0);
-    for (int a = a0; a < a1; ++a) {
-      FramePairs S = FramePairs::Zero(nf, 2);
-      const SparseJumpField& s = sigma[a];
-      for (std::size_t k = 0; k < s.support.size(); ++k) S.row(s.support[k]) << s.X[k], s.Y[k];
-      B.col(a - a0) = correction.rhs(S, s.support);
-    }
+    // 𝔏̄ u_a = b_a for the paths of the block (kernel pins: u_p = 0).
+    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(nv, a1 - a0);
+    for (int a = a0; a < a1; ++a)
+      for (std::size_t k = 0; k < rhs[a].vertex.size(); ++k) B(rhs[a].vertex[k], a - a0) = rhs[a].value[k];
     const Eigen::MatrixXcd U = correction.solve(B);
+    // P_ab = ⟨H_a, Σ_b⟩ with H_a = Σ_a − ∇u_a and ⟨∇u_a, Σ_b⟩ = Re(u_aᴴ b_b) (b_b is ⟨∇φ_p, Σ_b⟩ per vertex, the
+    // gauge factors i^λ cancel): no dense field per path, only the sparse supports. The Im rows use
+    // i·H_a = (−H¹, H⁰) and b(iΣ) = i·b(Σ).
     tbb::parallel_for(a0, a1, [&](int a) {
-      FramePairs H = -corner_gradient(mesh, correction.corner_values(U.col(a - a0)));
-      const SparseJumpField& s = sigma[a];
-      for (std::size_t k = 0; k < s.support.size(); ++k) {
-        H(s.support[k], 0) += s.X[k];
-        H(s.support[k], 1) += s.Y[k];
-      }
-      // Row a (Re d_a) and row m + a (Im d_a, the field i·H_a = (−H¹, H⁰)) against every sparse Σ_b.
+      const auto u = U.col(a - a0);
       for (int b = 0; b < m; ++b) {
-        double same = 0, turned = 0;  // ⟨H_a, Σ_b⟩ and ⟨H_a, iΣ_b⟩
-        const SparseJumpField& t = sigma[b];
-        for (std::size_t k = 0; k < t.support.size(); ++k) {
-          const int f = t.support[k];
-          const Complex h0 = H(f, 0), h1 = H(f, 1);
-          same += A[f] * std::real(std::conj(h0) * t.X[k] + std::conj(h1) * t.Y[k]);
-          turned += A[f] * std::real(-std::conj(h0) * t.Y[k] + std::conj(h1) * t.X[k]);
-        }
+        auto [same, turned] = sparse_inner(A, sigma[a], sigma[b]);  // ⟨Σ_a, Σ_b⟩, ⟨Σ_a, iΣ_b⟩
+        Complex ub = 0;                                             // u_aᴴ b_b
+        const SparseRhs& r = rhs[b];
+        for (std::size_t k = 0; k < r.vertex.size(); ++k) ub += std::conj(u[r.vertex[k]]) * r.value[k];
+        same -= ub.real();    // − Re(u_aᴴ b_b)
+        turned += ub.imag();  // − Re(u_aᴴ i b_b) = + Im(u_aᴴ b_b)
         pm.P(a, b) = same;
         pm.P(m + a, m + b) = same;   // ⟨iH_a, iΣ_b⟩ = ⟨H_a, Σ_b⟩
         pm.P(a, m + b) = turned;     // ⟨H_a, iΣ_b⟩

@@ -4,8 +4,9 @@
 // quadratic form in the real and imaginary parts of d on the free paths: E_H = xᵀ P x,
 // x = (Re d_{j_1}, …, Re d_{j_m}, Im d_{j_1}, …, Im d_{j_m}).
 // P_ij = ⟨H_i, Σ_j⟩ = ⟨H_i, H_j⟩ (H_i ⟂ gradients): built column block by column block with one harmonic field
-// H_i = Σ_i − ∇u_i at a time, the Σ_j stored sparsely (their support is the faces along the cut). The imaginary
-// unit acts on frame pairs as the quarter turn i(X, Y) = (−Y, X), so the Im columns need no extra solves.
+// H_i = Σ_i − ∇u_i at a time, the Σ_j stored sparsely (their support is the faces along the cut), and
+// ⟨∇u_i, Σ_j⟩ = Re(u_iᴴ b_j) read off the sparse right-hand side b_j of Σ_j: no dense #F field per path. The
+// imaginary unit acts on frame pairs as the quarter turn i(X, Y) = (−Y, X), so the Im columns need no extra solves.
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
