@@ -21,14 +21,18 @@ FrameSmoother& FrameSmoother::operator=(FrameSmoother&&) noexcept = default;
 
 FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Eigen::VectorXd& stability,
                              const std::vector<char>& trusted, const std::vector<char>& fixed, double lambda)
-    : mesh_(&mesh), X0_(input.X), matching_(input.matching), lambda_(lambda) {
+    : FrameSmoother(mesh, stability, trusted, fixed, lambda) {
+  set_input(input);
+}
+
+FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability, const std::vector<char>& trusted,
+                             const std::vector<char>& fixed, double lambda)
+    : mesh_(&mesh), lambda_(lambda) {
   const int nf = mesh.num_faces(), ne = mesh.num_edges();
   if (!(lambda > 0 && lambda <= 1)) throw std::invalid_argument("FrameSmoother: λ must lie in (0, 1]");
-  if (X0_.size() != nf || matching_.size() != ne || stability.size() != nf ||
-      trusted.size() != static_cast<std::size_t>(nf) ||
+  if (stability.size() != nf || trusted.size() != static_cast<std::size_t>(nf) ||
       (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
     throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
-  theta_ = field_curvature(mesh, make_cross_field(X0_, matching_));
   omega_ = smoothing_edge_weights(mesh);
 
   // Alignment weights a_t, normalized by their mean over the trusted faces.
@@ -81,10 +85,10 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
     }
   const int n = num_unknowns();
 
-  // A (5.4) restricted to the free faces (fixed α = 0 moves nothing to the right-hand side), and b.
+  // A (5.4) restricted to the free faces (fixed α = 0 moves nothing to the right-hand side); b in set_input.
+  b_ = Eigen::VectorXd::Zero(n);
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(n + 4 * ne));
-  b_ = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < n; ++i) {
     const double a = (1 - lambda) * align_[unknowns_[static_cast<std::size_t>(i)]];
     if (a > 0) entries.emplace_back(i, i, a);
@@ -94,15 +98,8 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
     const int s = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 0))];
     const int t = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 1))];
     const double w = lambda * omega_[e];
-    // ∂/∂α of ω(θ - α_s + α_t)²: row t gets ω(α_t - α_s) = -ωθ, row s gets ω(α_s - α_t) = ωθ.
-    if (s >= 0) {
-      entries.emplace_back(s, s, w);
-      b_[s] += w * theta_[e];
-    }
-    if (t >= 0) {
-      entries.emplace_back(t, t, w);
-      b_[t] -= w * theta_[e];
-    }
+    if (s >= 0) entries.emplace_back(s, s, w);
+    if (t >= 0) entries.emplace_back(t, t, w);
     if (s >= 0 && t >= 0) {
       entries.emplace_back(s, t, -w);
       entries.emplace_back(t, s, -w);
@@ -112,6 +109,30 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
   A.setFromTriplets(entries.begin(), entries.end());
   solver_ = std::make_unique<Solver>();
   solver_->cholesky.compute(A, "field smoothing (5.4)");  // throws NumericalError if not positive definite
+}
+
+void FrameSmoother::set_input(const FrameField& input) {
+  const Mesh& mesh = *mesh_;
+  if (input.X.size() != mesh.num_faces() || input.matching.size() != mesh.num_edges())
+    throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
+  X0_ = input.X;
+  matching_ = input.matching;
+  theta_ = field_curvature(mesh, make_cross_field(X0_, matching_));
+  // ∂/∂α of λω(θ - α_s + α_t)²: row t gets λω(α_t - α_s) = -λωθ, row s gets λω(α_s - α_t) = λωθ; the targets β
+  // of E_A add (1-λ) a_t β_t (set_alignment_targets).
+  b_ = Eigen::VectorXd::Zero(num_unknowns());
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    if (mesh.is_boundary_edge(e)) continue;
+    const int s = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 0))];
+    const int t = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 1))];
+    const double w = lambda_ * omega_[e];
+    if (s >= 0) b_[s] += w * theta_[e];
+    if (t >= 0) b_[t] -= w * theta_[e];
+  }
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) {
+    const int t = unknowns_[i];
+    b_[static_cast<Eigen::Index>(i)] += (1 - lambda_) * align_[t] * beta_[t];
+  }
 }
 
 void FrameSmoother::change_matching(int e, int k) {

@@ -31,6 +31,14 @@ class FrameSmoother {
   /// \throw std::invalid_argument for λ outside (0,1] or wrong sizes; NumericalError if A cannot be factored.
   FrameSmoother(const Mesh& mesh, const FrameField& input, const Eigen::VectorXd& stability,
                 const std::vector<char>& trusted, const std::vector<char>& fixed, double lambda);
+  /// The same without X⁰: factors A (5.4), which depends only on the mesh, the weights and λ, so that the
+  /// factorization can run while X⁰ is still being computed; set_input() must follow before solve(),
+  /// change_matching(), rotated() and the energies (set_alignment_targets() may come before).
+  FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability, const std::vector<char>& trusted,
+                const std::vector<char>& fixed, double lambda);
+  /// Sets X⁰ and its matching (θ and b; A is kept). Alignment targets set before stay in effect.
+  /// \throw std::invalid_argument on wrong sizes.
+  void set_input(const FrameField& input);
   ~FrameSmoother();
   FrameSmoother(FrameSmoother&&) noexcept;
   FrameSmoother& operator=(FrameSmoother&&) noexcept;
