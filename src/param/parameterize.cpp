@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <optional>
+
+#include <tbb/parallel_invoke.h>
 
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
@@ -234,9 +237,17 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     }
     pin_rows(Ls, pinned);
   }
-  SparseCholesky<Complex> chol_s;
-  chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
-  const Eigen::VectorXcd v = chol_s.solve(rhs);
+  // The factorizations of 𝔏̄* (#E, here) and of 𝔏̄ (#V, for steps 4-5) are independent: one per core (each is
+  // sequential, so the result does not depend on the thread count). 𝔏̄*'s factor is freed after its one solve.
+  Eigen::VectorXcd v;
+  std::optional<HarmonicCorrection> harmonic;
+  tbb::parallel_invoke(
+      [&] {
+        SparseCholesky<Complex> chol_s;
+        chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
+        v = chol_s.solve(rhs);
+      },
+      [&] { harmonic.emplace(mesh, cc, trivial); });
   const FramePairs XC = rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
   const FramePairs Xhat = Z - XC;
   P.energy_curl = frame_norm2(mesh, XC);
@@ -267,7 +278,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     P.rounded_periods[j] = round_to_lattice(P.periods[j], options.lattice);
   }
   // The factor of 𝔏̄ serves the period matrix (6.3.2) and the final harmonic correction.
-  const HarmonicCorrection correction(mesh, cc, trivial);
+  const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
   lap("harmonic_factor");
   const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, progress, P);
   if (rounding.active) lap("period_rounding");
