@@ -11,6 +11,7 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -24,6 +25,7 @@
 #include "io/read_mesh.h"
 #include "optimize/balancing_sweep.h"
 #include "optimize/curl_energy.h"
+#include "optimize/local_smoothing.h"
 #include "optimize/optimize_field.h"
 #include "param/period_rounding.h"
 
@@ -191,6 +193,10 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
     t = Clock::now();
     OptimizeOptions o;
     o.mode = OptimizeMode::Full;
+    // Overrides for calibration: QUADCOVER_BENCH_BUDGET (evaluations, 0 = unlimited), QUADCOVER_BENCH_REFRESH
+    // (CurlEnergyOptions::estimate_refresh).
+    if (const char* v = std::getenv("QUADCOVER_BENCH_BUDGET")) o.max_evaluations = std::atol(v);
+    if (const char* v = std::getenv("QUADCOVER_BENCH_REFRESH")) o.energy.estimate_refresh = std::atoi(v);
     const OptimizeResult r = optimize_field(mesh, field, o);
     const double t_opt = since(t);
     t = Clock::now();
@@ -208,6 +214,44 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
     state.counters["E_H"] = p.energy_harmonic;
     state.counters["stopped_early"] = r.reduction.stopped_early || r.balancing.stopped_early;
     state.counters["faces"] = mesh.num_faces();
+    state.counters["accepted"] = static_cast<double>(r.reduction.accepted + r.balancing.accepted);
+    state.counters["budget"] = static_cast<double>(r.max_evaluations);
+    const CurlEnergyTimings &x = r.exact_timings, &s = r.estimate_timings;
+    state.counters["exact_s"] = x.smoothing + x.curl + x.update + x.solve;
+    state.counters["exact_smooth_s"] = x.smoothing, state.counters["exact_solve_s"] = x.solve;
+    state.counters["commit_s"] = x.commit, state.counters["prepare_s"] = x.prepare;
+    state.counters["backsolve_s"] = x.shares, state.counters["prepares"] = static_cast<double>(x.prepares);
+    state.counters["estimates_sum_s"] = s.smoothing + s.curl + s.update + s.solve;
+  }
+}
+
+// How far the re-smoothing Δα = A⁻¹Δb of one matching change reaches (5.4): relative error of the patch solution
+// (Dirichlet 0 outside `rings` face rings) against the full solve, per ring count, mean and max over 20 edges.
+void print_decay(BenchMesh& b) {
+  const SmoothingSystem A(b.mesh, *b.smoother,
+                          SmoothingWeights{FieldOptions{}.lambda, b.field.stability, b.field.trusted});
+  std::mt19937 rng(3);
+  LocalSmoothingWork w;
+  std::printf("%s: rings, patch faces, mean / max relative error of Δα_P\n", b.name.c_str());
+  for (int rings : {6, 12, 24, 48, 96}) {
+    double mean = 0, worst = 0;
+    long patch = 0;
+    for (int i = 0; i < 20; ++i) {
+      const int e = b.edges[std::uniform_int_distribution<std::size_t>(0, b.edges.size() - 1)(rng)];
+      double theta = b.smoother->curvature()[e];
+      FaceEntry fe[2];
+      const int n = A.rhs_change(e, theta > 0 ? -1 : 1, theta, fe);
+      Eigen::VectorXd db = Eigen::VectorXd::Zero(b.mesh.num_faces());
+      for (int k = 0; k < n; ++k) db[fe[k].face] += fe[k].value;
+      const Eigen::VectorXd exact = A.solve(db);
+      A.solve_local(std::span<const FaceEntry>(fe, static_cast<std::size_t>(n)), rings, 1e-12, w);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(b.mesh.num_faces());
+      for (std::size_t j = 0; j < w.faces.size(); ++j) x[w.faces[j]] = w.x[j];
+      const double err = (x - exact).norm() / std::max(1e-300, exact.norm());
+      mean += err / 20, worst = std::max(worst, err);
+      patch += static_cast<long>(w.faces.size());
+    }
+    std::printf("  %3d %7ld %.2e %.2e\n", rings, patch / 20, mean, worst);
   }
 }
 
@@ -245,6 +289,17 @@ int main(int argc, char** argv) {
         if (!p.empty()) paths.push_back(p);
     }
   }
+  // QUADCOVER_BENCH_PIPELINE=only: just the pipeline (no per-mesh setup of the other benchmarks).
+  const char* pipeline = std::getenv("QUADCOVER_BENCH_PIPELINE");
+  if (pipeline && std::string(pipeline) == "only") {
+    for (const auto& p : paths)
+      benchmark::RegisterBenchmark(("OptimizedPipeline/" + std::filesystem::path(p).stem().string()).c_str(),
+                                   BM_OptimizedPipeline, p)
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1)
+          ->UseRealTime();
+    paths.clear();
+  }
   for (const auto& p : paths) {
     g_meshes.push_back(load(p));
     BenchMesh* b = g_meshes.back().get();
@@ -265,6 +320,8 @@ int main(int argc, char** argv) {
           ->Iterations(1)
           ->UseRealTime();
   }
+  if (std::getenv("QUADCOVER_BENCH_DECAY"))
+    for (const auto& b : g_meshes) print_decay(*b);
   if (std::getenv("QUADCOVER_BENCH_SWEEP") && !g_meshes.empty()) {
     // Figure 6.5 (thesis 6.4) on the first mesh: one row per branch point count.
     BalancingSweepOptions o;

@@ -1,6 +1,8 @@
 #include "cli/optimize_options.h"
 
 #include <cstdio>
+#include <limits>
+#include <string>
 
 #include "common/errors.h"
 #include "render/html_report.h"
@@ -25,9 +27,11 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->check(CLI::IsMember({"direct", "greedy", "search1", "search2", "search3", "exact"}))
       ->capture_default_str();
   cmd.add_option("--max-iterations", options.max_iterations,
-                 "Budget of E_D evaluations for --optimize (0 = until converged); --time-limit and Ctrl-C also "
-                 "stop it, keeping the best field so far")
-      ->check(CLI::NonNegativeNumber)
+                 "Budget of E_D evaluations for --optimize: -1 = auto (relocate 3000; full scaled with the mesh "
+                 "so that the whole pipeline stays within the goal times of BENCHMARKS.md), 0 = until converged; "
+                 "--time-limit and Ctrl-C also stop it, keeping the best field so far. The report's "
+                 "optimize.stopped_by says whether it converged or what stopped it")
+      ->check(CLI::Range(-1L, std::numeric_limits<long>::max()))
       ->capture_default_str();
   cmd.add_option("--keep-better", options.keep_better,
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
@@ -60,11 +64,14 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
   report["rounding"] = cli.rounding;
   if (o.mode != OptimizeMode::None) {
     char line[200];
-    std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s)%s",
+    const std::string by = report["stopped_by"].get<std::string>();
+    std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s), %s",
                   report["E_D_before"].get<double>(), report["E_D_after"].get<double>(),
                   report["branch_points_before"].get<int>(), report["branch_points_after"].get<int>(),
                   report["evaluations"].get<long>(), r.evaluations_per_second,
-                  report["stopped_early"].get<bool>() ? ", stopped early" : "");
+                  by == "converged"     ? "converged"
+                  : by == "evaluations" ? ("stopped on the budget of " + std::to_string(r.max_evaluations)).c_str()
+                                        : ("stopped early (" + by + ")").c_str());
     progress.report("optimize", 1, line);
   }
   return std::move(r.field);
@@ -79,8 +86,8 @@ FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, cons
 Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
                                    nlohmann::json& optimize_report) {
-  return parameterize_keep_better(mesh, original, optimized, param, parse_optimize_mode(cli.optimize),
-                                  cli.keep_better, progress, optimize_report);
+  return parameterize_keep_better(mesh, original, optimized, param, parse_optimize_mode(cli.optimize), cli.keep_better,
+                                  progress, optimize_report);
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

@@ -19,7 +19,7 @@ namespace quadcover::cli {
 struct OptimizeCliOptions {
   std::string optimize = "relocate";  ///< see optimize/optimize_field.h
   std::string rounding = "search3";   ///< see param/period_rounding.h
-  long max_iterations = 3000;         ///< E_D evaluations of Algorithm 6.1 (0 = unlimited)
+  long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
   bool keep_better = true;            ///< see parameterize_best()
 };
 

@@ -65,6 +65,8 @@ double CurlEnergy::recompute_from_scratch() {
   trial_ = FactorTrial(factor_.size());
   pending_valid_ = false;
   estimates_ready_ = false;
+  solution_valid_ = false;
+  commits_since_prepare_ = 0;
   return energy();
 }
 
@@ -147,6 +149,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
 
 void CurlEnergy::commit() {
   if (!pending_valid_) throw NumericalError("curl reduction", "commit without a valid evaluation");
+  const auto t_commit = Clock::now();
   for (const auto& c : pending_) {
     if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
     smoother_->change_matching(c.edge, c.delta);
@@ -161,28 +164,46 @@ void CurlEnergy::commit() {
   trial_.reset();
   pending_valid_ = false;
   estimates_ready_ = false;
+  solution_valid_ = false;
+  ++commits_since_prepare_;
+  timings_.commit += seconds_since(t_commit);
 }
 
-// -curl* (3.3) of X_f = e^{iα_f} X⁰_f (Y = iX) with the layers μ: b_e = Σ_f conj(i^{μ(f,k)}) ⟨Z_f, e_f⟩, the same
-// sum as cover/complex_stiffness.cpp but with cached edge vectors and layers (no global layer recomputation).
-// One face's term of -curl* (3.3) at its edge k for X_f = e^{iα}X⁰_f (Y = iX) on layer μ: conj(i^μ) ⟨Z_f, e⟩ with
-// ⟨Z, e⟩ = ⟨X, e⟩ + i⟨Y, e⟩ (the sum of cover/complex_stiffness.cpp, with cached edge vectors and layers).
-Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
-  const Complex X = std::polar(1.0, alpha) * X0_[f];
+// One face's term of -curl* (3.3) at its edge k for the rotated frame X = e^{iα}X⁰_f (Y = iX) on layer μ:
+// conj(i^μ) ⟨Z_f, e⟩ with ⟨Z, e⟩ = ⟨X, e⟩ + i⟨Y, e⟩ (the sum of cover/complex_stiffness.cpp, with cached edge
+// vectors and layers instead of a global layer recomputation).
+Complex CurlEnergy::term(int f, int k, Complex X, int mu) const {
   const Complex ce = std::conj(edge_vec_(f, k));
   return ipow(-mu) * Complex(std::real(ce * X), std::real(ce * Complex(-X.imag(), X.real())));
 }
 
+Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
+  return term(f, k, std::polar(1.0, alpha) * X0_[f], mu);
+}
+
+// -curl* of the field e^{iα}X⁰ with the current layers: one rotation per face (not one per face edge).
 Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
   Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
-  for (int f = 0; f < mesh_->num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += contribution(f, k, alpha[f], mu_(f, k));
+  for (int f = 0; f < mesh_->num_faces(); ++f) {
+    const Complex X = std::polar(1.0, alpha[f]) * X0_[f];
+    for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += term(f, k, X, mu_(f, k));
+  }
   return b;
 }
 
+const Eigen::VectorXcd& CurlEnergy::solution() const {
+  if (!solution_valid_) {
+    const auto t0 = Clock::now();
+    solution_ = factor_.solve_full();  // v = 𝔏̄*⁻¹(-curl*X): the forward solution x, then the back substitution
+    solution_valid_ = true;
+    timings_.shares += seconds_since(t0);
+  }
+  return solution_;
+}
+
 Eigen::VectorXd CurlEnergy::distortion_shares() const {
-  const Eigen::VectorXcd v = factor_.solve_full();  // forward and back substitution (Algorithm 6.1 step 2)
-  const Eigen::VectorXcd& bp = factor_.rhs();       // permuted
+  const Eigen::VectorXcd& v = solution();      // Algorithm 6.1 step 2
+  const Eigen::VectorXcd& bp = factor_.rhs();  // permuted
   Eigen::VectorXd share(v.size());
   for (int i = 0; i < factor_.size(); ++i) {
     const int e = factor_.perm()[i];
@@ -196,17 +217,28 @@ Eigen::VectorXd CurlEnergy::distortion_shares() const {
 void CurlEnergy::prepare_estimates() {
   if (!system_) throw std::logic_error("CurlEnergy::estimate needs the SmoothingWeights constructor");
   if (estimates_ready_) return;
-  const Eigen::VectorXcd v = factor_.solve_full();
+  // Stale by fewer than estimate_refresh commits: the far-field correction of the screening estimates uses the
+  // older ∇_α E_D and z (the local part of every estimate always uses the current factor and field).
+  if (commits_since_prepare_ > 0 && commits_since_prepare_ < options_.estimate_refresh) {
+    estimates_ready_ = true;
+    return;
+  }
+  const auto t0 = Clock::now();
+  const Eigen::VectorXcd& v = solution();
   grad_ = Eigen::VectorXd::Zero(mesh_->num_faces());
   for (int f = 0; f < mesh_->num_faces(); ++f) {
     if (!system_->is_free(f)) continue;
+    const Complex X = std::polar(1.0, alpha_[f]) * X0_[f];
     double g = 0;
     for (int k = 0; k < 3; ++k)
-      g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * contribution(f, k, alpha_[f], mu_(f, k)));
+      g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * term(f, k, X, mu_(f, k)));
     grad_[f] = g;
   }
   adjoint_ = system_->solve(grad_);
   estimates_ready_ = true;
+  commits_since_prepare_ = 0;
+  timings_.prepare += seconds_since(t0);
+  ++timings_.prepares;
 }
 
 double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const {
@@ -264,9 +296,11 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
   auto add_face = [&](int f, double dalpha) {
     if (ws.face_stamp[static_cast<std::size_t>(f)] == ws.stamp) return;
     ws.face_stamp[static_cast<std::size_t>(f)] = ws.stamp;
+    const Complex X = std::polar(1.0, alpha_[f]) * X0_[f];
+    const Complex Xn = dalpha == 0.0 ? X : std::polar(1.0, alpha_[f] + dalpha) * X0_[f];
     for (int k = 0; k < 3; ++k) {
       const int e = mesh_->FE()(f, k);
-      const Complex d = contribution(f, k, alpha_[f] + dalpha, layer(f, k)) - contribution(f, k, alpha_[f], mu_(f, k));
+      const Complex d = term(f, k, Xn, layer(f, k)) - term(f, k, X, mu_(f, k));
       if (ws.edge_stamp[static_cast<std::size_t>(e)] != ws.stamp) {
         ws.edge_stamp[static_cast<std::size_t>(e)] = ws.stamp;
         ws.edge_slot[static_cast<std::size_t>(e)] = static_cast<int>(ws.db_curl.size());

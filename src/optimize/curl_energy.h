@@ -33,6 +33,10 @@ struct CurlEnergyOptions {
   /// estimate(): face rings of the local re-smoothing patch around the changed edges, and its CG tolerance.
   int local_rings = 6;
   double local_tolerance = 1e-8;
+  /// estimate(): ∇_α E_D and the adjoint z of the far-field correction are recomputed (one back substitution
+  /// with 𝔏̄*, one solve with A) after this many commits, not after every one (1 = always current). Affects the
+  /// screening only: every accepted move is still confirmed exactly.
+  int estimate_refresh = 8;
 };
 
 /// A matching change m_e += delta on an interior edge.
@@ -45,6 +49,10 @@ struct MatchingChange {
 struct CurlEnergyTimings {
   double smoothing = 0, curl = 0, update = 0, solve = 0, other = 0;
   long evaluations = 0;
+  /// Outside evaluate(): prepare_estimates() (back solve, ∇_α E_D, adjoint solve), distortion_shares() (back
+  /// solve), commit() (writing the trial back). Wall seconds, accumulated.
+  double prepare = 0, shares = 0, commit = 0;
+  long prepares = 0;
 };
 
 /// Per-thread scratch of CurlEnergy::estimate() (sized on first use; reused without O(n) clears).
@@ -82,8 +90,10 @@ class CurlEnergy {
   double evaluate(std::span<const MatchingChange> changes);
   /// True if constructed with SmoothingWeights (estimate() available).
   bool can_estimate() const { return system_ != nullptr; }
-  /// Computes ∇_α E_D and the adjoint z of the current state (one full solve with 𝔏̄*, one with A); needed once
-  /// after every commit before estimate(ws). No-op if current. \throw std::logic_error without SmoothingWeights.
+  /// Computes ∇_α E_D and the adjoint z of the current state (one back substitution with 𝔏̄*, one solve with A);
+  /// needed after every commit before estimate(ws). No-op if current or if fewer than
+  /// CurlEnergyOptions::estimate_refresh commits happened since the last computation (stale far field). \throw
+  /// std::logic_error without SmoothingWeights.
   void prepare_estimates();
   /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
   /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
@@ -117,9 +127,14 @@ class CurlEnergy {
   template <class Layer>
   StarChange star_change(int e, int new_matching, Layer mu) const;
   Complex contribution(int f, int k, double alpha, int mu) const;
+  Complex term(int f, int k, Complex rotated, int mu) const;
   std::unique_ptr<SmoothingSystem> system_;
   Eigen::VectorXd grad_, adjoint_;  // ∇_α E_D and z = A⁻¹∇_α E_D of the current state (prepare_estimates)
   bool estimates_ready_ = false;
+  int commits_since_prepare_ = 0;
+  mutable Eigen::VectorXcd solution_;  // v = 𝔏̄*⁻¹(-curl*X) of the current state, when solution_valid_
+  mutable bool solution_valid_ = false;
+  const Eigen::VectorXcd& solution() const;
   struct Workspaces;
   std::unique_ptr<Workspaces> workspaces_;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
@@ -140,7 +155,7 @@ class CurlEnergy {
   std::vector<MatchingChange> pending_;
   Eigen::VectorXd pending_alpha_;
   bool pending_valid_ = false;
-  CurlEnergyTimings timings_;
+  mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
 
 }  // namespace quadcover

@@ -64,9 +64,12 @@ class Reducer {
 
   double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
   bool stop() {
-    if ((opt_.max_evaluations > 0 && res_.evaluations >= opt_.max_evaluations) ||
-        (opt_.time_limit_seconds > 0 && elapsed() >= opt_.time_limit_seconds) || progress_.cancelled())
-      res_.stopped_early = true;
+    if (res_.stopped_early) return true;
+    const char* why = opt_.max_evaluations > 0 && res_.evaluations >= opt_.max_evaluations  ? "evaluations"
+                      : opt_.time_limit_seconds > 0 && elapsed() >= opt_.time_limit_seconds ? "time"
+                      : progress_.cancelled()                                               ? "cancelled"
+                                                                                            : nullptr;
+    if (why) res_.stopped_early = true, res_.stopped_by = why;
     return res_.stopped_early;
   }
   void log(const char* phase) { res_.log.push_back({res_.evaluations, ed_.energy(), bp_, res_.accepted, phase}); }

@@ -57,7 +57,9 @@ struct CurlReductionResult {
   long exact_evaluations = 0;  ///< full re-smoothed evaluations confirming screened candidates (with estimates)
   int balancing_rounds = 0;
   double seconds = 0;
-  bool stopped_early = false;              ///< by max_evaluations, time_limit_seconds or progress.cancelled()
+  bool stopped_early = false;  ///< by max_evaluations, time_limit_seconds or progress.cancelled()
+  /// "converged" (a whole pass accepted nothing), else what stopped it: "evaluations", "time" or "cancelled".
+  std::string stopped_by = "converged";
   std::vector<CurlReductionLogEntry> log;  ///< one entry per accepted change plus phase boundaries
 };
 

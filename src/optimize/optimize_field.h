@@ -16,6 +16,8 @@
 namespace quadcover {
 
 enum class OptimizeMode { None, Relocate, Full };
+/// OptimizeOptions::max_evaluations: derive the budget from the mesh (auto_evaluation_budget).
+inline constexpr long kAutoBudget = -1;
 /// Parses "none|relocate|full". \throw InputError otherwise.
 OptimizeMode parse_optimize_mode(std::string_view name);
 
@@ -24,9 +26,10 @@ struct OptimizeOptions {
   /// λ of the re-smoothing E(α) (5.3) after each matching change; the field stage's default.
   double lambda = FieldOptions{}.lambda;
   int cancellation_neighbours = 3;  ///< k of Algorithm 6.1
-  /// Budget: E_D evaluations (screened candidates; 0 = unlimited) and seconds (0 = unlimited); the best state so
-  /// far is returned. `full` gives the first reduction two thirds of the evaluations and balancing the rest.
-  long max_evaluations = 3000;
+  /// Budget: E_D evaluations (screened candidates; 0 = unlimited, kAutoBudget = auto_evaluation_budget()) and
+  /// seconds (0 = unlimited); the best state so far is returned. `full` gives the first reduction two thirds of
+  /// the evaluations and balancing the rest. The report says whether a run converged or stopped on the budget.
+  long max_evaluations = kAutoBudget;
   double time_limit_seconds = 0;
   CurlEnergyOptions energy;
   /// Screen candidates with local E_D estimates (CurlReductionOptions::local_estimates) on `threads` threads
@@ -45,17 +48,26 @@ struct OptimizeResult {
   double delta_eh = 0;                  ///< `full`: Δ_EH = E_H / (2 h_sym), in the unscaled field's units (÷ scale²)
   double evaluations_per_second = 0;
   double seconds = 0;
+  long max_evaluations = 0;            ///< the budget used (auto resolved; 0 = unlimited)
+  CurlEnergyTimings exact_timings;     ///< exact evaluations, commits, prepare_estimates, shares (wall seconds)
+  CurlEnergyTimings estimate_timings;  ///< screening estimates, summed over the threads
 };
+
+/// The default evaluation budget (deterministic, no clock): enough for `relocate` to converge on the test meshes
+/// and for `full` to stay within the whole-pipeline goals of BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on
+/// two cores). Grows with the number of interior edges, capped.
+long auto_evaluation_budget(const Mesh& mesh, OptimizeMode mode);
 
 /// \pre field came from compute_frame_field_detailed on `mesh`.
 /// \throw NumericalError if a factorization fails.
 OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, const OptimizeOptions& options = {},
                               ProgressSink& progress = null_progress());
 
-/// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, exact_evaluations, accepted,
-/// cancelled_pairs, stopped_early, delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the wall-clock
-/// values under "seconds": {total, evaluations_per_second} (reports keep timings under "seconds" keys, so that
-/// everything else is byte-identical between runs).
+/// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, max_evaluations,
+/// exact_evaluations, accepted, cancelled_pairs, stopped_early, converged, stopped_by ("converged", "evaluations",
+/// "time", "cancelled"), delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the wall-clock values
+/// under "seconds": {total, evaluations_per_second, exact, estimates} (reports keep timings under "seconds" keys,
+/// so that everything else is byte-identical between runs).
 nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
 
 /// parameterize() of the optimized field; when `mode` optimized and `keep_better` is set, also of the original

@@ -109,8 +109,8 @@ void UpdatableCholesky::rank1_cxsparse(std::span<const SparseEntry> w, int sigma
   C.x = Cx.data();
   C.nz = -1;
   if (Cp[1] > 0 && !cs_ci_updown(impl_->L(), sigma, &C, parent_.data()))
-    throw NumericalError("cholesky update", "rank-1 " + std::string(sigma > 0 ? "update" : "downdate") +
-                                                " lost positive definiteness");
+    throw NumericalError("cholesky update",
+                         "rank-1 " + std::string(sigma > 0 ? "update" : "downdate") + " lost positive definiteness");
   full_forward_solve();
 }
 

@@ -120,11 +120,11 @@ class FactorTrial {
  private:
   void touch_path(const UpdatableCholesky& F, int j);
   bool rank1(const UpdatableCholesky& F, const std::vector<SparseEntry>& w, double sigma);
-  std::vector<int> slot_;          // column -> offset into vals_, -1 if untouched
-  std::vector<int> touched_;       // touched columns (permuted numbering)
-  std::vector<Complex> vals_;      // private copies of the touched columns
+  std::vector<int> slot_;                     // column -> offset into vals_, -1 if untouched
+  std::vector<int> touched_;                  // touched columns (permuted numbering)
+  std::vector<Complex> vals_;                 // private copies of the touched columns
   std::vector<Complex> w_, acc_, db_, xnew_;  // dense work arrays (zero outside touched)
-  Eigen::VectorXcd xfull_, bfull_;  // evaluate_full(): permuted b and x
+  Eigen::VectorXcd xfull_, bfull_;            // evaluate_full(): permuted b and x
   double energy_ = 0;
   bool valid_ = true, evaluated_ = false, full_ = false;
 };
