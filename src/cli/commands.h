@@ -15,6 +15,13 @@ struct GlobalOptions {
   int jobs = 0;           ///< -j: files processed at once in batch mode (0 = all cores)
 };
 
+/// --stiffening N of the commands that parameterize (param, remesh): see param/stiffening.h.
+inline constexpr const char* kStiffeningHelp =
+    "Local stiffening against folds (beyond the thesis, as in MIQ): while triangles are flipped, re-solve the final "
+    "harmonic correction at most N times with weights raised on distorted triangles, keeping the map with the "
+    "fewest flips. Periods, branch points, seams and aligned curves are unchanged; the price E_S is reported "
+    "(E_D + E_H + E_S = 1/2 |X - grad phi|^2). 0 = off";
+
 /// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage.
 enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2 };
 

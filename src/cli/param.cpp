@@ -33,6 +33,7 @@ struct ParamCmdOptions {
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
   bool align = true;
+  int stiffening = StiffeningOptions{}.max_iterations;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
@@ -72,6 +73,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   po.edge_length = opt.edge_length;
   po.target_quads = opt.quads;
   po.align_curves = opt.align;
+  po.stiffening.max_iterations = opt.stiffening;
   apply_rounding(opt.optimize, po);
   if (!out.plot.empty() && opt.optimize.optimize == "none")
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
@@ -144,6 +146,8 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                            {"h_sym", P.h_sym},
                            {"E_D", P.energy_curl},
                            {"E_H", P.energy_harmonic},
+                           {"E_S", P.stiffening.energy},
+                           {"stiffening", stiffening_to_json(P)},
                            {"flipped_triangles", flips.flipped},
                            {"flipped_faces", flips.flipped_faces},
                            {"degenerate_triangles", flips.degenerate},
@@ -210,6 +214,7 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
+  cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--align", opt->align,
                   "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();

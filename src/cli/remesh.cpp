@@ -30,6 +30,7 @@ struct RemeshOptions {
   int vertices = 0;
   double edge_length = 0;
   std::string lattice = "rotated";
+  int stiffening = StiffeningOptions{}.max_iterations;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
@@ -72,6 +73,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   lap("read");
   ParamOptions po;
   po.lattice = parse_lattice(opt.lattice);
+  po.stiffening.max_iterations = opt.stiffening;
   po.edge_length = opt.edge_length;
   // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
   po.target_quads = opt.vertices;
@@ -112,6 +114,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   nlohmann::json j = to_json(report);
   j["optimize"] = optimize;
   j["rounding"] = rounding_to_json(po, P);
+  j["stiffening"] = stiffening_to_json(P);
   if (!out.report.empty()) write_json_atomically(out.report, j);
   if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
   if (!out.plot.empty()) write_optimization_plot(out.plot, optimize);
@@ -159,6 +162,7 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--lattice", opt->lattice, "Period lattice (4.2.2): unit, coarse or rotated")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
+  cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,

@@ -105,12 +105,15 @@ Eigen::SparseMatrix<Complex> complex_nonconforming_stiffness(const Mesh& mesh, c
   return L;
 }
 
-Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching) {
+Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching,
+                                                          const Eigen::VectorXd& face_weights) {
+  if (face_weights.size() != 0 && face_weights.size() != mesh.num_faces())
+    throw InputError("", 0, "complex_conforming_stiffness: face_weights needs one weight per face");
   const VertexLayers vl = vertex_layers(mesh, matching);
   std::vector<Eigen::Triplet<Complex>> trip;
   trip.reserve(static_cast<std::size_t>(9 * mesh.num_faces()));
   for (int f = 0; f < mesh.num_faces(); ++f) {
-    const double A = mesh.face_areas()[f];
+    const double A = mesh.face_areas()[f], w = face_weights.size() ? face_weights[f] : 1.0;
     for (int a = 0; a < 3; ++a) {
       const int p = mesh.F()(f, a);
       if (vl.branch[p]) continue;
@@ -119,7 +122,7 @@ Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, cons
         if (vl.branch[q]) continue;
         // ∫_f ⟨∇φ_p, ∇φ_q⟩ = ⟨e_p, e_q⟩ / (4 A_f), e_p the edge opposite p (∇φ_p = J e_p / 2A).
         const double K =
-            std::real(std::conj(mesh.edge_vector_local(f, a)) * mesh.edge_vector_local(f, b)) / (4 * A);
+            w * std::real(std::conj(mesh.edge_vector_local(f, a)) * mesh.edge_vector_local(f, b)) / (4 * A);
         trip.emplace_back(p, q, K * ipow(vl.layer(f, b) - vl.layer(f, a)));
       }
     }

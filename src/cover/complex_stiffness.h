@@ -16,16 +16,6 @@
 
 namespace quadcover {
 
-/// i^k for any integer k.
-inline Complex ipow(int k) {
-  switch (((k % 4) + 4) % 4) {
-    case 0: return {1, 0};
-    case 1: return {0, 1};
-    case 2: return {-1, 0};
-    default: return {0, -1};
-  }
-}
-
 /// #F by 3: μ in 0..3 such that edge function ū (reference-face gauge) reads i^μ ū_e on face f's edge k.
 Eigen::MatrixX3i edge_layers(const Mesh& mesh, const Eigen::VectorXi& matching);
 
@@ -43,7 +33,9 @@ Eigen::SparseMatrix<Complex> complex_nonconforming_stiffness(const Mesh& mesh, c
 
 /// 𝔏̄: #V by #V Hermitian, (p,q) = i^l 𝔏_pq with ṽ_p^l ~ ṽ_q^0; rows and columns of branch points are zero
 /// except for a unit diagonal (so the matrix stays invertible; the value there is pinned to 0).
-Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching);
+/// `face_weights` (#F, optional): face f contributes w_f ∫_f ⟨∇φ_p, ∇φ_q⟩ (the weighted Dirichlet energy).
+Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching,
+                                                          const Eigen::VectorXd& face_weights = {});
 
 /// curl* Z(e) (3.3) of the frame field Z = X + iY with its matching, #E complex, in the reference gauge of e:
 /// with e oriented positively in s = EF(e,0), curl* Z(e) = ⟨Z_t, e⟩ - ⟨i^{-m_e} Z_s, e⟩ read in r(e)'s gauge

@@ -14,6 +14,12 @@ namespace quadcover {
 
 using Complex = std::complex<double>;
 
+/// The quarter-turn power i^k for any integer k.
+inline Complex ipow(int k) {
+  static const Complex table[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  return table[((k % 4) + 4) % 4];
+}
+
 /// Per connected component (faces connected through edges): counts and topology, χ = v - e + f (1.1),
 /// genus from χ = 2 - 2g - b (1.2 extended to boundaries).
 struct ComponentInfo {

@@ -157,4 +157,13 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
           {"stopped_early", r.stopped_early}};
 }
 
+nlohmann::json stiffening_to_json(const Parameterization& p) {
+  const auto& s = p.stiffening;
+  return {{"iterations", s.iterations},
+          {"kept_iteration", s.kept_iteration},
+          {"flipped_before", s.flipped_before},
+          {"flipped_after", s.flipped_after},
+          {"E_S", s.energy}};
+}
+
 }  // namespace quadcover

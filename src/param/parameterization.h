@@ -75,6 +75,12 @@ struct Parameterization {
   };
   std::vector<Curve> aligned_curves;
   int alignment_conflicts = 0;
+  /// Local stiffening of the final solve (param/stiffening.h): re-solves run, the one kept (0: none), flipped
+  /// triangles before and after, and its price E_S, so that E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖² (E_S = 0 if none kept).
+  struct Stiffening {
+    int iterations = 0, kept_iteration = 0, flipped_before = 0, flipped_after = 0;
+    double energy = 0;
+  } stiffening;
   /// Wall-clock seconds per stage, in pipeline order.
   std::vector<std::pair<std::string, double>> stage_seconds;
 };

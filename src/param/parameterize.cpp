@@ -17,6 +17,7 @@
 #include "param/harmonic_correction.h"
 #include "param/period_matrix.h"
 #include "param/alignment.h"
+#include "param/stiffening.h"
 #include "field/feature_alignment.h"
 
 namespace quadcover {
@@ -190,8 +191,13 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   const CoverCut cc = build_cover_cut(mesh, field.matching);
   P.cut_edges = cc.graph.cut;
   P.face_rotation = cc.face_rotation;
-  for (int v = 0; v < nv; ++v)
-    if (cc.branch[v]) P.branch_points.push_back({v, cc.quarter_index[v]});
+  {
+    // Reported by the cross-field index (Def. 3.3, Σ = χ, the cone angle 2π(1 − q/4) of the map); the matching index
+    // of the covering (Def. 3.2) agrees with it mod 4, which is all the covering needs.
+    const Eigen::VectorXi q = cross_field_quarter_index(mesh, field);
+    for (int v = 0; v < nv; ++v)
+      if (cc.branch[v]) P.branch_points.push_back({v, q[v]});
+  }
   P.h_sym = cc.h_sym();
   const std::vector<char> trivial = trivial_holonomy(mesh, cc);
   {
@@ -337,24 +343,49 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
   const FramePairs Sigma = corner_gradient(mesh, sigma);
   const Eigen::VectorXcd b = correction.rhs(Sigma);
-  Eigen::VectorXcd u = correction.solve(b).col(0);
+  const Eigen::VectorXcd u_free = correction.solve(b).col(0);
+  Eigen::VectorXcd u = u_free;
+  const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;  // φ = known − u
+  std::vector<CurveSlot> slots;
   if (options.align_curves) {
     // Boundary and feature curves on integer iso-lines: the same correction with one real component of u fixed
     // at every curve vertex (seams untouched: u is continuous on the covering).
     const FeatureConstraints features = feature_constraints(mesh, options.features);
-    const std::vector<CurveSlot> slots =
-        aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
-    if (!slots.empty()) {
-      const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;
-      u = solve_aligned_correction(mesh, cc, correction.stiffness(), b, correction.layers().layer, known, u,
-                                   correction.kernel_pins(), slots, P.aligned_curves, P.alignment_conflicts,
-                                   options.align_max_shift, options.align_min_length);
-    }
+    slots = aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
   }
-  const Eigen::MatrixX3cd ucorner = correction.corner_values(u);
-  const FramePairs H = Sigma - corner_gradient(mesh, ucorner);
-  P.energy_harmonic = frame_norm2(mesh, H);
+  // The final solve for any (weighted) 𝔏̄_w u = b_w, with the curve constraints if there are any; the curves of
+  // every call are kept so the reported deviations belong to the u that is kept.
+  std::vector<std::vector<AlignedCurve>> curves_of_call;
+  std::vector<int> conflicts_of_call;
+  const WeightedCorrectionSolve solve = [&](const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw) {
+    curves_of_call.emplace_back();
+    conflicts_of_call.push_back(0);
+    if (slots.empty()) {
+      if (&Lw == &correction.stiffness()) return Eigen::VectorXcd(u_free);
+      Eigen::SparseMatrix<Complex> Lp = Lw;
+      pin_rows(Lp, correction.kernel_pins());
+      Eigen::VectorXcd bp = bw;
+      for (int p : correction.kernel_pins()) bp[p] = 0;
+      SparseCholesky<Complex> chol;
+      chol.compute(Lp, "stiffened harmonic correction");
+      return Eigen::VectorXcd(chol.solve(bp));
+    }
+    return solve_aligned_correction(mesh, cc, Lw, bw, correction.layers().layer, known, u_free,
+                                    correction.kernel_pins(), slots, curves_of_call.back(), conflicts_of_call.back(),
+                                    options.align_max_shift, options.align_min_length);
+  };
+  u = solve(correction.stiffness(), b);
+  P.energy_harmonic = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
   lap("harmonic");
+  if (options.stiffening.max_iterations > 0) {
+    // ∇φ − Z = (Σ̃_d − X̃_C) − ∇u: the target of ∇u in the weighted solves.
+    u = stiffen_correction(mesh, cc.matching, correction, known, Z, Sigma, Sigma - XC, u, solve, options.stiffening,
+                           progress, P.stiffening);
+    if (P.stiffening.iterations > 0) lap("stiffening");
+  }
+  P.aligned_curves = std::move(curves_of_call[P.stiffening.kept_iteration]);
+  P.alignment_conflicts = conflicts_of_call[P.stiffening.kept_iteration];
+  const Eigen::MatrixX3cd ucorner = correction.corner_values(u);
 
   // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
   P.uv = corner_values(cc, phi) + sigma - ucorner;

@@ -5,12 +5,13 @@
 //  3. integrate X̂ over the cut disk (1.12) and read the complex periods b_j of the symmetric paths,
 //  4. round the periods to the lattice (4.2.2; fix-up of even branch points on the rotated lattice),
 //  5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P with the conforming 𝔏̄ (branch rows removed) ((1.14) on M̃),
-//  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units.
+//  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units (then local stiffening while triangles flip).
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/lattice.h"
 #include "param/period_rounding.h"
 #include "param/parameterization.h"
+#include "param/stiffening.h"
 
 namespace quadcover {
 
@@ -42,6 +43,8 @@ struct ParamOptions {
   /// Curves shorter than this many grid units (quad edge lengths) stay free: pinning short crease fragments costs
   /// distortion and folds for no visible gain.
   double align_min_length = 3.0;
+  /// Local stiffening of the final solve against flipped triangles (beyond the thesis, param/stiffening.h).
+  StiffeningOptions stiffening;
 };
 
 /// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.

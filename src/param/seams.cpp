@@ -6,10 +6,6 @@
 namespace quadcover {
 
 namespace {
-Complex ipow_local(int k) {
-  static const Complex p[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-  return p[((k % 4) + 4) % 4];
-}
 Complex round_gauss(Complex z) { return {std::round(z.real()), std::round(z.imag())}; }
 int corner_of(const Mesh& mesh, int f, int v) {
   for (int c = 0; c < 3; ++c)
@@ -36,7 +32,7 @@ SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double r
     double best = INFINITY;
     bool identity = false;
     for (int k = 0; k < 4; ++k) {
-      const Complex ca = ta - ipow_local(k) * sa, cb = tb - ipow_local(k) * sb;
+      const Complex ca = ta - ipow(k) * sa, cb = tb - ipow(k) * sb;
       const Complex c = round_gauss(0.5 * (ca + cb));
       const double err = std::max(std::abs(ca - c), std::abs(cb - c));
       if (err < best) {

@@ -25,10 +25,4 @@ TransitionFit fit_transitions(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 /// edges where the transition is not the identity. Branch points and energies are left empty (unknown).
 Parameterization parameterization_from_uv(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 
-/// The quarter-turn power i^k as a complex number.
-inline Complex ipow(int k) {
-  static const Complex table[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-  return table[((k % 4) + 4) % 4];
-}
-
 }  // namespace quadcover

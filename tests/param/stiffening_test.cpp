@@ -1,0 +1,108 @@
+// Local stiffening of the final solve (param/stiffening.h): the distortion measure, and on meshes whose plain map
+// folds, fewer flipped triangles with the seams, branch points, curve constraints and the energy identity intact.
+#include "param/stiffening.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "field/compute_frame_field.h"
+#include "param/parameterize.h"
+#include "param/seams.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+// Per-corner uv of the map (x, y) ↦ a x + b y (complex a, b) on a flat grid, and that map's face gradients as Z.
+Eigen::MatrixX3cd linear_map(const Mesh& mesh, Complex a, Complex b) {
+  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d p = mesh.V().row(mesh.F()(f, c));
+      uv(f, c) = a * p.x() + b * p.y();
+    }
+  return uv;
+}
+
+FramePairs gradients(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+  FramePairs Z(mesh.num_faces(), 2);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const auto [g0, g1] = face_gradient(mesh, uv, f);
+    Z(f, 0) = g0;
+    Z(f, 1) = g1;
+  }
+  return Z;
+}
+
+// d = |σ₁ − 1| + |σ₂ − 1| of J = ∇φ Z⁻¹: 0 for the map Z integrates (and for a rotation of it), 2 for twice it,
+// 2 for its mirror image (σ₂ = −1), 1.5 for a shear-free stretch (2, ½).
+TEST(FrameDistortion, SingularValuesOfTheMapRelativeToTheFrame) {
+  const Mesh grid = testing::make_grid(4);
+  const Eigen::MatrixX3cd uv = linear_map(grid, Complex(1, 0.3), Complex(-0.2, 0.9));
+  const FramePairs Z = gradients(grid, uv);
+  const auto expect_all = [&](const Eigen::MatrixX3cd& map, double d) {
+    const Eigen::VectorXd dist = frame_distortion(grid, map, Z);
+    for (int f = 0; f < grid.num_faces(); ++f) ASSERT_NEAR(dist[f], d, 1e-9) << f;
+  };
+  expect_all(uv, 0);
+  expect_all(Complex(0, 1) * uv, 0);
+  expect_all(2.0 * uv, 2);
+  expect_all(uv.conjugate(), 2);
+  // (a + ib) ↦ 2a + ½ib applied after the map: singular values 2 and ½.
+  expect_all(Eigen::MatrixX3cd(2.0 * uv.real().cast<Complex>() + Complex(0, 0.5) * uv.imag().cast<Complex>()), 1.5);
+}
+
+// ½‖X̃ − ∇φ̃‖² on the covering, Z the scaled gauged frames (as in parameterize_test).
+double total_energy(const Mesh& mesh, const FrameField& field, const Parameterization& P) {
+  double s = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const auto [g0, g1] = face_gradient(mesh, P.uv, f);
+    const auto [x, y] = turn_frame(field.X[f], field.Y[f], P.face_rotation[f]);
+    s += mesh.face_areas()[f] * (std::norm(P.scale * x - g0) + std::norm(P.scale * y - g1));
+  }
+  return s;
+}
+
+class FoldingMeshes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FoldingMeshes, StiffeningRemovesFlipsAndKeepsTheMapSeamless) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  const FrameField field = compute_frame_field(mesh);
+  ParamOptions plain;
+  plain.stiffening.max_iterations = 0;
+  const Parameterization A = parameterize(mesh, field, plain);
+  const Parameterization B = parameterize(mesh, field, ParamOptions{});
+  const int before = flipped_triangles(A.uv).flipped, after = flipped_triangles(B.uv).flipped;
+  ASSERT_GT(before, 0) << "the plain map of this mesh is expected to fold";
+  EXPECT_EQ(B.stiffening.flipped_before, before);
+  EXPECT_EQ(B.stiffening.flipped_after, after);
+  EXPECT_LT(after, before);
+  EXPECT_GT(B.stiffening.kept_iteration, 0);
+  EXPECT_LE(B.stiffening.kept_iteration, B.stiffening.iterations);
+  // Same periods, branch points and E_D, E_H; the price E_S closes the identity E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖².
+  EXPECT_EQ(A.rounded_periods, B.rounded_periods);
+  EXPECT_DOUBLE_EQ(A.energy_curl, B.energy_curl);
+  EXPECT_DOUBLE_EQ(A.energy_harmonic, B.energy_harmonic);
+  EXPECT_GT(B.stiffening.energy, 0);
+  const double total = total_energy(mesh, field, B);
+  EXPECT_NEAR(B.energy_curl + B.energy_harmonic + B.stiffening.energy, total, 1e-8 * total);
+  // Seamless, branch points on integer points, enforced curves on their iso-lines.
+  const SeamReport seams = measure_seams(mesh, B.uv);
+  EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
+  const double tol = 1e-9 * seams.parameter_extent;
+  for (const BranchPoint& bp : B.branch_points) {
+    if (std::count(B.unfixed_even_branch_points.begin(), B.unfixed_even_branch_points.end(), bp.vertex)) continue;
+    for (const auto& fc : mesh.fan(bp.vertex)) {
+      const Complex z = B.uv(fc.face, fc.corner);
+      ASSERT_LT(std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))), tol) << bp.vertex;
+    }
+  }
+  for (const auto& curve : B.aligned_curves)
+    if (curve.enforced) EXPECT_LT(curve.max_deviation, tol) << curve.value;
+}
+
+INSTANTIATE_TEST_SUITE_P(Param, FoldingMeshes, ::testing::Values("couplingdown_genus9", "camelhead_boundary"));
+
+}  // namespace
+}  // namespace quadcover
