@@ -4,11 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# libopenblas0-serial: an optimized BLAS/LAPACK behind CHOLMOD's supernodal factorizations (through Debian's
+# libopenblas0-pthread: an optimized BLAS/LAPACK behind CHOLMOD's supernodal factorizations (through Debian's
 # alternatives; the reference BLAS is 2-3x slower there). Serial: deterministic, and our TBB loops own the cores.
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libsuitesparse-dev libopenblas0-serial libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev
   libpng-dev libstb-dev libgtest-dev libbenchmark-dev libfplll-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   clang libclang-rt-14-dev

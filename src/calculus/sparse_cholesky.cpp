@@ -12,6 +12,7 @@
 
 #ifdef QUADCOVER_HAVE_CHOLMOD
 #include <cholmod.h>
+#include <dlfcn.h>
 #endif
 
 namespace quadcover {
@@ -20,6 +21,19 @@ namespace {
 
 template <class Scalar>
 constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
+
+#ifdef QUADCOVER_HAVE_CHOLMOD
+// CHOLMOD's supernodal factorization calls the system BLAS. When that is a threaded OpenBLAS (Debian's
+// libopenblas0-pthread, scripts/setup.sh), its own threads would compete with our TBB loops for the cores and
+// make results depend on the machine: keep BLAS single-threaded (found at run time, a no-op for other BLAS).
+void single_threaded_blas() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    using SetThreads = void (*)(int);
+    if (void* f = dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) reinterpret_cast<SetThreads>(f)(1);
+  });
+}
+#endif
 
 #ifdef QUADCOVER_HAVE_CHOLMOD
 // CHOLMOD state: one cholmod_common per factorization (CHOLMOD keeps workspace and status in it, so solves are
@@ -147,6 +161,9 @@ SparseCholesky<Scalar>::SparseCholesky(CholeskyBackend backend) : impl_(std::mak
   if (backend == CholeskyBackend::Cholmod && !cholmod_available())
     throw NumericalError("cholesky", "the CHOLMOD backend was requested but quadcover was built without CHOLMOD");
   impl_->backend = backend;
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  if (backend == CholeskyBackend::Cholmod) single_threaded_blas();
+#endif
 }
 
 template <class Scalar>
