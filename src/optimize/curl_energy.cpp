@@ -242,6 +242,15 @@ void CurlEnergy::prepare_estimates() {
 }
 
 double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const {
+  return estimate(changes, ws, options_.local_rings);
+}
+
+double CurlEnergy::refine(std::span<const MatchingChange> changes) {
+  prepare_estimates();
+  return estimate(changes, workspaces_->serial, options_.confirm_rings);
+}
+
+double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const {
   if (!estimates_ready_) throw std::logic_error("CurlEnergy::estimate before prepare_estimates");
   const int nf = mesh_->num_faces(), ne = mesh_->num_edges();
   if (static_cast<int>(ws.face_stamp.size()) != nf || static_cast<int>(ws.edge_stamp.size()) != ne) {
@@ -288,7 +297,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
   if (!ok) return std::numeric_limits<double>::infinity();
   t0 = Clock::now();
   // Local re-smoothing Δα_P (SmoothingSystem::solve_local).
-  system_->solve_local(ws.db_smooth, options_.local_rings, options_.local_tolerance, ws.smoothing);
+  system_->solve_local(ws.db_smooth, rings, options_.local_tolerance, ws.smoothing);
   ws.timings.smoothing += seconds_since(t0);
   t0 = Clock::now();
   // Δ(-curl*X) on the edges of the faces whose angle or layers changed: a sparse right-hand side change.

@@ -37,6 +37,9 @@ struct CurlEnergyOptions {
   /// with 𝔏̄*, one solve with A) after this many commits, not after every one (1 = always current). Affects the
   /// screening only: every accepted move is still confirmed exactly.
   int estimate_refresh = 8;
+  /// refine(): face rings of the larger patch of the second screening stage (Algorithm 6.1 re-estimates a
+  /// candidate that passed the first screening on this patch before the exact evaluation; 0 = no second stage).
+  int confirm_rings = 0;
 };
 
 /// A matching change m_e += delta on an interior edge.
@@ -98,6 +101,12 @@ class CurlEnergy {
   /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
   /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
+  /// The same estimate on a patch of `rings` face rings (estimate() uses CurlEnergyOptions::local_rings).
+  double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const;
+  /// Second screening stage: estimate() on CurlEnergyOptions::confirm_rings rings (serial; calls
+  /// prepare_estimates()). Deterministic.
+  double refine(std::span<const MatchingChange> changes);
+  const CurlEnergyOptions& options() const { return options_; }
   /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
   /// not depend on the thread count. Calls prepare_estimates().
   void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out, int threads = 0);

@@ -27,8 +27,10 @@ struct OptimizeOptions {
   double lambda = FieldOptions{}.lambda;
   int cancellation_neighbours = 3;  ///< k of Algorithm 6.1
   /// Budget: E_D evaluations (screened candidates; 0 = unlimited, kAutoBudget = auto_evaluation_budget()) and
-  /// seconds (0 = unlimited); the best state so far is returned. `full` gives the first reduction two thirds of
-  /// the evaluations and balancing the rest. The report says whether a run converged or stopped on the budget.
+  /// seconds (0 = none; with the auto evaluation budget, `full` also gets auto_time_limit()); the best state so far
+  /// is returned. `full` gives the first reduction two thirds of the evaluations and of the time and balancing the
+  /// rest. The report says whether a run converged or what stopped it. A time limit that binds makes the result
+  /// depend on the machine's speed: `relocate` and explicit evaluation budgets have none by default.
   long max_evaluations = kAutoBudget;
   double time_limit_seconds = 0;
   CurlEnergyOptions energy;
@@ -49,6 +51,7 @@ struct OptimizeResult {
   double evaluations_per_second = 0;
   double seconds = 0;
   long max_evaluations = 0;            ///< the budget used (auto resolved; 0 = unlimited)
+  double time_limit_seconds = 0;       ///< the time limit used (auto resolved; 0 = none)
   CurlEnergyTimings exact_timings;     ///< exact evaluations, commits, prepare_estimates, shares (wall seconds)
   CurlEnergyTimings estimate_timings;  ///< screening estimates, summed over the threads
 };
@@ -57,6 +60,8 @@ struct OptimizeResult {
 /// and for `full` to stay within the whole-pipeline goals of BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on
 /// two cores). Grows with the number of interior edges, capped.
 long auto_evaluation_budget(const Mesh& mesh, OptimizeMode mode);
+/// The default time limit in seconds with the auto budget: `full` 2 s + 0.25 ms per face, `relocate` none (0).
+double auto_time_limit(const Mesh& mesh, OptimizeMode mode);
 
 /// \pre field came from compute_frame_field_detailed on `mesh`.
 /// \throw NumericalError if a factorization fails.
@@ -64,10 +69,10 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
                               ProgressSink& progress = null_progress());
 
 /// Report keys: mode, E_D_before, E_D_after, branch_points_before/after, evaluations, max_evaluations,
-/// exact_evaluations, accepted, cancelled_pairs, stopped_early, converged, stopped_by ("converged", "evaluations",
-/// "time", "cancelled"), delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the wall-clock values
-/// under "seconds": {total, evaluations_per_second, exact, estimates} (reports keep timings under "seconds" keys,
-/// so that everything else is byte-identical between runs).
+/// time_limit_seconds, exact_evaluations, accepted, cancelled_pairs, stopped_early, converged, stopped_by ("converged",
+/// "evaluations", "time", "cancelled"), delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the
+/// wall-clock values under "seconds": {total, evaluations_per_second, exact, estimates} (reports keep timings under
+/// "seconds" keys, so that everything else is byte-identical between runs).
 nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
 
 /// parameterize() of the optimized field; when `mode` optimized and `keep_better` is set, also of the original
