@@ -99,6 +99,28 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
     r.energy_smooth = smoothing_energy(mesh, r.field);
     r.energy_align = smoother->alignment_energy(alpha);
   }
+  if (options.split_singularities && !progress.cancelled()) {
+    // Quarter moves along paths (5.2.2) leave no |index| >= 2 quarters; the frames are then smoothed (5.3) once
+    // more with that matching, starting from the current field (its θ is small, so ±π/2 changes never wrap).
+    r.singularity_moves = plan_singularity_split(mesh, cross_field_quarter_index(mesh, r.field),
+                                                  options.split_min_quarters);
+    if (!r.singularity_moves.empty()) {
+      FrameField split = r.field;
+      apply_quarter_moves(mesh, r.singularity_moves, split.matching);
+      if (!smoother)
+        smoother = std::make_unique<FrameSmoother>(mesh, r.stability, r.trusted, r.constrained, options.lambda);
+      Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);  // E_A towards the curvature directions, as above
+      for (int t = 0; t < nf; ++t)
+        if (r.trusted[static_cast<std::size_t>(t)])
+          beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / split.X[t], 4));
+      smoother->set_alignment_targets(beta);
+      smoother->set_input(split);
+      const Eigen::VectorXd alpha = smoother->solve();
+      r.field = smoother->rotated(alpha);
+      r.energy_smooth = smoothing_energy(mesh, r.field);
+      r.energy_align = smoother->alignment_energy(alpha);
+    }
+  }
   progress.report("field", 0.9, "indices");
   r.branch_points = branch_points(mesh, r.field);
   progress.report("field", 1.0, "done");

@@ -8,6 +8,7 @@
 #include "field/curvature_frames.h"
 #include "field/feature_alignment.h"
 #include "field/frame_field.h"
+#include "field/singularity_split.h"
 #include "mesh/mesh.h"
 
 namespace quadcover {
@@ -52,6 +53,14 @@ struct FieldOptions {
   /// Smoothing rounds. After each round but the last, the matching is re-chosen as the straightest one (5.1) for
   /// the smoothed frames (a right-hand-side update, no refactorization) and the system is solved again.
   int smoothing_rounds = 2;
+  /// Split singularities of |quarter index| >= split_min_quarters into quarter-index branch points on nearby
+  /// vertices (field/singularity_split.h), then smooth once more with that matching. A whole-turn singularity
+  /// (index ±1, e.g. at the apexes of a high-valence bipyramid) is invisible to the 4-sheeted cover and folds the
+  /// parameterization flat (998 of 1000 triangles flipped on a valence-500 bipyramid; 0 after the split).
+  bool split_singularities = true;
+  /// Default 4 (whole turns only): the shipped meshes have none, and splitting the |q| = 2, 3 cones of cow and
+  /// mech_holes_shark as well (value 2) raises their E_D + E_H by 20% and ARAP by 25% (BENCHMARKS.md, Robustness).
+  int split_min_quarters = 4;
 };
 
 /// The frame field and what it was made from.
@@ -62,6 +71,7 @@ struct FrameFieldResult {
   std::vector<char> trusted;      ///< #F, faces of the alignment terms / propagation sources
   std::vector<char> constrained;  ///< #F, feature-aligned faces (fixed during smoothing)
   std::vector<BranchPoint> branch_points;
+  std::vector<QuarterMove> singularity_moves;  ///< quarters moved by the split (FieldOptions::split_singularities)
   double energy_smooth_initial = 0;  ///< E_S of the filled field with its straightest matching
   double energy_smooth = 0;          ///< E_S of the result
   double energy_align = 0;           ///< E_A of the result's rotation angles

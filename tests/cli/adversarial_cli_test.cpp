@@ -235,5 +235,20 @@ TEST_F(AdversarialCli, HundredsOfBoundaryLoops) {
   EXPECT_EQ(param_["boundary_loops"].get<int>(), 1 + 24 * 24);
 }
 
+TEST_F(AdversarialCli, HighValenceBipyramidIsNotFolded) {
+  // Two apexes of valence 500: the smooth field has a whole-turn singularity (quarter index 4, a cone of angle 0)
+  // at each, which folded the whole map (998 of 1000 triangles flipped). The field stage now splits each into four
+  // quarter-index branch points on the equator (field/singularity_split.h): an octagonal pillow of 8 valence-3
+  // corners, quads everywhere else.
+  const Mesh bipyramid = testing::make_fan(500, true);
+  check_both("bipyramid", bipyramid.V(), faces_of(bipyramid), 128);
+  ASSERT_TRUE(param_.is_object() && remesh_.is_object());
+  EXPECT_EQ(param_["branch_points"].get<int>(), 8);
+  EXPECT_EQ(param_["flipped_triangles"].get<int>(), 0);
+  EXPECT_EQ(remesh_["non_quads"].get<int>(), 0);
+  EXPECT_EQ(remesh_["irregular_vertices"].get<int>(), 8);
+  EXPECT_TRUE(remesh_["manifold"].get<bool>());
+}
+
 }  // namespace
 }  // namespace quadcover

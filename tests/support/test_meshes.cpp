@@ -31,6 +31,20 @@ Mesh make_torus(int n_major, int n_minor, double R, double r) {
   return Mesh::from_triangles(V, F);
 }
 
+Mesh make_fan(int n, bool closed, double height) {
+  Eigen::MatrixX3d V(n + (closed ? 2 : 1), 3);
+  Eigen::MatrixX3i F((closed ? 2 : 1) * n, 3);
+  V.row(0) << 0, 0, height;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    V.row(i + 1) << std::cos(a), std::sin(a), 0;
+    F.row(i) << 0, 1 + i, 1 + (i + 1) % n;
+    if (closed) F.row(n + i) << n + 1, 1 + (i + 1) % n, 1 + i;
+  }
+  if (closed) V.row(n + 1) << 0, 0, -height;
+  return Mesh::from_triangles(V, F);
+}
+
 Mesh make_grid(int n) {
   Eigen::MatrixX3d V((n + 1) * (n + 1), 3);
   Eigen::MatrixX3i F(2 * n * n, 3);

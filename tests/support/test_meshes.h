@@ -19,5 +19,9 @@ Mesh make_grid(int n);
 Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
 /// A UV sphere-like closed surface (octahedron subdivided `level` times and projected), scaled by (a, b, c).
 Mesh make_ellipsoid(int level, double a = 1.0, double b = 1.0, double c = 1.0);
+/// A fan of n triangles around one apex (0,0,height) over the unit circle in z = 0 (a disk, apex = vertex 0, rim =
+/// vertices 1..n), or with closed = true also a second fan to the apex (0,0,-height) (a bipyramid, apex n+1):
+/// vertices of valence n.
+Mesh make_fan(int n, bool closed, double height = 0.3);
 
 }  // namespace quadcover::testing
