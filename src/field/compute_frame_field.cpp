@@ -102,8 +102,8 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
   if (options.split_singularities && !progress.cancelled()) {
     // Quarter moves along paths (5.2.2) leave no |index| >= 2 quarters; the frames are then smoothed (5.3) once
     // more with that matching, starting from the current field (its θ is small, so ±π/2 changes never wrap).
-    r.singularity_moves = plan_singularity_split(mesh, cross_field_quarter_index(mesh, r.field),
-                                                  options.split_min_quarters);
+    r.singularity_moves =
+        plan_singularity_split(mesh, cross_field_quarter_index(mesh, r.field), options.split_min_quarters);
     if (!r.singularity_moves.empty()) {
       FrameField split = r.field;
       apply_quarter_moves(mesh, r.singularity_moves, split.matching);

@@ -72,9 +72,9 @@ struct FrameFieldResult {
   std::vector<char> constrained;  ///< #F, feature-aligned faces (fixed during smoothing)
   std::vector<BranchPoint> branch_points;
   std::vector<QuarterMove> singularity_moves;  ///< quarters moved by the split (FieldOptions::split_singularities)
-  double energy_smooth_initial = 0;  ///< E_S of the filled field with its straightest matching
-  double energy_smooth = 0;          ///< E_S of the result
-  double energy_align = 0;           ///< E_A of the result's rotation angles
+  double energy_smooth_initial = 0;            ///< E_S of the filled field with its straightest matching
+  double energy_smooth = 0;                    ///< E_S of the result
+  double energy_align = 0;                     ///< E_A of the result's rotation angles
 };
 
 /// Runs thesis Chapter 5 with the options' defaults documented above.

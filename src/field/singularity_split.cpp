@@ -75,7 +75,8 @@ std::vector<int> spread_around(const Mesh& mesh, const std::vector<int>& ring, i
   std::pair<double, double> best_score{-1, -1};
   auto better = [](double a, double b) { return a > b * (1 + 1e-9) + 1e-300; };
   for (int s = 0; s < r; ++s) {
-    for (int j = 0; j < count; ++j) set[static_cast<std::size_t>(j)] = ring[static_cast<std::size_t>((s + static_cast<long>(j) * r / count) % r)];
+    for (int j = 0; j < count; ++j)
+      set[static_cast<std::size_t>(j)] = ring[static_cast<std::size_t>((s + static_cast<long>(j) * r / count) % r)];
     const auto score = spacing(mesh, set, others);
     if (best.empty() || better(score.first, best_score.first) ||
         (!better(best_score.first, score.first) && better(score.second, best_score.second))) {
@@ -134,7 +135,7 @@ std::vector<QuarterMove> plan_singularity_split(const Mesh& mesh, const Eigen::V
     for (int w : region)
       if (w != v && (q[w] != 0 || targeted[static_cast<std::size_t>(w)])) keep_away.push_back(w);
     const std::vector<int> chosen = rings == 1 ? spread_around(mesh, candidates, count, keep_away)
-                                              : farthest_points(mesh, candidates, count, keep_away);
+                                               : farthest_points(mesh, candidates, count, keep_away);
     for (int w : chosen) {
       targeted[static_cast<std::size_t>(w)] = 1;
       moves.push_back({v, w, sign});

@@ -20,12 +20,11 @@ struct QuarterMove {
   int quarters;  ///< +1 or -1: the sign of the index moved (from's q decreases by it, to's increases)
 };
 
-/// The moves that leave no interior vertex with |q| >= min_quarters, for the quarter indices q (#V, cross_field_quarter_index).
-/// Vertices are treated in index order; a vertex of index q gives all |q| quarters to |q| distinct interior
-/// vertices of index 0 that no earlier move chose, taken from its 1-ring (or the nearest ring that has enough of
-/// them), by farthest-point sampling in space: each next target is the candidate farthest from the targets
-/// chosen so far and from every other singularity within the ring's reach (ties: ring order). Deterministic.
-/// Only vertices with |q| >= min_quarters (>= 2) are split.
+/// The moves that leave no interior vertex with |q| >= min_quarters (>= 2), for the quarter indices q (#V,
+/// cross_field_quarter_index). Vertices are treated in index order; a vertex of index q gives all |q| quarters to
+/// |q| distinct interior vertices of index 0 that no earlier move chose. From its 1-ring when that has enough of
+/// them: evenly spaced in fan order, at the rotation whose targets lie farthest apart, then farthest from the other
+/// singularities nearby; else from the nearest rings that have enough, by farthest-point sampling. Deterministic.
 std::vector<QuarterMove> plan_singularity_split(const Mesh& mesh, const Eigen::VectorXi& quarter_index,
                                                 int min_quarters = 2);
 

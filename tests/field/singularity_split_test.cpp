@@ -36,7 +36,7 @@ TEST(SingularitySplit, PlanMovesEveryQuarterToADistinctFreeVertexNearby) {
   const int a = 5 * 12 + 3, b = 17 * 12 + 8, blocked = 18 * 12 + 9;
   Eigen::VectorXi q = Eigen::VectorXi::Zero(torus.num_vertices());
   q[a] = 3;
-  q[b] = -8;  // more quarters than the 1-ring has vertices: the 2-ring is used as well
+  q[b] = -8;       // more quarters than the 1-ring has vertices: the 2-ring is used as well
   q[blocked] = 1;  // a neighbour of b that is a branch point already: not a target
   ASSERT_EQ(hops(torus, b, blocked), 1);
   const std::vector<QuarterMove> moves = plan_singularity_split(torus, q);
