@@ -236,6 +236,18 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
 }
 
 template <class Scalar>
+void SparseCholesky<Scalar>::factorize(const Matrix& A, const char* stage) {
+  if (impl_->n >= 0 && A.rows() == impl_->n && A.cols() == impl_->n) {
+    try {
+      refactorize(A);
+      return;
+    } catch (const NumericalError&) {  // another pattern (or not definite: compute() says so with its stage)
+    }
+  }
+  compute(A, stage);
+}
+
+template <class Scalar>
 typename SparseCholesky<Scalar>::Dense SparseCholesky<Scalar>::solve(const Dense& B) const {
   const Impl& im = *impl_;
   if (im.n < 0) throw NumericalError(im.stage, "solve() called before compute()");

@@ -39,6 +39,9 @@ class SparseCholesky {
   /// Numeric refactorization reusing the symbolic analysis of compute(); A must have the same sparsity pattern.
   /// \throw NumericalError if A is not positive definite, has another pattern, or compute() was never called.
   void refactorize(const Matrix& A);
+  /// compute() the first time, refactorize() on later calls while A keeps the analyzed pattern (a fresh analysis
+  /// when the number of stored entries changes): for sequences of matrices with one pattern and new values.
+  void factorize(const Matrix& A, const char* stage = "cholesky");
   /// x with A x = b.  b: rows() entries.
   Vector solve(const Vector& b) const;
   /// X with A X = B, all columns at once.  B: rows() by k.

@@ -46,12 +46,13 @@ std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z
   return slots;
 }
 
-Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
-                                          const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
-                                          const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
-                                          const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
-                                          double min_length) {
+AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
+                                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
+                                     const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
+                                     double max_shift, double min_length)
+    : mesh_(&mesh), cut_(&cut), layer_(&layer), known_(&known), slots_(slots) {
+  std::vector<AlignedCurve>& curves = curves_;
+  int& conflicts = conflicts_;
   const int nv = mesh.num_vertices();
   conflicts = 0;
   curves.clear();
@@ -98,7 +99,9 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
         rel[wi.slot].push_back({wj.slot, sigma, tau});
         rel[wj.slot].push_back({wi.slot, sigma, -sigma * tau});  // n_i = σ n_j - σ τ
       }
-  std::vector<int> curve_of(static_cast<std::size_t>(ns), -1), sigma_of(ns, 1);
+  std::vector<int>& curve_of = curve_of_;
+  curve_of.assign(static_cast<std::size_t>(ns), -1);
+  std::vector<int> sigma_of(ns, 1);
   std::vector<double> tau_of(static_cast<std::size_t>(ns), 0);
   std::vector<int> queue;
   for (int root = 0; root < ns; ++root) {
@@ -144,7 +147,8 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     curves[k].enforced = consistent && length >= min_length &&
                          (anchored || std::abs(sum / count - curves[k].value) <= max_shift);
   }
-  std::vector<double> n_of(static_cast<std::size_t>(ns));
+  std::vector<double>& n_of = n_of_;
+  n_of.assign(static_cast<std::size_t>(ns), 0);
   for (auto& c : curves) c.edges.clear();
   for (int i = 0; i < ns; ++i) {
     n_of[i] = sigma_of[i] * curves[curve_of[i]].value + tau_of[i];
@@ -169,8 +173,10 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
         curves[it->second.first].enforced = false;
       }
     }
-  std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
-  Eigen::VectorXd value = Eigen::VectorXd::Zero(2 * nv);
+  std::vector<char>& fixed = fixed_;
+  fixed.assign(static_cast<std::size_t>(2 * nv), 0);
+  Eigen::VectorXd& value = value_;
+  value = Eigen::VectorXd::Zero(2 * nv);
   for (int p = 0; p < nv; ++p)
     for (const Use& w : uses[p]) {
       if (!curves[curve_of[w.slot]].enforced) continue;
@@ -188,7 +194,12 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     for (int part = 0; part < 2; ++part)
       if (!has[part]) fixed[part * nv + p] = 1, value[part * nv + p] = 0;
   }
+}
 
+Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b) {
+  const int nv = mesh_->num_vertices();
+  const std::vector<char>& fixed = fixed_;
+  const Eigen::VectorXd& value = value_;
   // Real form of the Hermitian system: L = A + iB acts on [x; y] as [[A, -B], [B, A]].
   std::vector<int> free_id(static_cast<std::size_t>(2 * nv), -1);
   int nfree = 0;
@@ -219,23 +230,51 @@ Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut,
     }
   Eigen::SparseMatrix<double> M(nfree, nfree);
   M.setFromTriplets(trip.begin(), trip.end());
-  SparseCholesky<double> chol;
-  chol.compute(M, "aligned harmonic correction");
-  const Eigen::VectorXd sol = chol.solve(rhs);
+  // Re-solves with other weights keep the pattern: only the first one analyses.
+  chol_.factorize(M, "aligned harmonic correction");
+  const Eigen::VectorXd sol = chol_.solve(rhs);
   Eigen::VectorXcd u(nv);
   for (int p = 0; p < nv; ++p) {
     const double x = free_id[p] >= 0 ? sol[free_id[p]] : value[p];
     const double y = free_id[nv + p] >= 0 ? sol[free_id[nv + p]] : value[nv + p];
     u[p] = Complex(x, y);
   }
+  return u;
+}
+
+std::vector<AlignedCurve> AlignedCorrection::curves(const Eigen::VectorXcd& u) const {
+  const Mesh& mesh = *mesh_;
+  std::vector<AlignedCurve> curves = curves_;
+  const int ns = static_cast<int>(slots_.size());
+  const std::vector<CurveSlot>& slots = slots_;
+  const std::vector<int>& curve_of = curve_of_;
+  const std::vector<double>& n_of = n_of_;
+  auto phi_at = [&](int f, int c) {
+    const int p = mesh.F()(f, c);
+    return (*known_)(f, c) - (cut_->branch[p] ? Complex(0) : ipow((*layer_)(f, c)) * u[p]);
+  };
   // Deviation of every curve from its iso-line on the result (all curve vertices, branch points included).
   for (int i = 0; i < ns; ++i)
     for (int end = 0; end < 2; ++end) {
       const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
-      const double x = std::real(ipow(-slots[i].coordinate) * phi_at(u, slots[i].face, c));
+      const double x = std::real(ipow(-slots[i].coordinate) * phi_at(slots[i].face, c));
       AlignedCurve& curve = curves[curve_of[i]];
       curve.max_deviation = std::max(curve.max_deviation, std::abs(x - n_of[i]));
     }
+  return curves;
+}
+
+
+Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
+                                          const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
+                                          const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
+                                          const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
+                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
+                                          double min_length) {
+  AlignedCorrection aligned(mesh, cut, layer, known, u0, kernel_pins, slots, max_shift, min_length);
+  const Eigen::VectorXcd u = aligned.solve(L, b);
+  curves = aligned.curves(u);
+  conflicts = aligned.conflicts();
   return u;
 }
 

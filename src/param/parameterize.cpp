@@ -353,26 +353,22 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     const FeatureConstraints features = feature_constraints(mesh, options.features);
     slots = aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
   }
-  // The final solve for any (weighted) 𝔏̄_w u = b_w, with the curve constraints if there are any; the curves of
-  // every call are kept so the reported deviations belong to the u that is kept.
-  std::vector<std::vector<AlignedCurve>> curves_of_call;
-  std::vector<int> conflicts_of_call;
+  // The final solve for any (weighted) 𝔏̄_w u = b_w, with the curve constraints if there are any. Re-solves (local
+  // stiffening) keep the pattern and reuse the symbolic analysis.
+  std::optional<AlignedCorrection> aligned;
+  if (!slots.empty())
+    aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
+                    options.align_max_shift, options.align_min_length);
+  SparseCholesky<Complex> weighted_chol;
   const WeightedCorrectionSolve solve = [&](const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw) {
-    curves_of_call.emplace_back();
-    conflicts_of_call.push_back(0);
-    if (slots.empty()) {
-      if (&Lw == &correction.stiffness()) return Eigen::VectorXcd(u_free);
-      Eigen::SparseMatrix<Complex> Lp = Lw;
-      pin_rows(Lp, correction.kernel_pins());
-      Eigen::VectorXcd bp = bw;
-      for (int p : correction.kernel_pins()) bp[p] = 0;
-      SparseCholesky<Complex> chol;
-      chol.compute(Lp, "stiffened harmonic correction");
-      return Eigen::VectorXcd(chol.solve(bp));
-    }
-    return solve_aligned_correction(mesh, cc, Lw, bw, correction.layers().layer, known, u_free,
-                                    correction.kernel_pins(), slots, curves_of_call.back(), conflicts_of_call.back(),
-                                    options.align_max_shift, options.align_min_length);
+    if (aligned) return aligned->solve(Lw, bw);
+    if (&Lw == &correction.stiffness()) return Eigen::VectorXcd(u_free);
+    Eigen::SparseMatrix<Complex> Lp = Lw;
+    pin_rows(Lp, correction.kernel_pins());
+    Eigen::VectorXcd bp = bw;
+    for (int p : correction.kernel_pins()) bp[p] = 0;
+    weighted_chol.factorize(Lp, "stiffened harmonic correction");
+    return Eigen::VectorXcd(weighted_chol.solve(bp));
   };
   u = solve(correction.stiffness(), b);
   P.energy_harmonic = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
@@ -383,8 +379,10 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
                            progress, P.stiffening);
     if (P.stiffening.iterations > 0) lap("stiffening");
   }
-  P.aligned_curves = std::move(curves_of_call[P.stiffening.kept_iteration]);
-  P.alignment_conflicts = conflicts_of_call[P.stiffening.kept_iteration];
+  if (aligned) {
+    P.aligned_curves = aligned->curves(u);
+    P.alignment_conflicts = aligned->conflicts();
+  }
   const Eigen::MatrixX3cd ucorner = correction.corner_values(u);
 
   // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods

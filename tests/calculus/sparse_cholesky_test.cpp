@@ -161,6 +161,27 @@ TEST(SparseCholesky, RefactorizeReusesAnalysis) {
   }
 }
 
+// factorize(): analyses once, refactorizes while the pattern stays, analyses afresh when it changes; always the
+// same solution as a fresh factorization.
+TEST(SparseCholesky, FactorizeFollowsThePattern) {
+  const Mesh& mesh = cached_mesh("bunny_3k");
+  const Eigen::SparseMatrix<double> A1 = spd_matrix(mesh), A2 = spd_matrix(mesh, 0.05);
+  Eigen::SparseMatrix<double> other = A2;
+  other.coeffRef(0, A2.cols() - 1) = 1e-3;
+  other.coeffRef(A2.cols() - 1, 0) = 1e-3;
+  const Eigen::VectorXd b = random_vector(A1.rows(), 66);
+  for (const CholeskyBackend backend : backends()) {
+    SparseCholesky<double> chol(backend);
+    for (const Eigen::SparseMatrix<double>* A : {&A1, &A2, static_cast<const Eigen::SparseMatrix<double>*>(&other), &A1}) {
+      chol.factorize(*A, "sequence");
+      SparseCholesky<double> fresh(backend);
+      fresh.compute(*A);
+      EXPECT_LT((chol.solve(b) - fresh.solve(b)).norm(), 1e-10 * fresh.solve(b).norm());
+      EXPECT_LT((*A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
+    }
+  }
+}
+
 // bᴴ A⁻¹ b = ‖y‖² for the forward half y = L⁻¹ P b (the E_D evaluation of thesis 6.2.1).
 TEST(SparseCholesky, ForwardSolveGivesEnergy) {
   const Mesh& mesh = cached_mesh("bunny_3k");
