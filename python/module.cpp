@@ -61,8 +61,11 @@ FieldOptions field_options(double trusted_fraction, double lambda, int smoothing
   return o;
 }
 
-ParamOptions param_options(double edge_length, int quads, const std::string& lattice, const std::string& rounding) {
+ParamOptions param_options(double edge_length, int quads, const std::string& lattice, const std::string& rounding,
+                           int stiffening) {
+  if (stiffening < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
   ParamOptions o;
+  o.stiffening.max_iterations = stiffening;
   o.edge_length = edge_length;
   o.target_quads = quads;
   o.lattice = parse_lattice(lattice);
@@ -182,9 +185,9 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
 
 py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                           const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                          long max_iterations, bool keep_better) {
+                          long max_iterations, bool keep_better, int stiffening) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   Parameterization p;
@@ -204,19 +207,20 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   report["edge_length"] = target_edge_length(mesh, popt);
   report["optimize"] = optimize_report;
   report["rounding"] = rounding_to_json(popt, p);
+  report["stiffening"] = stiffening_to_json(p);
   return py::make_tuple(corner_uv_array(p.uv), to_python(report));
 }
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                     const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations, bool keep_better) {
+                    long max_iterations, bool keep_better, int stiffening) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   ExtractionResult ex;
   Report report;
-  nlohmann::json optimize_report, rounding_report;
+  nlohmann::json optimize_report, rounding_report, stiffening_report;
   {
     py::gil_scoped_release release;
     FrameField original;
@@ -224,6 +228,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
     const Parameterization p =
         parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     rounding_report = rounding_to_json(popt, p);
+    stiffening_report = stiffening_to_json(p);
     ex = extract_quads(mesh, p, {}, progress);
     report.parameterization = param_quality(mesh, p);
     report.extraction = ex.report;
@@ -246,6 +251,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
   nlohmann::json j = to_json(report);
   j["optimize"] = optimize_report;
   j["rounding"] = rounding_report;
+  j["stiffening"] = stiffening_report;
   return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(j));
 }
 
@@ -281,6 +287,7 @@ PYBIND11_MODULE(quadcover, m) {
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
         py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
         py::arg("rounding") = "search3", py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
+        py::arg("stiffening") = StiffeningOptions{}.max_iterations,
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
         "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
@@ -288,13 +295,15 @@ PYBIND11_MODULE(quadcover, m) {
         "max_iterations E_D evaluations (0 = until converged); report['optimize'] has E_D and branch points before "
         "and after and the per-iteration log. rounding of the periods (6.3): direct, greedy, search1, search2, "
         "search3 or exact; report['rounding'] has the strategy and E_H. keep_better: also parameterize the original "
-        "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). Ctrl-C stops the "
-        "optimization early.");
+        "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). stiffening: re-solves of the "
+        "final correction against flipped triangles (0 = off); report['stiffening'] has the flips before and after "
+        "and the price E_S. Ctrl-C stops the optimization early.");
   m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
         py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
         py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
+        py::arg("stiffening") = StiffeningOptions{}.max_iterations,
         "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
         "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, "
-        "rounding, max_iterations and keep_better as in parameterize(); the report has the same 'optimize' and "
-        "'rounding' objects.");
+        "rounding, max_iterations, keep_better and stiffening as in parameterize(); the report has the same "
+        "'optimize', 'rounding' and 'stiffening' objects.");
 }

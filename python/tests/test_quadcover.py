@@ -176,3 +176,20 @@ def test_remesh_full_optimization_respects_the_budget():
     assert report["rounding"]["strategy"] == "exact"
     assert report["rounding"]["E_H"] == pytest.approx(report["parameterization"]["energy_harmonic"], rel=1e-12)
     assert report["quad_mesh"]["faces"] == len(Q) > 0
+
+
+def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
+    # couplingdown's plain map folds (tests/param/stiffening_test.cpp); stiffening keeps E_D and E_H and the periods,
+    # lowers the flips and reports its price E_S > 0.
+    V, F = mesh("couplingdown_genus9")
+    uv0, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0)
+    uv1, stiff = quadcover.parameterize(V, F, optimize="none")
+    assert plain["stiffening"]["iterations"] == 0 and plain["stiffening"]["E_S"] == 0
+    assert stiff["stiffening"]["flipped_before"] == plain["flipped_triangles"]
+    assert stiff["flipped_triangles"] == stiff["stiffening"]["flipped_after"] < plain["flipped_triangles"]
+    assert stiff["energy_harmonic"] == pytest.approx(plain["energy_harmonic"], rel=1e-12)
+    assert stiff["stiffening"]["E_S"] > 0
+    worst, _ = seam_defect(F, uv1)
+    assert worst < 1e-6 * max(1.0, np.ptp(uv1.reshape(-1, 2), axis=0).max())
+    with pytest.raises(ValueError):
+        quadcover.parameterize(V, F, stiffening=-1)
