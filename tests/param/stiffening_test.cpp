@@ -14,7 +14,7 @@
 namespace quadcover {
 namespace {
 
-// Per-corner uv of the map (x, y) ↦ a x + b y (complex a, b) on a flat grid, and that map's face gradients as Z.
+// Per-corner uv of the map (x, y) ↦ a x + b y (complex a, b) on a flat grid (its face gradients serve as Z).
 Eigen::MatrixX3cd linear_map(const Mesh& mesh, Complex a, Complex b) {
   Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
   for (int f = 0; f < mesh.num_faces(); ++f)
@@ -25,22 +25,12 @@ Eigen::MatrixX3cd linear_map(const Mesh& mesh, Complex a, Complex b) {
   return uv;
 }
 
-FramePairs gradients(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
-  FramePairs Z(mesh.num_faces(), 2);
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    const auto [g0, g1] = face_gradient(mesh, uv, f);
-    Z(f, 0) = g0;
-    Z(f, 1) = g1;
-  }
-  return Z;
-}
-
 // d = |σ₁ − 1| + |σ₂ − 1| of J = ∇φ Z⁻¹: 0 for the map Z integrates (and for a rotation of it), 2 for twice it,
 // 2 for its mirror image (σ₂ = −1), 1.5 for a shear-free stretch (2, ½).
 TEST(FrameDistortion, SingularValuesOfTheMapRelativeToTheFrame) {
   const Mesh grid = testing::make_grid(4);
   const Eigen::MatrixX3cd uv = linear_map(grid, Complex(1, 0.3), Complex(-0.2, 0.9));
-  const FramePairs Z = gradients(grid, uv);
+  const FramePairs Z = corner_gradient(grid, uv);
   const auto expect_all = [&](const Eigen::MatrixX3cd& map, double d) {
     const Eigen::VectorXd dist = frame_distortion(grid, map, Z);
     for (int f = 0; f < grid.num_faces(); ++f) ASSERT_NEAR(dist[f], d, 1e-9) << f;
