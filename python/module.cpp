@@ -74,7 +74,8 @@ ParamOptions param_options(double edge_length, int quads, const std::string& lat
 }
 
 OptimizeOptions optimize_options(const std::string& optimize, long max_iterations, const ParamOptions& popt) {
-  if (max_iterations < 0) throw InputError("max_iterations", 0, "must be >= 0 (0 = until converged)");
+  if (max_iterations < kAutoBudget)
+    throw InputError("max_iterations", 0, "must be >= -1 (-1 = auto, 0 = until converged)");
   OptimizeOptions o;
   o.mode = parse_optimize_mode(optimize);
   o.max_evaluations = max_iterations;
@@ -286,13 +287,14 @@ PYBIND11_MODULE(quadcover, m) {
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
   m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
         py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
-        py::arg("rounding") = "search3", py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
+        py::arg("rounding") = "search3", py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
         py::arg("stiffening") = StiffeningOptions{}.max_iterations,
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
         "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
         "(Algorithm 6.1 moving/cancelling branch points) or full (with creation and balancing, 6.4), at most "
-        "max_iterations E_D evaluations (0 = until converged); report['optimize'] has E_D and branch points before "
+        "max_iterations E_D evaluations (-1 = auto: the budget grows with the mesh, plus a time limit for full; 0 = "
+        "until converged); report['optimize'] has E_D and branch points before "
         "and after and the per-iteration log. rounding of the periods (6.3): direct, greedy, search1, search2, "
         "search3 or exact; report['rounding'] has the strategy and E_H. keep_better: also parameterize the original "
         "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). stiffening: re-solves of the "
@@ -300,7 +302,7 @@ PYBIND11_MODULE(quadcover, m) {
         "and the price E_S. Ctrl-C stops the optimization early.");
   m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
         py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-        py::arg("max_iterations") = 3000, py::arg("keep_better") = true,
+        py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
         py::arg("stiffening") = StiffeningOptions{}.max_iterations,
         "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
         "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, "

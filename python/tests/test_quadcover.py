@@ -162,7 +162,7 @@ def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
     with pytest.raises(ValueError, match="rounding"):
         quadcover.parameterize(V, F, rounding="nearest")
     with pytest.raises(ValueError):
-        quadcover.parameterize(V, F, max_iterations=-1)
+        quadcover.parameterize(V, F, max_iterations=-2)  # -1 = auto, 0 = until converged
 
 
 def test_remesh_full_optimization_respects_the_budget():
