@@ -26,12 +26,7 @@ using quadcover::testing::run_cli;
 using quadcover::testing::slurp;
 using Names = std::vector<std::string>;
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("quadcover_batch_names_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return quadcover::testing::fresh_dir("batch_names", name); }
 
 TEST(BatchNames, DistinctStemsKeepTheirNames) {
   EXPECT_EQ(batch_output_stems({"a/bunny.obj", "b/cow.off", "spot.ply"}, "out"), (Names{"bunny", "cow", "spot"}));

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "common/errors.h"
+#include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
 namespace quadcover::cli {
@@ -19,12 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("quadcover_cli_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return quadcover::testing::fresh_dir("cli_test", name); }
 
 TEST(ProgressLine, PlainLineShowsStagePercentMessageAndEta) {
   const std::string line = TerminalProgress::format_line("optimize", 0.25, "iteration 3, E_D 1.5", 12.2, false, 0);

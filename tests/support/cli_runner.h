@@ -2,6 +2,7 @@
 // Running the built CLI from tests: the binary is QUADCOVER_CLI (defined for every test executable). Header-only so
 // that the macro of the including test applies.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -24,6 +25,15 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// An empty folder temp/quadcover_PREFIX_NAME_PID (removed first if it exists), for a test's files.
+inline std::filesystem::path fresh_dir(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("quadcover_" + prefix + "_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 /// Runs `quadcover ARGS` and captures stdout. stderr goes to `stderr_file` (read back into CliRun::err) or is
