@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "topology/union_find.h"
+
 namespace quadcover {
 
 namespace {
@@ -16,6 +18,31 @@ using Key = unsigned long long;
 Key edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<Key>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
+}
+
+/// Components of a polygon mesh through shared edges: per face its representative, per representative the number
+/// of faces and whether some side of the component is used by one face only (open).
+struct FaceComponents {
+  std::vector<int> of_face, size;
+  std::vector<char> open;
+};
+FaceComponents face_components(const QuadMesh& q) {
+  const int nf = q.num_faces();
+  detail::UnionFind components(nf);
+  std::unordered_map<Key, std::pair<int, int>> sides;  // undirected edge -> (first face, uses)
+  for (int f = 0; f < nf; ++f) {
+    const auto& F = q.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      auto [it, fresh] = sides.emplace(edge_key(F[i], F[(i + 1) % F.size()]), std::pair{f, 0});
+      ++it->second.second;
+      if (!fresh) components.unite(f, it->second.first);
+    }
+  }
+  FaceComponents c{std::vector<int>(nf), std::vector<int>(nf, 0), std::vector<char>(nf, 0)};
+  for (int f = 0; f < nf; ++f) ++c.size[c.of_face[f] = components.find(f)];
+  for (const auto& [k, s] : sides)
+    if (s.second == 1) c.open[c.of_face[s.first]] = 1;
+  return c;
 }
 
 // F and G share exactly one edge (a→b in F, b→a in G) and no other vertex: the loop of their union, and the key of
@@ -204,31 +231,12 @@ QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
 
 int drop_closed_debris(QuadMesh& q, int min_faces) {
   const int nf = q.num_faces();
-  std::vector<int> parent(nf);
-  for (int f = 0; f < nf; ++f) parent[f] = f;
-  auto root = [&](int f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
-  std::unordered_map<Key, std::pair<int, int>> sides;  // undirected edge -> (first face, uses)
-  for (int f = 0; f < nf; ++f) {
-    const auto& F = q.faces[f];
-    for (std::size_t i = 0; i < F.size(); ++i) {
-      auto [it, fresh] = sides.emplace(edge_key(F[i], F[(i + 1) % F.size()]), std::pair{f, 0});
-      ++it->second.second;
-      if (!fresh) parent[root(f)] = root(it->second.first);
-    }
-  }
-  std::vector<int> size(nf, 0);
-  std::vector<char> open(nf, 0);
-  for (int f = 0; f < nf; ++f) ++size[root(f)];
-  for (const auto& [k, s] : sides)
-    if (s.second == 1) open[root(s.first)] = 1;
+  const FaceComponents c = face_components(q);
   std::vector<std::vector<int>> kept;
   int dropped = 0;
   for (int f = 0; f < nf; ++f) {
-    const int r = root(f);
-    if (!open[r] && size[r] < min_faces)
+    const int r = c.of_face[f];
+    if (!c.open[r] && c.size[r] < min_faces)
       ++dropped;
     else
       kept.push_back(std::move(q.faces[f]));
@@ -248,22 +256,7 @@ int fill_small_holes(QuadMesh& q, int max_loop, const std::function<bool(const s
   // Components through shared edges: only holes of a component with at least a quarter of the faces are closed
   // (a small piece cut off by folds would otherwise become a closed blob).
   const int nf = q.num_faces();
-  std::vector<int> parent(nf);
-  for (int f = 0; f < nf; ++f) parent[f] = f;
-  auto root = [&](int f) {
-    while (parent[f] != f) f = parent[f] = parent[parent[f]];
-    return f;
-  };
-  std::unordered_map<Key, int> side_face;
-  for (int f = 0; f < nf; ++f) {
-    const auto& F = q.faces[f];
-    for (std::size_t i = 0; i < F.size(); ++i) {
-      const auto [it, fresh] = side_face.emplace(edge_key(F[i], F[(i + 1) % F.size()]), f);
-      if (!fresh) parent[root(f)] = root(it->second);
-    }
-  }
-  std::vector<int> comp_size(nf, 0);
-  for (int f = 0; f < nf; ++f) ++comp_size[root(f)];
+  const FaceComponents components = face_components(q);
   std::unordered_map<int, std::vector<int>> next;  // boundary half-edges leaving a vertex
   std::vector<std::tuple<int, int, int>> starts;   // (a, b, face)
   for (int f = 0; f < nf; ++f) {
@@ -278,7 +271,7 @@ int fill_small_holes(QuadMesh& q, int max_loop, const std::function<bool(const s
   int filled = 0;
   for (const auto& [a0, b0, f0] : starts) {
     if (used.count(dkey(a0, b0))) continue;
-    const bool big = 4 * comp_size[root(f0)] >= nf;
+    const bool big = 4 * components.size[components.of_face[f0]] >= nf;
     std::vector<int> loop = {a0};
     bool ok = true;
     int a = a0, b = b0;

@@ -1,5 +1,5 @@
 #pragma once
-// Disjoint sets with path halving and union by size (internal helper of the topology stage).
+// Disjoint sets with path halving and union by size (helper of the topology stage, also used by later stages).
 #include <numeric>
 #include <utility>
 #include <vector>
