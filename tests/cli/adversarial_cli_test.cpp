@@ -221,13 +221,7 @@ TEST_F(AdversarialCli, HundredsOfBoundaryLoops) {
   // builds 2401; this size keeps both commands within a few seconds).
   const int n = 50;
   const Mesh grid = testing::make_grid(n);
-  std::vector<int> keep;
-  for (int f = 0; f < grid.num_faces(); ++f) {
-    const int quad = f / 2, i = quad % n, j = quad / n;  // make_grid numbers quads row by row, two triangles each
-    if (!(i % 2 == 1 && j % 2 == 1 && i < n - 2 && j < n - 2)) keep.push_back(f);
-  }
-  Eigen::MatrixX3i F(static_cast<Eigen::Index>(keep.size()), 3);
-  for (std::size_t k = 0; k < keep.size(); ++k) F.row(static_cast<Eigen::Index>(k)) = grid.F().row(keep[k]);
+  const Eigen::MatrixX3i F = testing::grid_faces_with_holes(grid, n);
   // Default options, so Algorithm 6.1 (--optimize relocate) runs too: it used to not finish here; it now stops on
   // its evaluation budget (or converges) and --keep-better keeps whichever field gives the better map.
   check_both("holes", grid.V(), F);

@@ -71,29 +71,14 @@ TEST(Adversarial, FlatDiskHasZeroInteriorCurvature) {
   expect_sane_geometry(m);
 }
 
-// A fan of n triangles around one centre vertex (a disk), optionally closed by a second apex (a bipyramid).
-Mesh fan(int n, bool closed) {
-  Eigen::MatrixX3d V(n + 2, 3);
-  V.row(0) << 0, 0, 0.3;
-  V.row(n + 1) << 0, 0, -0.3;
-  for (int i = 0; i < n; ++i) V.row(i + 1) << std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n), 0;
-  Eigen::MatrixX3i F((closed ? 2 : 1) * n, 3);
-  for (int i = 0; i < n; ++i) {
-    F.row(i) << 0, 1 + i, 1 + (i + 1) % n;
-    if (closed) F.row(n + i) << n + 1, 1 + (i + 1) % n, 1 + i;
-  }
-  if (!closed) V.conservativeResize(n + 1, 3);
-  return build_mesh(soup_of(V, F)).mesh;
-}
-
 TEST(Adversarial, ValenceOneThousand) {
-  const Mesh disk = fan(1000, false);
+  const Mesh disk = testing::make_fan(1000, false);
   EXPECT_EQ(disk.valence(0), 1000);
   EXPECT_EQ(disk.num_boundary_loops(), 1);
   EXPECT_EQ(disk.euler_characteristic(), 1);
   EXPECT_EQ(disk.fan(0).size(), 1000u);
   expect_sane_geometry(disk);
-  const Mesh bipyramid = fan(1000, true);
+  const Mesh bipyramid = testing::make_fan(1000, true);
   EXPECT_EQ(bipyramid.valence(0), 1000);
   EXPECT_EQ(bipyramid.valence(1001), 1000);
   EXPECT_EQ(bipyramid.genus(), 0);
@@ -104,7 +89,7 @@ TEST(Adversarial, ValenceOneThousand) {
 TEST(Adversarial, ValenceOneHundredThousandStaysFast) {
   // Validation and connectivity must not be quadratic in the valence.
   const auto t0 = std::chrono::steady_clock::now();
-  const Mesh bipyramid = fan(100000, true);
+  const Mesh bipyramid = testing::make_fan(100000, true);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(bipyramid.valence(0), 100000);
   EXPECT_EQ(bipyramid.euler_characteristic(), 2);
@@ -175,14 +160,7 @@ TEST(Adversarial, ThousandsOfBoundaryLoops) {
   // A 100 × 100 grid with the quads (2a+1, 2b+1), a, b < 49, removed: 2401 separate square holes.
   const int n = 100;
   const Mesh grid = testing::make_grid(n);
-  std::vector<int> keep;
-  for (int f = 0; f < grid.num_faces(); ++f) {
-    const int q = f / 2, i = q % n, j = q / n;  // make_grid numbers quads row by row, two triangles each
-    const bool hole = i % 2 == 1 && j % 2 == 1 && i < 98 && j < 98;
-    if (!hole) keep.push_back(f);
-  }
-  Eigen::MatrixX3i F(static_cast<Eigen::Index>(keep.size()), 3);
-  for (std::size_t k = 0; k < keep.size(); ++k) F.row(static_cast<Eigen::Index>(k)) = grid.F().row(keep[k]);
+  const Eigen::MatrixX3i F = testing::grid_faces_with_holes(grid, n);
   const Mesh m = build_mesh(soup_of(grid.V(), F)).mesh;
   EXPECT_EQ(m.num_components(), 1);
   EXPECT_EQ(m.num_boundary_loops(), 1 + 49 * 49);

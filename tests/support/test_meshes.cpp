@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <vector>
 
 #include "io/read_mesh.h"
 
@@ -43,6 +44,17 @@ Mesh make_fan(int n, bool closed, double height) {
   }
   if (closed) V.row(n + 1) << 0, 0, -height;
   return Mesh::from_triangles(V, F);
+}
+
+Eigen::MatrixX3i grid_faces_with_holes(const Mesh& grid, int n) {
+  std::vector<int> keep;
+  for (int f = 0; f < grid.num_faces(); ++f) {
+    const int quad = f / 2, i = quad % n, j = quad / n;  // make_grid numbers quads row by row, two triangles each
+    if (!(i % 2 == 1 && j % 2 == 1 && i < n - 2 && j < n - 2)) keep.push_back(f);
+  }
+  Eigen::MatrixX3i F(static_cast<Eigen::Index>(keep.size()), 3);
+  for (std::size_t k = 0; k < keep.size(); ++k) F.row(static_cast<Eigen::Index>(k)) = grid.F().row(keep[k]);
+  return F;
 }
 
 Mesh make_grid(int n) {

@@ -15,6 +15,9 @@ Mesh load_test_mesh(const std::string& name);
 Mesh make_torus(int n_major, int n_minor, double R = 2.0, double r = 0.7);
 /// A regular triangulated grid of the unit square [0,1]² (z = 0), n × n quads.
 Mesh make_grid(int n);
+/// The triangles of make_grid(n) without the quads (i, j) with i and j odd and below n − 2: ((n − 2) / 2)²
+/// separate square holes, as faces over the vertices grid.V() of grid = make_grid(n).
+Eigen::MatrixX3i grid_faces_with_holes(const Mesh& grid, int n);
 /// An open cylinder of radius r and height h around the z axis, n_around × n_up quads.
 Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
 /// A UV sphere-like closed surface (octahedron subdivided `level` times and projected), scaled by (a, b, c).
