@@ -1,6 +1,7 @@
 // The QuadCover pipeline on the covering (thesis 2.4, 4.1-4.2).
 #include "param/parameterize.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -344,7 +345,6 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   const FramePairs Sigma = corner_gradient(mesh, sigma);
   const Eigen::VectorXcd b = correction.rhs(Sigma);
   const Eigen::VectorXcd u_free = correction.solve(b).col(0);
-  Eigen::VectorXcd u = u_free;
   const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;  // φ = known − u
   std::vector<CurveSlot> slots;
   if (options.align_curves) {
@@ -353,16 +353,18 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     const FeatureConstraints features = feature_constraints(mesh, options.features);
     slots = aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
   }
-  // The final solve for any (weighted) 𝔏̄_w u = b_w, with the curve constraints if there are any. Re-solves (local
-  // stiffening) keep the pattern and reuse the symbolic analysis.
   std::optional<AlignedCorrection> aligned;
   if (!slots.empty())
     aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
                     options.align_max_shift, options.align_min_length);
+  Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
+  P.energy_harmonic = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
+  lap("harmonic");
+  // Local stiffening re-solves with weighted 𝔏̄_w u = b_w, with the curve constraints if there are any; they keep
+  // the pattern and reuse the symbolic analysis.
   SparseCholesky<Complex> weighted_chol;
   const WeightedCorrectionSolve solve = [&](const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw) {
     if (aligned) return aligned->solve(Lw, bw);
-    if (&Lw == &correction.stiffness()) return Eigen::VectorXcd(u_free);
     Eigen::SparseMatrix<Complex> Lp = Lw;
     pin_rows(Lp, correction.kernel_pins());
     Eigen::VectorXcd bp = bw;
@@ -370,23 +372,22 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     weighted_chol.factorize(Lp, "stiffened harmonic correction");
     return Eigen::VectorXcd(weighted_chol.solve(bp));
   };
-  u = solve(correction.stiffness(), b);
-  P.energy_harmonic = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
-  lap("harmonic");
   if (options.stiffening.max_iterations > 0) {
     // ∇φ − Z = (Σ̃_d − X̃_C) − ∇u: the target of ∇u in the weighted solves.
-    u = stiffen_correction(mesh, cc.matching, correction, known, Z, Sigma, Sigma - XC, u, solve, options.stiffening,
+    u = stiffen_correction(mesh, cc.matching, correction, known, Z, Sigma - XC, u, solve, options.stiffening,
                            progress, P.stiffening);
+    if (P.stiffening.kept_iteration > 0)  // E_S = ½‖Σ̃_d − ∇u‖² − E_H (X̃_C is orthogonal to both gradients)
+      P.stiffening.energy = std::max(
+          0.0, frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u))) - P.energy_harmonic);
     if (P.stiffening.iterations > 0) lap("stiffening");
   }
   if (aligned) {
     P.aligned_curves = aligned->curves(u);
     P.alignment_conflicts = aligned->conflicts();
   }
-  const Eigen::MatrixX3cd ucorner = correction.corner_values(u);
 
   // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
-  P.uv = corner_values(cc, phi) + sigma - ucorner;
+  P.uv = known - correction.corner_values(u);
   const Eigen::VectorXcd cfinal = cut_translations(mesh, cc, P.uv);
   P.transition_rotation = Eigen::VectorXi::Zero(ne);
   P.transition_translation = Eigen::VectorXcd::Zero(ne);

@@ -29,7 +29,7 @@ Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, 
 
 Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                     const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
-                                    const FramePairs& Z, const FramePairs& Sigma, const FramePairs& target,
+                                    const FramePairs& Z, const FramePairs& target,
                                     const Eigen::VectorXcd& u0, const WeightedCorrectionSolve& solve,
                                     const StiffeningOptions& options, ProgressSink& progress,
                                     Parameterization::Stiffening& result) {
@@ -63,11 +63,6 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
     }
   }
   result.flipped_after = best_flips;
-  if (result.flipped_after < result.flipped_before) {
-    const double e0 = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u0)));
-    const double e1 = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(best)));
-    result.energy = std::max(0.0, e1 - e0);
-  }
   return best;
 }
 

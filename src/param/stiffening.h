@@ -35,10 +35,10 @@ using WeightedCorrectionSolve =
 /// returns the u with the fewest flipped triangles (u0 unless a re-solve strictly improves on it; re-solve k is the
 /// k-th call of `solve`, reported as result.kept_iteration). `base` holds the
 /// corner values of φ̂ + σ (φ = base − u), `target` = T = Σ̃_d − X̃_C, Z the scaled gauged field. Fills `result`
-/// (E_S measured against ‖Σ̃_d − ∇u0‖²).
+/// except its price E_S (the caller knows E_H).
 Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                     const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
-                                    const FramePairs& Z, const FramePairs& Sigma, const FramePairs& target,
+                                    const FramePairs& Z, const FramePairs& target,
                                     const Eigen::VectorXcd& u0, const WeightedCorrectionSolve& solve,
                                     const StiffeningOptions& options, ProgressSink& progress,
                                     Parameterization::Stiffening& result);
