@@ -64,19 +64,21 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
   r.field = cross_field_with_straightest_matching(mesh, X);
   r.energy_smooth_initial = r.energy_smooth = smoothing_energy(mesh, r.field);
 
+  // β per face: the rotation from X_t to the nearest curvature direction on trusted faces, 0 elsewhere.
+  auto curvature_targets = [&](const Eigen::VectorXcd& X) {
+    Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);
+    for (int t = 0; t < nf; ++t)
+      if (r.trusted[static_cast<std::size_t>(t)])
+        beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / X[t], 4));
+    return beta;
+  };
   if (!progress.cancelled() && smoother) {
     progress.report("field", 0.5, "smoothing (5.3)");
     smoother->set_input(r.field);
-    if (options.fill == Fill::Smooth) {
-      // E_A measures the deviation from the original curvature directions on the trusted faces (5.3), which
-      // the power fill does not reproduce exactly: β_t = the rotation from X_t to the nearest of the four
-      // curvature directions. Propagated trusted frames are the curvature frames themselves (β = 0).
-      Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);
-      for (int t = 0; t < nf; ++t)
-        if (r.trusted[static_cast<std::size_t>(t)])
-          beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / r.field.X[t], 4));
-      smoother->set_alignment_targets(beta);
-    }
+    // E_A measures the deviation from the original curvature directions on the trusted faces (5.3), which
+    // the power fill does not reproduce exactly: β_t = the rotation from X_t to the nearest of the four
+    // curvature directions. Propagated trusted frames are the curvature frames themselves (β = 0).
+    if (options.fill == Fill::Smooth) smoother->set_alignment_targets(curvature_targets(r.field.X));
     Eigen::VectorXd alpha = smoother->solve();
     for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
       // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching
@@ -109,11 +111,7 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
       apply_quarter_moves(mesh, r.singularity_moves, split.matching);
       if (!smoother)
         smoother = std::make_unique<FrameSmoother>(mesh, r.stability, r.trusted, r.constrained, options.lambda);
-      Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);  // E_A towards the curvature directions, as above
-      for (int t = 0; t < nf; ++t)
-        if (r.trusted[static_cast<std::size_t>(t)])
-          beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / split.X[t], 4));
-      smoother->set_alignment_targets(beta);
+      smoother->set_alignment_targets(curvature_targets(split.X));  // E_A towards the curvature directions
       smoother->set_input(split);
       const Eigen::VectorXd alpha = smoother->solve();
       r.field = smoother->rotated(alpha);
