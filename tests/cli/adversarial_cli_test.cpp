@@ -32,9 +32,7 @@ using quadcover::testing::CliRun;
 class AdversarialCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("qc_adversarial_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = quadcover::testing::fresh_dir("adversarial_cli", "files");
   }
   void TearDown() override { fs::remove_all(dir_); }
 

@@ -20,9 +20,7 @@ using quadcover::testing::CliRun;
 CliRun run(const std::string& args) { return quadcover::testing::run_cli(args); }
 
 TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
-  const fs::path dir = fs::temp_directory_path() / ("quadcover_batch_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = quadcover::testing::fresh_dir("batch_cli", "files");
   fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "a_eight.obj");
   fs::copy_file(quadcover::testing::data_path("bad/torus_klein_nonorientable"), dir / "b_klein.obj");
   const std::string extra = quadcover::testing::data_path("torus_5k");

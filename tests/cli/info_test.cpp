@@ -14,6 +14,7 @@
 #include "io/write_off.h"
 #include "io/write_ply.h"
 #include "io/write_stl.h"
+#include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -30,11 +31,7 @@ struct CliResult {
 class InfoCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("quadcover_info_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-            "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = quadcover::testing::fresh_dir("info_test", ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   void TearDown() override {
     std::error_code ec;

@@ -40,9 +40,7 @@ std::pair<int, int> png_size(const fs::path& p) {
 class OptimizeCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("quadcover_optimize_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    dir = quadcover::testing::fresh_dir("optimize_cli", "files");
   }
   void TearDown() override { fs::remove_all(dir); }
   std::string path(const std::string& name) const { return (dir / name).string(); }

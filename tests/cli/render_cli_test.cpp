@@ -23,9 +23,7 @@ Result run(const std::string& args) { return quadcover::testing::run_cli(args); 
 class RenderCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("quadcover_render_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    dir = quadcover::testing::fresh_dir("render_cli", "files");
     // A 4 × 4 grid of the unit square with per-corner vt = 4·(x, y): 16 checker squares, no seams.
     std::ofstream obj(dir / "grid.obj");
     for (int j = 0; j <= 4; ++j)
