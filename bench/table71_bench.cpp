@@ -31,6 +31,7 @@ struct Setup {
   qc::OptimizeMode mode = qc::OptimizeMode::None;
   long max_evaluations = 0;  ///< 0 = until converged
   qc::RoundingStrategy rounding = qc::RoundingStrategy::Direct;
+  qc::FieldStyle field = qc::FieldStyle::Curvature;  ///< --field of the CLI
 };
 
 struct Column {
@@ -51,12 +52,14 @@ qc::Mesh load() { return qc::build_mesh(qc::read_mesh(mesh_path)).mesh; }
 // density only through Δ_EH of `full` (E_H is measured in grid units), so it is re-run for each density.
 qc::ExtractionResult pipeline(const qc::Mesh& mesh, const Setup& setup, int quads, qc::Parameterization& P,
                               qc::OptimizeResult& opt) {
-  const qc::FrameFieldResult field = qc::compute_frame_field_detailed(mesh);
+  const qc::FieldOptions fo = qc::field_options(setup.field);
+  const qc::FrameFieldResult field = qc::compute_frame_field_detailed(mesh, fo);
   qc::ParamOptions po;
   po.target_quads = quads;
   po.rounding.strategy = setup.rounding;
   qc::OptimizeOptions oo;
   oo.mode = setup.mode;
+  oo.lambda = fo.lambda;
   oo.max_evaluations = setup.max_evaluations;
   oo.param = po;
   opt = qc::optimize_field(mesh, field, oo);
@@ -199,7 +202,10 @@ int main(int argc, char** argv) {
     const std::vector<Setup> setups = {{"QuadCover", M::None, 0, R::Direct},
                                        {"Relocation", M::Relocate, 0, R::Search3},
                                        {"Balancing (full)", M::Full, 0, R::Search3},
-                                       {"full, CLI budget 3000", M::Full, 3000, R::Search3}};
+                                       {"full, CLI budget 3000", M::Full, 3000, R::Search3},
+                                       {"Relocation, smooth field", M::Relocate, 0, R::Search3, qc::FieldStyle::Smooth},
+                                       {"Balancing (full), smooth field", M::Full, 0, R::Search3,
+                                        qc::FieldStyle::Smooth}};
     std::vector<Column> cols;
     for (const Setup& s : setups) cols.push_back(run_column(mesh, s));
     print_table(cols);

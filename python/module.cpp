@@ -62,10 +62,12 @@ FieldOptions field_options(double trusted_fraction, double lambda, int smoothing
 }
 
 ParamOptions param_options(double edge_length, int quads, const std::string& lattice, const std::string& rounding,
-                           int stiffening) {
+                           int stiffening, int relaxation) {
   if (stiffening < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
+  if (relaxation < 0) throw InputError("relaxation", 0, "must be >= 0 (0 = off)");
   ParamOptions o;
   o.stiffening.max_iterations = stiffening;
+  o.relaxation.iterations = relaxation;
   o.edge_length = edge_length;
   o.target_quads = quads;
   o.lattice = parse_lattice(lattice);
@@ -85,9 +87,11 @@ OptimizeOptions optimize_options(const std::string& optimize, long max_iteration
 
 /// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object and
 /// `original` the field before the optimization.
-FrameField optimized_field(const Mesh& mesh, const OptimizeOptions& oopt, ProgressSink& progress,
+FrameField optimized_field(const Mesh& mesh, const std::string& style, OptimizeOptions oopt, ProgressSink& progress,
                            nlohmann::json& report, FrameField& original) {
-  const FrameFieldResult f = compute_frame_field_detailed(mesh, {}, progress);
+  const FieldOptions fo = field_options(parse_field_style(style));
+  oopt.lambda = fo.lambda;  // the re-smoothing of Algorithm 6.1 uses the field stage's λ
+  const FrameFieldResult f = compute_frame_field_detailed(mesh, fo, progress);
   original = f.field;
   OptimizeResult r = optimize_field(mesh, f, oopt, progress);
   report = to_json(r, oopt.mode);
@@ -186,9 +190,10 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
 
 py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                           const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                          long max_iterations, bool keep_better, int stiffening) {
+                          long max_iterations, bool keep_better, int stiffening, int relaxation,
+                          const std::string& field) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   Parameterization p;
@@ -197,7 +202,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   {
     py::gil_scoped_release release;
     FrameField original;
-    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
+    const FrameField f = optimized_field(mesh, field, oopt, progress, optimize_report, original);
     p = parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     q = param_quality(mesh, p);
   }
@@ -208,27 +213,30 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   report["edge_length"] = target_edge_length(mesh, popt);
   report["optimize"] = optimize_report;
   report["rounding"] = rounding_to_json(popt, p);
+  report["relaxation"] = relaxation_to_json(p);
   report["stiffening"] = stiffening_to_json(p);
   return py::make_tuple(corner_uv_array(p.uv), to_python(report));
 }
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                     const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations, bool keep_better, int stiffening) {
+                    long max_iterations, bool keep_better, int stiffening, int relaxation,
+                          const std::string& field) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening);
+  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   ExtractionResult ex;
   Report report;
-  nlohmann::json optimize_report, rounding_report, stiffening_report;
+  nlohmann::json optimize_report, rounding_report, relaxation_report, stiffening_report;
   {
     py::gil_scoped_release release;
     FrameField original;
-    const FrameField f = optimized_field(mesh, oopt, progress, optimize_report, original);
+    const FrameField f = optimized_field(mesh, field, oopt, progress, optimize_report, original);
     const Parameterization p =
         parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     rounding_report = rounding_to_json(popt, p);
+    relaxation_report = relaxation_to_json(p);
     stiffening_report = stiffening_to_json(p);
     ex = extract_quads(mesh, p, {}, progress);
     report.parameterization = param_quality(mesh, p);
@@ -252,6 +260,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
   nlohmann::json j = to_json(report);
   j["optimize"] = optimize_report;
   j["rounding"] = rounding_report;
+  j["relaxation"] = relaxation_report;
   j["stiffening"] = stiffening_report;
   return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(j));
 }
@@ -289,6 +298,7 @@ PYBIND11_MODULE(quadcover, m) {
         py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
         py::arg("rounding") = "search3", py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
         py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+        py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
         "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
@@ -299,13 +309,16 @@ PYBIND11_MODULE(quadcover, m) {
         "search3 or exact; report['rounding'] has the strategy and E_H. keep_better: also parameterize the original "
         "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). stiffening: re-solves of the "
         "final correction against flipped triangles (0 = off); report['stiffening'] has the flips before and after "
-        "and the price E_S. Ctrl-C stops the optimization early.");
+        "and the price E_S. relaxation: ARAP local/global rounds of the final map (0 = off); report['relaxation'] "
+        "has the ARAP distortion before and after and the price E_R. field: 'curvature' (thesis ch. 5) or "
+        "'smooth' (smoothest cross field, lower distortion on organic shapes). Ctrl-C stops the optimization early.");
   m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
         py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
         py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
         py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+        py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
         "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
         "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, "
-        "rounding, max_iterations, keep_better and stiffening as in parameterize(); the report has the same "
-        "'optimize', 'rounding' and 'stiffening' objects.");
+        "rounding, max_iterations, keep_better, stiffening, relaxation and field as in parameterize(); the report has "
+        "the same 'optimize', 'rounding', 'relaxation' and 'stiffening' objects.");
 }

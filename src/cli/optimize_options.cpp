@@ -11,6 +11,12 @@
 namespace quadcover::cli {
 
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
+  cmd.add_option("--field", options.field,
+                 "Guiding cross field: curvature = aligned to the principal curvature directions where they are "
+                 "reliable (thesis ch. 5); smooth = the smoothest cross field with a weak pull to them (as MIQ), "
+                 "lower distortion on organic shapes (Table 7.1 in BENCHMARKS.md). Features are followed by both")
+      ->check(CLI::IsMember({"curvature", "smooth"}))
+      ->capture_default_str();
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
                  "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "
@@ -40,9 +46,12 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
+FieldOptions field_options(const OptimizeCliOptions& cli) { return field_options(parse_field_style(cli.field)); }
+
 OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOptions& param) {
   OptimizeOptions o;
   o.mode = parse_optimize_mode(cli.optimize);
+  o.lambda = field_options(cli).lambda;
   o.max_evaluations = cli.max_iterations;
   o.param = param;
   return o;
@@ -80,7 +89,7 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
 
 FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
                            ProgressSink& progress, nlohmann::json& optimize_report) {
-  const FrameFieldResult field = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_options(cli), progress);
   return run_optimize(mesh, field, cli, param, progress, optimize_report);
 }
 

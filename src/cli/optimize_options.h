@@ -21,9 +21,13 @@ struct OptimizeCliOptions {
   std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
   bool keep_better = true;            ///< see parameterize_best()
+  std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
 };
 
-/// Adds --optimize, --rounding and --max-iterations to `cmd` (validated by CLI11).
+/// The field stage's options of --field (its λ also serves the re-smoothing of --optimize).
+FieldOptions field_options(const OptimizeCliOptions& cli);
+
+/// Adds --field, --optimize, --rounding, --max-iterations and --keep-better to `cmd` (validated by CLI11).
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
 /// Library options from the parsed command line (param options are used by --optimize full to measure E_H).

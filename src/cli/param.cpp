@@ -34,6 +34,7 @@ struct ParamCmdOptions {
   PictureCliOptions pictures;
   bool align = true;
   int stiffening = StiffeningOptions{}.max_iterations;
+  int relaxation = RelaxationOptions{}.iterations;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
@@ -74,6 +75,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   po.target_quads = opt.quads;
   po.align_curves = opt.align;
   po.stiffening.max_iterations = opt.stiffening;
+  po.relaxation.iterations = opt.relaxation;
   apply_rounding(opt.optimize, po);
   if (!out.plot.empty() && opt.optimize.optimize == "none")
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
@@ -91,7 +93,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const Mesh mesh = build_mesh(read_mesh(input)).mesh;
   lap("read");
   nlohmann::json optimize;
-  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
+  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
   lap("field");
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
   lap("optimize");
@@ -146,7 +148,9 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                            {"h_sym", P.h_sym},
                            {"E_D", P.energy_curl},
                            {"E_H", P.energy_harmonic},
+                           {"E_R", P.relaxation.energy},
                            {"E_S", P.stiffening.energy},
+                           {"relaxation", relaxation_to_json(P)},
                            {"stiffening", stiffening_to_json(P)},
                            {"flipped_triangles", flips.flipped},
                            {"flipped_faces", flips.flipped_faces},
@@ -215,6 +219,7 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->add_option("--align", opt->align,
                   "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();

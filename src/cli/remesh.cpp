@@ -31,6 +31,7 @@ struct RemeshOptions {
   double edge_length = 0;
   std::string lattice = "rotated";
   int stiffening = StiffeningOptions{}.max_iterations;
+  int relaxation = RelaxationOptions{}.iterations;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
@@ -74,11 +75,12 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   ParamOptions po;
   po.lattice = parse_lattice(opt.lattice);
   po.stiffening.max_iterations = opt.stiffening;
+  po.relaxation.iterations = opt.relaxation;
   po.edge_length = opt.edge_length;
   // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
   po.target_quads = opt.vertices;
   apply_rounding(opt.optimize, po);
-  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, FieldOptions{}, progress);
+  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
   lap("field");
   nlohmann::json optimize;
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
@@ -114,6 +116,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   nlohmann::json j = to_json(report);
   j["optimize"] = optimize;
   j["rounding"] = rounding_to_json(po, P);
+  j["relaxation"] = relaxation_to_json(P);
   j["stiffening"] = stiffening_to_json(P);
   if (!out.report.empty()) write_json_atomically(out.report, j);
   if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
@@ -163,6 +166,7 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,

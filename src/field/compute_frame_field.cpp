@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 
+#include "common/errors.h"
 #include "field/indices.h"
 #include "field/matching.h"
 #include "field/power_field.h"
@@ -13,6 +14,23 @@
 #include "field/smoothing.h"
 
 namespace quadcover {
+
+FieldStyle parse_field_style(std::string_view name) {
+  if (name == "curvature") return FieldStyle::Curvature;
+  if (name == "smooth") return FieldStyle::Smooth;
+  throw InputError("field", 0, "unknown field style '" + std::string(name) + "' (expected curvature or smooth)");
+}
+
+std::string to_string(FieldStyle style) { return style == FieldStyle::Smooth ? "smooth" : "curvature"; }
+
+FieldOptions field_options(FieldStyle style) {
+  FieldOptions o;
+  if (style == FieldStyle::Smooth) {
+    o.lambda = 1.0;
+    o.fill_alignment = 0.1;
+  }
+  return o;
+}
 
 FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptions& options, ProgressSink& progress) {
   FrameFieldResult r;

@@ -2,6 +2,8 @@
 // The whole frame-field stage (thesis Chapter 5): curvature frames, feature alignment, trusted regions,
 // propagation, smoothing, indices.
 #include <Eigen/Core>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/progress.h"
@@ -62,6 +64,21 @@ struct FieldOptions {
   /// mech_holes_shark as well (value 2) raises their E_D + E_H by 20% and ARAP by 25% (BENCHMARKS.md, Robustness).
   int split_min_quarters = 4;
 };
+
+/// Presets of the field stage for the commands and the Python module.
+enum class FieldStyle {
+  /// The defaults above: curvature-guided (thesis ch. 5), trusted frames pulled to the principal directions.
+  Curvature,
+  /// The smoothest cross field with a weak pull to the curvature directions (λ = 1, fill_alignment = 0.1), as
+  /// MIQ / Directional users know it; features stay fixed. Lower distortion on organic shapes: bunny_3k at the
+  /// Table 7.1 density, ARAP 0.0171 -> 0.0117 and RSD edge / angle 11.2 / 7.8 -> 9.2 / 6.7 % (BENCHMARKS.md).
+  Smooth,
+};
+/// Parses "curvature|smooth". \throw InputError otherwise.
+FieldStyle parse_field_style(std::string_view name);
+std::string to_string(FieldStyle style);
+/// The FieldOptions of a preset.
+FieldOptions field_options(FieldStyle style);
 
 /// The frame field and what it was made from.
 struct FrameFieldResult {

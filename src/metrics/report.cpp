@@ -157,6 +157,14 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
           {"stopped_early", r.stopped_early}};
 }
 
+nlohmann::json relaxation_to_json(const Parameterization& p) {
+  const auto& r = p.relaxation;
+  return {{"iterations", r.iterations},
+          {"arap_before", r.rigidity_before},
+          {"arap_after", r.rigidity_after},
+          {"E_R", r.energy}};
+}
+
 nlohmann::json stiffening_to_json(const Parameterization& p) {
   const auto& s = p.stiffening;
   return {{"iterations", s.iterations},

@@ -35,6 +35,9 @@ nlohmann::json to_json(const ExtractionReport& r);
 /// variables, E_H predicted for direct and for the chosen rounding, candidates, proven_optimal, stopped_early.
 nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterization& p);
 
+/// The ARAP relaxation of a map (param/relaxation.h): rounds, ARAP distortion at the grid scale before and after,
+/// and its price E_R.
+nlohmann::json relaxation_to_json(const Parameterization& p);
 /// The local stiffening of a map (param/stiffening.h): re-solves, the one kept, flipped triangles before and after,
 /// and its price E_S (E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖²).
 nlohmann::json stiffening_to_json(const Parameterization& p);

@@ -49,7 +49,7 @@ std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z
 AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                                      const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
                                      const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                     double max_shift, double min_length)
+                                     const CurveLimits& limits)
     : mesh_(&mesh), cut_(&cut), layer_(&layer), known_(&known), slots_(slots) {
   std::vector<AlignedCurve>& curves = curves_;
   int& conflicts = conflicts_;
@@ -111,7 +111,7 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
     curves.back().coordinate = slots[root].coordinate;
     curve_of[root] = k;
     queue.assign(1, root);
-    double sum = 0, anchor = 0, length = 0;
+    double sum = 0, anchor = 0, length = 0, lo = INFINITY, hi = -INFINITY;
     int count = 0;
     bool anchored = false;  // a branch point on the line fixes its value (its position is set by the periods)
     bool consistent = true;  // two branch points on one line at different integers: the line cannot be kept
@@ -125,6 +125,7 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
         const double estimate =
             sigma_of[i] * (std::real(ipow(-slots[i].coordinate) * phi_at(u0, slots[i].face, c)) - tau_of[i]);
         sum += estimate;
+        lo = std::min(lo, estimate), hi = std::max(hi, estimate);
         ++count;
         if (cut.branch[mesh.F()(slots[i].face, c)]) {
           if (anchored && std::abs(estimate - anchor) > 0.5) consistent = false;
@@ -141,11 +142,12 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
     }
     curves[k].value = std::round(anchored ? anchor : sum / count);
     // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
-    // collapses the strip between them) stay free.
-    // Curves shorter than `min_length` grid units (fragments of noisy creases on organic meshes) are not worth
-    // the distortion of pinning them either.
-    curves[k].enforced = consistent && length >= min_length &&
-                         (anchored || std::abs(sum / count - curves[k].value) <= max_shift);
+    // collapses the strip between them), lines far from straight in the free map (pinning bends the map across a
+    // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
+    // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
+    const double shift = std::abs(sum / count - curves[k].value);
+    curves[k].enforced = consistent && length >= limits.min_length && shift <= limits.max_shift &&
+                         hi - lo <= limits.max_spread;
   }
   std::vector<double>& n_of = n_of_;
   n_of.assign(static_cast<std::size_t>(ns), 0);
@@ -196,7 +198,8 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
   }
 }
 
-Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b) {
+Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b,
+                                          bool refactorize) {
   const int nv = mesh_->num_vertices();
   const std::vector<char>& fixed = fixed_;
   const Eigen::VectorXd& value = value_;
@@ -205,8 +208,9 @@ Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L,
   int nfree = 0;
   for (int i = 0; i < 2 * nv; ++i)
     if (!fixed[i]) free_id[i] = nfree++;
+  const bool build = refactorize || !factored_;
   std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(4 * L.nonZeros()));
+  if (build) trip.reserve(static_cast<std::size_t>(4 * L.nonZeros()));
   Eigen::VectorXd rhs(nfree);
   for (int i = 0; i < nv; ++i) {
     if (free_id[i] >= 0) rhs[free_id[i]] = b[i].real();
@@ -214,9 +218,9 @@ Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L,
   }
   auto add = [&](int r, int c, double v) {
     if (v == 0 || free_id[r] < 0) return;
-    if (free_id[c] >= 0)
-      trip.emplace_back(free_id[r], free_id[c], v);
-    else
+    if (free_id[c] >= 0) {
+      if (build) trip.emplace_back(free_id[r], free_id[c], v);
+    } else
       rhs[free_id[r]] -= v * value[c];
   };
   for (int col = 0; col < L.outerSize(); ++col)
@@ -228,10 +232,13 @@ Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L,
       add(nv + p, q, B);
       add(nv + p, nv + q, A);
     }
-  Eigen::SparseMatrix<double> M(nfree, nfree);
-  M.setFromTriplets(trip.begin(), trip.end());
-  // Re-solves with other weights keep the pattern: only the first one analyses.
-  chol_.factorize(M, "aligned harmonic correction");
+  if (build) {
+    Eigen::SparseMatrix<double> M(nfree, nfree);
+    M.setFromTriplets(trip.begin(), trip.end());
+    // Re-solves with other weights keep the pattern: only the first one analyses.
+    chol_.factorize(M, "aligned harmonic correction");
+    factored_ = true;
+  }
   const Eigen::VectorXd sol = chol_.solve(rhs);
   Eigen::VectorXcd u(nv);
   for (int p = 0; p < nv; ++p) {
@@ -262,20 +269,6 @@ std::vector<AlignedCurve> AlignedCorrection::curves(const Eigen::VectorXcd& u) c
       curve.max_deviation = std::max(curve.max_deviation, std::abs(x - n_of[i]));
     }
   return curves;
-}
-
-
-Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
-                                          const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
-                                          const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
-                                          const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
-                                          double min_length) {
-  AlignedCorrection aligned(mesh, cut, layer, known, u0, kernel_pins, slots, max_shift, min_length);
-  const Eigen::VectorXcd u = aligned.solve(L, b);
-  curves = aligned.curves(u);
-  conflicts = aligned.conflicts();
-  return u;
 }
 
 }  // namespace quadcover

@@ -9,6 +9,7 @@
 // whose integer n is the rounded mean of the unconstrained solution along it.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <limits>
 #include <vector>
 
 #include "calculus/sparse_cholesky.h"
@@ -32,6 +33,14 @@ struct CurveSlot {
 std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z, const std::vector<int>& feature_edges,
                                            double tolerance_degrees);
 
+/// Which iso-lines are worth pinning, in grid units measured on the unconstrained map u0. Pinning a line moves it
+/// by its shift and straightens it by its spread; lines beyond either limit, or shorter than min_length, stay free.
+struct CurveLimits {
+  double max_shift = 0.35;  ///< |mean coordinate − the line's integer| (through a branch point: its integer)
+  double min_length = 0;    ///< length of the line
+  double max_spread = std::numeric_limits<double>::infinity();  ///< max − min of the coordinate along the line
+};
+
 /// The alignment constraints of one map (which real component of u is fixed where, and to what), built once from the
 /// unconstrained solution u0, then solved with any matrix of 𝔏̄'s pattern (e.g. the weighted 𝔏̄_w of local
 /// stiffening, param/stiffening.h): the first solve analyses the real system, later ones only refactorize.
@@ -40,9 +49,10 @@ class AlignedCorrection {
  public:
   AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0, const std::vector<int>& kernel_pins,
-                    const std::vector<CurveSlot>& slots, double max_shift, double min_length = 0);
-  /// u with L u = b (real form) and the constrained components fixed. 	hrow NumericalError if not definite.
-  Eigen::VectorXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b);
+                    const std::vector<CurveSlot>& slots, const CurveLimits& limits);
+  /// u with L u = b (real form) and the constrained components fixed. \throw NumericalError if not definite.
+  /// refactorize = false reuses the factor of the previous call (L must be the same matrix; only b changes).
+  Eigen::VectorXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b, bool refactorize = true);
   /// The curves with their largest deviation from the iso-line measured on u.
   std::vector<AlignedCurve> curves(const Eigen::VectorXcd& u) const;
   /// Lines left free because they close on themselves with another integer.
@@ -61,20 +71,7 @@ class AlignedCorrection {
   std::vector<char> fixed_;     ///< 2·#V: x then y components of u that are fixed
   Eigen::VectorXd value_;       ///< their values
   SparseCholesky<double> chol_;
+  bool factored_ = false;
 };
-
-/// Solves the harmonic correction 𝔏̄ u = b with the alignment constraints (real form of the Hermitian system), given
-/// the corner values `known` = φ̂ + σ, the corner layers of u, and the unconstrained solution u0 (for rounding the
-/// iso-line values). `kernel_pins`: one vertex per component with trivial holonomy (𝔏̄ has the constants in its
-/// kernel there); its real / imaginary part is pinned to 0 unless a constraint already fixes that part somewhere in
-/// the component. Lines whose mean must move by more than `max_shift` grid units, or shorter than `min_length` grid
-/// units, are left free. Fills `curves`
-/// (deviations measured on the result). \return u.
-Eigen::VectorXcd solve_aligned_correction(const Mesh& mesh, const CoverCut& cut, const Eigen::SparseMatrix<Complex>& L,
-                                          const Eigen::VectorXcd& b, const Eigen::MatrixX3i& layer,
-                                          const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
-                                          const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                          std::vector<AlignedCurve>& curves, int& conflicts, double max_shift,
-                                          double min_length = 0);
 
 }  // namespace quadcover

@@ -75,8 +75,16 @@ struct Parameterization {
   };
   std::vector<Curve> aligned_curves;
   int alignment_conflicts = 0;
+  /// ARAP relaxation of the final solve (param/relaxation.h): local/global rounds run, the mean ARAP distortion at
+  /// the grid scale before and after, and its price E_R = ½‖X̃ − ∇φ̃‖² − E_D − E_H of the relaxed map.
+  struct Relaxation {
+    int iterations = 0;
+    double rigidity_before = 0, rigidity_after = 0;
+    double energy = 0;
+  } relaxation;
   /// Local stiffening of the final solve (param/stiffening.h): re-solves run, the one kept (0: none), flipped
-  /// triangles before and after, and its price E_S, so that E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖² (E_S = 0 if none kept).
+  /// triangles before and after, and its further price E_S, so that E_D + E_H + E_R + E_S = ½‖X̃ − ∇φ̃‖²
+  /// (E_S = 0 if none kept; after a relaxation E_S can be negative: the stiffened map may be nearer the field).
   struct Stiffening {
     int iterations = 0, kept_iteration = 0, flipped_before = 0, flipped_after = 0;
     double energy = 0;

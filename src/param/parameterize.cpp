@@ -356,29 +356,50 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   std::optional<AlignedCorrection> aligned;
   if (!slots.empty())
     aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
-                    options.align_max_shift, options.align_min_length);
+                    CurveLimits{options.align_max_shift, options.align_min_length, options.align_max_spread});
   Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
-  P.energy_harmonic = frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
+  // ½‖X̃ − ∇φ̃‖² − E_D for a correction u: ∇φ − Z = (Σ̃_d − X̃_C) − ∇u, and X̃_C is orthogonal to both gradients.
+  auto correction_energy = [&](const Eigen::VectorXcd& w) {
+    return frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(w)));
+  };
+  P.energy_harmonic = correction_energy(u);
   lap("harmonic");
-  // Local stiffening re-solves with weighted 𝔏̄_w u = b_w, with the curve constraints if there are any; they keep
-  // the pattern and reuse the symbolic analysis.
+  // Relaxation rounds with flipped triangles and local stiffening re-solve with weighted 𝔏̄_w u = b_w, with the
+  // curve constraints if there are any; they keep the pattern and reuse the symbolic analysis.
   SparseCholesky<Complex> weighted_chol;
-  const WeightedCorrectionSolve solve = [&](const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw) {
-    if (aligned) return aligned->solve(Lw, bw);
-    Eigen::SparseMatrix<Complex> Lp = Lw;
-    pin_rows(Lp, correction.kernel_pins());
+  const WeightedCorrectionSolve solve = [&](const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw,
+                                            bool refactorize) {
+    if (aligned) return aligned->solve(Lw, bw, refactorize);
+    if (refactorize) {
+      Eigen::SparseMatrix<Complex> Lp = Lw;
+      pin_rows(Lp, correction.kernel_pins());
+      weighted_chol.factorize(Lp, "weighted harmonic correction");
+    }
     Eigen::VectorXcd bp = bw;
     for (int p : correction.kernel_pins()) bp[p] = 0;
-    weighted_chol.factorize(Lp, "stiffened harmonic correction");
     return Eigen::VectorXcd(weighted_chol.solve(bp));
   };
+  // What the weighted solves of the stiffening follow: ∇φ ≈ Z, or the relaxed targets.
+  FramePairs followed_gradient = Z, followed_target = Sigma - XC;
+  if (options.relaxation.iterations > 0) {
+    // The unweighted matrix is factored already: the relaxation rounds only re-solve.
+    const CorrectionResolve resolve = [&](const Eigen::VectorXcd& bw) -> Eigen::VectorXcd {
+      if (aligned) return aligned->solve(correction.stiffness(), bw, /*refactorize=*/false);
+      return correction.solve(bw).col(0);
+    };
+    RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, known, Z, 1.0 / P.edge_length, u,
+                                                 resolve, solve, options.relaxation, progress, P.relaxation);
+    u = std::move(relaxed.u);
+    followed_gradient = std::move(relaxed.gradient_target);
+    followed_target = std::move(relaxed.target);
+    P.relaxation.energy = correction_energy(u) - P.energy_harmonic;  // ≥ 0: u_free minimizes it (round-off aside)
+    if (P.relaxation.iterations > 0) lap("relaxation");
+  }
   if (options.stiffening.max_iterations > 0) {
-    // ∇φ − Z = (Σ̃_d − X̃_C) − ∇u: the target of ∇u in the weighted solves.
-    u = stiffen_correction(mesh, cc.matching, correction, known, Z, Sigma - XC, u, solve, options.stiffening,
-                           progress, P.stiffening);
-    if (P.stiffening.kept_iteration > 0)  // E_S = ½‖Σ̃_d − ∇u‖² − E_H (X̃_C is orthogonal to both gradients)
-      P.stiffening.energy = std::max(
-          0.0, frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u))) - P.energy_harmonic);
+    u = stiffen_correction(mesh, cc.matching, correction, known, followed_gradient, followed_target, u, solve,
+                           options.stiffening, progress, P.stiffening);
+    if (P.stiffening.kept_iteration > 0)
+      P.stiffening.energy = correction_energy(u) - P.energy_harmonic - P.relaxation.energy;
     if (P.stiffening.iterations > 0) lap("stiffening");
   }
   if (aligned) {

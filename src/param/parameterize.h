@@ -11,6 +11,7 @@
 #include "param/lattice.h"
 #include "param/period_rounding.h"
 #include "param/parameterization.h"
+#include "param/relaxation.h"
 #include "param/stiffening.h"
 
 namespace quadcover {
@@ -37,13 +38,21 @@ struct ParamOptions {
   FeatureOptions features;
   /// A curve edge counts as aligned when a frame vector is within this angle of it.
   double align_tolerance_degrees = 2.0;
-  /// A curve is put on its nearest integer line only if that moves it by at most this many grid units on average
-  /// (unless a branch point on it fixes the line); farther ones stay free and their deviation is reported.
+  /// A curve is put on its nearest integer line (through a branch point on it: that point's line) only if that
+  /// moves it by at most this many grid units on average; farther ones stay free and their deviation is reported.
   double align_max_shift = 0.35;
+  /// ... and only if its coordinate varies along it by at most this many grid units in the unconstrained map.
+  /// Straightening a wigglier line bends the map around it: on bunny_3k at 6500 quads the three lines of the
+  /// closed-up base rim (spread 0.7-2.2) cost ARAP 0.0171 -> 0.0241 and 4 flips; fandisk's ARAP 0.0223 -> 0.0143
+  /// without its spread > 1 lines (BENCHMARKS.md, "Curve alignment").
+  double align_max_spread = 1.0;
   /// Curves shorter than this many grid units (quad edge lengths) stay free: pinning short crease fragments costs
   /// distortion and folds for no visible gain.
   double align_min_length = 3.0;
-  /// Local stiffening of the final solve against flipped triangles (beyond the thesis, param/stiffening.h).
+  /// ARAP relaxation of the final map (beyond the thesis, param/relaxation.h).
+  RelaxationOptions relaxation;
+  /// Local stiffening of the final solve against flipped triangles (beyond the thesis, param/stiffening.h); it
+  /// follows the relaxed targets when relaxation ran.
   StiffeningOptions stiffening;
 };
 

@@ -48,7 +48,7 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
     for (int f = 0; f < nf; ++f) w[f] += options.strength * std::min(d[f], options.max_distortion);
     FramePairs weighted = target;
     for (int f = 0; f < nf; ++f) weighted.row(f) *= w[f];
-    const Eigen::VectorXcd u = solve(complex_conforming_stiffness(mesh, matching, w), correction.rhs(weighted));
+    const Eigen::VectorXcd u = solve(complex_conforming_stiffness(mesh, matching, w), correction.rhs(weighted), true);
     uv = map_of(u);
     const int flips = flipped_triangles(uv).flipped;
     ++result.iterations;

@@ -13,6 +13,7 @@
 #include "param/disk_functions.h"
 #include "param/harmonic_correction.h"
 #include "param/parameterization.h"
+#include "param/relaxation.h"
 
 namespace quadcover {
 
@@ -27,9 +28,6 @@ struct StiffeningOptions {
 /// should follow), σ₂ carrying the sign of det J, so a flipped triangle has d > 1. 0 where Z is degenerate.
 Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, const FramePairs& Z);
 
-/// u for the weighted stiffness 𝔏̄_w and right-hand side b_w, with the caller's constraints (pins, curves).
-using WeightedCorrectionSolve =
-    std::function<Eigen::VectorXcd(const Eigen::SparseMatrix<Complex>& Lw, const Eigen::VectorXcd& bw)>;
 
 /// The stiffening loop from the unweighted solution u0: re-solves with w += c·d while triangles are flipped and
 /// returns the u with the fewest flipped triangles (u0 unless a re-solve strictly improves on it; re-solve k is the
