@@ -82,8 +82,12 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
     out.gradient_target = G;
     const double next = targets_of(uv, G);
     const FlipReport flips = flipped_triangles(uv);
-    for (int f : flips.flipped_faces) w[f] += options.flip_weight;
-    weights_changed = !flips.flipped_faces.empty() && options.flip_weight > 0;
+    // Refactor only when a triangle flips that has no extra weight yet (then every flipped one gets more).
+    weights_changed = false;
+    for (int f : flips.flipped_faces) weights_changed = weights_changed || w[f] == 1;
+    weights_changed = weights_changed && options.flip_weight > 0;
+    if (weights_changed)
+      for (int f : flips.flipped_faces) w[f] += options.flip_weight;
     weighted = weighted || weights_changed;
     progress.report("param", -1,
                     "relaxation " + std::to_string(it + 1) + ": energy " + std::to_string(next) + ", " +
