@@ -182,8 +182,8 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
     # couplingdown's plain map folds (tests/param/stiffening_test.cpp); stiffening keeps E_D and E_H and the periods,
     # lowers the flips and reports its price E_S > 0.
     V, F = mesh("couplingdown_genus9")
-    uv0, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0)
-    uv1, stiff = quadcover.parameterize(V, F, optimize="none")
+    uv0, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0)
+    uv1, stiff = quadcover.parameterize(V, F, optimize="none", relaxation=0)
     assert plain["stiffening"]["iterations"] == 0 and plain["stiffening"]["E_S"] == 0
     assert stiff["stiffening"]["flipped_before"] == plain["flipped_triangles"]
     assert stiff["flipped_triangles"] == stiff["stiffening"]["flipped_after"] < plain["flipped_triangles"]
@@ -193,3 +193,24 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
     assert worst < 1e-6 * max(1.0, np.ptp(uv1.reshape(-1, 2), axis=0).max())
     with pytest.raises(ValueError):
         quadcover.parameterize(V, F, stiffening=-1)
+
+
+def test_parameterize_relaxation_lowers_arap_and_keeps_the_map_seamless():
+    # The ARAP relaxation (param/relaxation.h) keeps E_D, E_H and the seams, lowers the ARAP distortion of the
+    # map, and reports its price E_R > 0; the smooth field preset is accepted and gives another map.
+    V, F = mesh("fandisk")
+    _, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0)
+    uv, relaxed = quadcover.parameterize(V, F, optimize="none", stiffening=0)
+    assert plain["relaxation"]["iterations"] == 0 and relaxed["relaxation"]["iterations"] > 0
+    assert relaxed["energy_harmonic"] == pytest.approx(plain["energy_harmonic"], rel=1e-12)
+    assert relaxed["relaxation"]["E_R"] > 0
+    assert relaxed["relaxation"]["arap_after"] < relaxed["relaxation"]["arap_before"]
+    assert relaxed["arap"] < plain["arap"]
+    worst, _ = seam_defect(F, uv)
+    assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
+    _, smooth = quadcover.parameterize(V, F, optimize="none", field="smooth")
+    assert smooth["energy_curl"] != pytest.approx(relaxed["energy_curl"], rel=1e-6)
+    with pytest.raises(ValueError):
+        quadcover.parameterize(V, F, relaxation=-1)
+    with pytest.raises(ValueError):
+        quadcover.parameterize(V, F, field="wobbly")
