@@ -87,11 +87,13 @@ OptimizeOptions optimize_options(const std::string& optimize, long max_iteration
 
 /// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object and
 /// `original` the field before the optimization.
-FrameField optimized_field(const Mesh& mesh, const std::string& style, OptimizeOptions oopt, ProgressSink& progress,
-                           nlohmann::json& report, FrameField& original) {
+FrameField optimized_field(const Mesh& mesh, const std::string& style, ParamOptions& popt, OptimizeOptions oopt,
+                           ProgressSink& progress, nlohmann::json& report, FrameField& original) {
   const FieldOptions fo = field_options(parse_field_style(style));
   oopt.lambda = fo.lambda;  // the re-smoothing of Algorithm 6.1 uses the field stage's λ
   const FrameFieldResult f = compute_frame_field_detailed(mesh, fo, progress);
+  fix_default_density(mesh, f.field, popt);  // one scale for the optimization, keep-better and the map
+  oopt.param = popt;
   original = f.field;
   OptimizeResult r = optimize_field(mesh, f, oopt, progress);
   report = to_json(r, oopt.mode);
@@ -193,7 +195,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
                           long max_iterations, bool keep_better, int stiffening, int relaxation,
                           const std::string& field) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
+  ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   Parameterization p;
@@ -202,7 +204,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
   {
     py::gil_scoped_release release;
     FrameField original;
-    const FrameField f = optimized_field(mesh, field, oopt, progress, optimize_report, original);
+    const FrameField f = optimized_field(mesh, field, popt, oopt, progress, optimize_report, original);
     p = parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     q = param_quality(mesh, p);
   }
@@ -223,7 +225,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
                     long max_iterations, bool keep_better, int stiffening, int relaxation,
                           const std::string& field) {
   const Mesh mesh = make_mesh(V, F);
-  const ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
+  ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   ExtractionResult ex;
@@ -232,7 +234,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
   {
     py::gil_scoped_release release;
     FrameField original;
-    const FrameField f = optimized_field(mesh, field, oopt, progress, optimize_report, original);
+    const FrameField f = optimized_field(mesh, field, popt, oopt, progress, optimize_report, original);
     const Parameterization p =
         parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
     rounding_report = rounding_to_json(popt, p);
@@ -301,7 +303,8 @@ PYBIND11_MODULE(quadcover, m) {
         py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
         "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
         "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
-        "Density: edge_length h, or quads N, or by default twice the mean edge length. optimize: none, relocate "
+        "Density: edge_length h, or quads N, or by default twice the mean edge length (finer where needed for 30 "
+        "quads per branch point). optimize: none, relocate "
         "(Algorithm 6.1 moving/cancelling branch points) or full (with creation and balancing, 6.4), at most "
         "max_iterations E_D evaluations (-1 = auto: the budget grows with the mesh, plus a time limit for full; 0 = "
         "until converged); report['optimize'] has E_D and branch points before "

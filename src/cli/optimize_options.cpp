@@ -87,12 +87,6 @@ FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const O
   return std::move(r.field);
 }
 
-FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
-                           ProgressSink& progress, nlohmann::json& optimize_report) {
-  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_options(cli), progress);
-  return run_optimize(mesh, field, cli, param, progress, optimize_report);
-}
-
 Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
                                    nlohmann::json& optimize_report) {

@@ -42,11 +42,6 @@ void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param);
 FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,
                         const ParamOptions& param, ProgressSink& progress, nlohmann::json& report);
 
-/// The field stage followed by the optimization: compute_frame_field_detailed (ch. 5) then run_optimize (ch. 6).
-/// `optimize_report` receives the "optimize" object.
-FrameField optimized_field(const Mesh& mesh, const OptimizeCliOptions& cli, const ParamOptions& param,
-                           ProgressSink& progress, nlohmann::json& optimize_report);
-
 /// parameterize_keep_better() (optimize/optimize_field.h) with the command line's --optimize and --keep-better.
 Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                    const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,

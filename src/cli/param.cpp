@@ -95,6 +95,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   nlohmann::json optimize;
   const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
   lap("field");
+  fix_default_density(mesh, detailed.field, po);  // one scale for the optimization, keep-better and the map
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
   lap("optimize");
   const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
@@ -206,7 +207,8 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "param",
       "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
       "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
-      "--quads N; default h = 2 x the mean edge length (about #faces/9 quads)");
+      "--quads N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
+      "30 quads per branch point of the field");
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");

@@ -82,6 +82,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   apply_rounding(opt.optimize, po);
   const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
   lap("field");
+  fix_default_density(mesh, detailed.field, po);  // one scale for the optimization, keep-better and the map
   nlohmann::json optimize;
   const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
   lap("optimize");

@@ -166,12 +166,20 @@ bool solve_gf2(std::vector<std::vector<std::uint64_t>> A, std::vector<char> r, i
 
 }  // namespace
 
-double target_edge_length(const Mesh& mesh, const ParamOptions& options) {
+double target_edge_length(const Mesh& mesh, const ParamOptions& options, int branch_points) {
   if (options.edge_length < 0 || options.target_quads < 0)
     throw InputError("", 0, "the edge length and the number of quads must be positive");
   if (options.edge_length > 0) return options.edge_length;
   if (options.target_quads > 0) return std::sqrt(mesh.total_area() / options.target_quads);
-  return options.default_edge_factor * mesh.mean_edge_length();
+  double h = options.default_edge_factor * mesh.mean_edge_length();
+  if (options.min_quads_per_branch_point > 0 && branch_points > 0)
+    h = std::min(h, std::sqrt(mesh.total_area() / (options.min_quads_per_branch_point * branch_points)));
+  return h;
+}
+
+void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions& options) {
+  if (options.edge_length > 0 || options.target_quads > 0) return;
+  options.edge_length = target_edge_length(mesh, options, static_cast<int>(branch_points(mesh, field).size()));
 }
 
 Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
@@ -216,7 +224,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     rms += mesh.face_areas()[f] * 0.5 * (std::norm(field.X[f]) + std::norm(field.Y[f]));
   rms = std::sqrt(rms / mesh.total_area());
   if (!(rms > 0) || !std::isfinite(rms)) throw InputError("", 0, "parameterize: the frame field is zero or not finite");
-  P.edge_length = target_edge_length(mesh, options);
+  P.edge_length = target_edge_length(mesh, options, static_cast<int>(P.branch_points.size()));
   P.scale = 1.0 / (P.edge_length * rms);
   FramePairs Z(nf, 2);
   for (int f = 0; f < nf; ++f) {

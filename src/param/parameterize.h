@@ -24,8 +24,13 @@ struct ParamOptions {
   /// Target number of quads N (> 0 to use, when edge_length is 0): h = sqrt(area / N).
   int target_quads = 0;
   /// Default density when neither is given: h = default_edge_factor × mean mesh edge length (≈ #F / 9 quads on
-  /// a regular mesh).
+  /// a regular mesh), or finer so that there are at least min_quads_per_branch_point quads per branch point of the
+  /// field (h ≤ sqrt(area / (min_quads_per_branch_point · #branch points)); 0 = no such bound). Branch points sit on
+  /// integer points: a grid with a few quads per cone must fold. At the old rule cow had 550 quads for 121 branch
+  /// points and 48 flipped triangles, couplingdown 252 for 76 and 82; with 30 per branch point 3 and 23
+  /// (BENCHMARKS.md, "Default density").
   double default_edge_factor = 2.0;
+  double min_quads_per_branch_point = 30.0;
   /// Rounding of the periods to the lattice (6.3): the period matrix P_ij = ⟨H_i, Σ_j⟩ of the harmonic fields of
   /// the symmetric paths is computed column by column (6.3.2) and E_H = ½ dᵀ P d is minimized by the strategy.
   /// Direct skips P (nearest lattice point, 4.2.2).
@@ -56,8 +61,14 @@ struct ParamOptions {
   StiffeningOptions stiffening;
 };
 
-/// The quad edge length h that `options` asks for on `mesh` (see ParamOptions). \throw InputError if negative.
-double target_edge_length(const Mesh& mesh, const ParamOptions& options);
+/// The quad edge length h that `options` asks for on `mesh` with a field of `branch_points` branch points (see
+/// ParamOptions). \throw InputError if negative.
+double target_edge_length(const Mesh& mesh, const ParamOptions& options, int branch_points = 0);
+
+/// Fixes the default density of `options` (neither edge_length nor target_quads given) to an explicit edge_length
+/// from the branch point count of `field`, so that every later stage (Algorithm 6.1's E_H, keep-better's comparison
+/// of two fields) works at one scale. Explicit densities are left as they are.
+void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions& options);
 
 /// Seamless QuadCover parameterization of `mesh` guided by `field`.
 /// \pre mesh is a valid triangle mesh; field has #F frames (non-zero) and a #E matching.

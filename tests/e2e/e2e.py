@@ -197,8 +197,9 @@ def check_remesh(binary, mesh_path, name, out, info):
     # One quad per unit of parameter area: exact for a closed all-quad output of an unrepaired map, within the
     # clipped polygons else (cells around cut-out folds, polygons split into quads: quad/quadrangulate.h).
     area = ex["active_parameter_area"]
+    # Degenerate faces (two branch points rounded onto one integer point collapse a cell) and spikes are removed.
     repaired = (ex["flipped_triangles"] + ex["degenerate_triangles"] + ex.get("split_polygons", 0) +
-                ex.get("merged_polygons", 0))
+                ex.get("merged_polygons", 0) + ex.get("degenerate_faces", 0) + ex.get("removed_spikes", 0))
     if topo.closed and non_quads == 0 and repaired == 0:
         check(abs(len(obj.faces) - area) < 0.5, f"{name}: {len(obj.faces)} quads but parameter area {area:.2f}")
     else:  # an interior quad covers one unit square; a k-gon of unit squares (k - 2) / 2 (Pick), a clipped one less
