@@ -8,7 +8,7 @@
 #include "field/compute_frame_field.h"
 #include "param/cover_cut.h"
 #include "param/seams.h"
-#include "map_energy.h"
+#include "map_checks.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {

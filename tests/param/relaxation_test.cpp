@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "field/compute_frame_field.h"
-#include "map_energy.h"
+#include "map_checks.h"
 #include "param/parameterize.h"
 #include "param/seams.h"
 #include "support/test_meshes.h"
@@ -17,29 +17,18 @@
 namespace quadcover {
 namespace {
 
-// Per-corner uv of the map (x, y) ↦ a x + b y (complex a, b) on a flat mesh.
-Eigen::MatrixX3cd linear_map(const Mesh& mesh, Complex a, Complex b) {
-  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d p = mesh.V().row(mesh.F()(f, c));
-      uv(f, c) = a * p.x() + b * p.y();
-    }
-  return uv;
-}
-
 // ½ min_R ‖J − sR‖² / s² per unit area: 0 for a rotation at scale s, 1 for twice it (½(1² + 1²)), 2 for a mirror
 // image (every rotation is equally near: ½(‖J‖² + 2)), and ½((2−1)² + (½−1)²) = 0.625 for the stretch (2, ½).
 TEST(Relaxation, RigidityEnergyOfLinearMaps) {
   const Mesh grid = testing::make_grid(5);
   const Complex r = std::polar(1.0, 0.7);
-  EXPECT_NEAR(rigidity_energy(grid, linear_map(grid, 3.0 * r, 3.0 * Complex(0, 1) * r), 3.0), 0, 1e-12);
-  EXPECT_NEAR(rigidity_energy(grid, linear_map(grid, 2.0, Complex(0, 2)), 1.0), 1, 1e-12);
-  EXPECT_NEAR(rigidity_energy(grid, linear_map(grid, 1.0, Complex(0, -1)), 1.0), 2, 1e-12);
-  EXPECT_NEAR(rigidity_energy(grid, linear_map(grid, 2.0, Complex(0, 0.5)), 1.0), 0.625, 1e-12);
+  EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 3.0 * r, 3.0 * Complex(0, 1) * r), 3.0), 0, 1e-12);
+  EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 2.0, Complex(0, 2)), 1.0), 1, 1e-12);
+  EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 1.0, Complex(0, -1)), 1.0), 2, 1e-12);
+  EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 2.0, Complex(0, 0.5)), 1.0), 0.625, 1e-12);
   // The nearest rotation of a scaled rotation is that rotation, in the gradient rows (∇φ⁰, ∇φ¹) = s(e, ie).
-  const FramePairs R = nearest_rotations(grid, linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r), 1.5);
-  const FramePairs G = corner_gradient(grid, linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r));
+  const FramePairs R = nearest_rotations(grid, testing::linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r), 1.5);
+  const FramePairs G = corner_gradient(grid, testing::linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r));
   for (int f = 0; f < grid.num_faces(); ++f) {
     EXPECT_NEAR(std::abs(R(f, 0) - 0.75 * G(f, 0)), 0, 1e-12) << f;
     EXPECT_NEAR(std::abs(R(f, 1) - 0.75 * G(f, 1)), 0, 1e-12) << f;
@@ -106,20 +95,8 @@ TEST_P(RelaxedMeshes, LessDistortedAndStillSeamless) {
   EXPECT_GT(B.relaxation.energy, 0);
   const double total = testing::map_field_energy(mesh, field, B);
   EXPECT_NEAR(B.energy_curl + B.energy_harmonic + B.relaxation.energy, total, 1e-8 * total);
-  // Seamless, branch points on integer points, enforced curves still on their iso-lines.
-  const SeamReport seams = measure_seams(mesh, B.uv);
-  EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
-  const double tol = 1e-9 * seams.parameter_extent;
-  for (const BranchPoint& bp : B.branch_points) {
-    if (std::count(B.unfixed_even_branch_points.begin(), B.unfixed_even_branch_points.end(), bp.vertex)) continue;
-    for (const auto& fc : mesh.fan(bp.vertex)) {
-      const Complex z = B.uv(fc.face, fc.corner);
-      ASSERT_LT(std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))), tol) << bp.vertex;
-    }
-  }
   ASSERT_EQ(A.aligned_curves.size(), B.aligned_curves.size());
-  for (const auto& c : B.aligned_curves)
-    if (c.enforced) EXPECT_LT(c.max_deviation, tol);
+  testing::expect_seamless_grid_map(mesh, B);
 }
 
 // A closed organic mesh, CAD meshes with aligned feature curves, and meshes with boundary.

@@ -9,28 +9,17 @@
 #include "field/compute_frame_field.h"
 #include "param/parameterize.h"
 #include "param/seams.h"
-#include "map_energy.h"
+#include "map_checks.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
 namespace {
 
-// Per-corner uv of the map (x, y) ↦ a x + b y (complex a, b) on a flat grid (its face gradients serve as Z).
-Eigen::MatrixX3cd linear_map(const Mesh& mesh, Complex a, Complex b) {
-  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d p = mesh.V().row(mesh.F()(f, c));
-      uv(f, c) = a * p.x() + b * p.y();
-    }
-  return uv;
-}
-
 // d = |σ₁ − 1| + |σ₂ − 1| of J = ∇φ Z⁻¹: 0 for the map Z integrates (and for a rotation of it), 2 for twice it,
 // 2 for its mirror image (σ₂ = −1), 1.5 for a shear-free stretch (2, ½).
 TEST(FrameDistortion, SingularValuesOfTheMapRelativeToTheFrame) {
   const Mesh grid = testing::make_grid(4);
-  const Eigen::MatrixX3cd uv = linear_map(grid, Complex(1, 0.3), Complex(-0.2, 0.9));
+  const Eigen::MatrixX3cd uv = testing::linear_map(grid, Complex(1, 0.3), Complex(-0.2, 0.9));
   const FramePairs Z = corner_gradient(grid, uv);
   const auto expect_all = [&](const Eigen::MatrixX3cd& map, double d) {
     const Eigen::VectorXd dist = frame_distortion(grid, map, Z);
@@ -70,19 +59,7 @@ TEST_P(FoldingMeshes, StiffeningRemovesFlipsAndKeepsTheMapSeamless) {
   EXPECT_GT(B.stiffening.energy, 0);
   const double total = testing::map_field_energy(mesh, field, B);
   EXPECT_NEAR(B.energy_curl + B.energy_harmonic + B.relaxation.energy + B.stiffening.energy, total, 1e-8 * total);
-  // Seamless, branch points on integer points, enforced curves on their iso-lines.
-  const SeamReport seams = measure_seams(mesh, B.uv);
-  EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
-  const double tol = 1e-9 * seams.parameter_extent;
-  for (const BranchPoint& bp : B.branch_points) {
-    if (std::count(B.unfixed_even_branch_points.begin(), B.unfixed_even_branch_points.end(), bp.vertex)) continue;
-    for (const auto& fc : mesh.fan(bp.vertex)) {
-      const Complex z = B.uv(fc.face, fc.corner);
-      ASSERT_LT(std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))), tol) << bp.vertex;
-    }
-  }
-  for (const auto& curve : B.aligned_curves)
-    if (curve.enforced) EXPECT_LT(curve.max_deviation, tol) << curve.value;
+  testing::expect_seamless_grid_map(mesh, B);
 }
 
 INSTANTIATE_TEST_SUITE_P(Param, FoldingMeshes, ::testing::Values("couplingdown_genus9", "camelhead_boundary"));
