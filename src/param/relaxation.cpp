@@ -1,5 +1,6 @@
 #include "param/relaxation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -64,6 +65,9 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
   double energy = targets_of(uv, G);
   Eigen::VectorXd w = Eigen::VectorXd::Ones(nf);
   bool weighted = false, weights_changed = false;
+  int refactorizations = 0;
+  const int max_refactorizations =
+      std::clamp(static_cast<int>(options.refactorization_budget / std::max(1, nf)), 2, std::max(2, options.iterations));
   Eigen::SparseMatrix<Complex> Lw;
   for (int it = 0; it < options.iterations && alpha < 1; ++it) {
     if (progress.cancelled()) break;
@@ -85,16 +89,20 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
     // Refactor only when a triangle flips that has no extra weight yet (then every flipped one gets more).
     weights_changed = false;
     for (int f : flips.flipped_faces) weights_changed = weights_changed || w[f] == 1;
-    weights_changed = weights_changed && options.flip_weight > 0;
-    if (weights_changed)
+    weights_changed = weights_changed && options.flip_weight > 0 && refactorizations < max_refactorizations;
+    if (weights_changed) {
+      ++refactorizations;
       for (int f : flips.flipped_faces) w[f] += options.flip_weight;
+    }
     weighted = weighted || weights_changed;
     progress.report("param", -1,
                     "relaxation " + std::to_string(it + 1) + ": energy " + std::to_string(next) + ", " +
                         std::to_string(flips.flipped) + " flipped");
-    const bool small_step = energy - next < options.tolerance * energy;
+    // Converged: the energy of these weights settled (a round that changed the weights does not count), and no
+    // triangle is left that more weight could unflip.
+    const bool settled = !weights_changed && std::abs(energy - next) < options.tolerance * energy;
     energy = next;
-    if (small_step && flips.flipped_faces.empty()) break;
+    if (settled && (flips.flipped_faces.empty() || refactorizations >= max_refactorizations)) break;
   }
   out.target = base_gradient - out.gradient_target;
   result.rigidity_after = rigidity_energy(mesh, uv, s);
