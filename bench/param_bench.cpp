@@ -5,20 +5,19 @@
 //   bench_param [--benchmark_flags...] [mesh]        e.g. bench_param /work/shared/meshes/armadillo_86k.obj
 #include <benchmark/benchmark.h>
 
-#include "bench_mesh_path.h"
-
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <string>
 
+#include "bench_mesh_path.h"
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 #include "param/cover_cut.h"
 #include "param/parameterize.h"
-#include "param/seams.h"
 #include "param/period_matrix.h"
+#include "param/seams.h"
 
 namespace {
 

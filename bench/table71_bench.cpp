@@ -199,13 +199,13 @@ int main(int argc, char** argv) {
     using M = qc::OptimizeMode;
     using R = qc::RoundingStrategy;
     // Thesis columns: plain QuadCover [KNP07] rounds directly; relocation and balancing use the r = 3 search (6.3).
-    const std::vector<Setup> setups = {{"QuadCover", M::None, 0, R::Direct},
-                                       {"Relocation", M::Relocate, 0, R::Search3},
-                                       {"Balancing (full)", M::Full, 0, R::Search3},
-                                       {"full, CLI budget 3000", M::Full, 3000, R::Search3},
-                                       {"Relocation, smooth field", M::Relocate, 0, R::Search3, qc::FieldStyle::Smooth},
-                                       {"Balancing (full), smooth field", M::Full, 0, R::Search3,
-                                        qc::FieldStyle::Smooth}};
+    const std::vector<Setup> setups = {
+        {"QuadCover", M::None, 0, R::Direct},
+        {"Relocation", M::Relocate, 0, R::Search3},
+        {"Balancing (full)", M::Full, 0, R::Search3},
+        {"full, CLI budget 3000", M::Full, 3000, R::Search3},
+        {"Relocation, smooth field", M::Relocate, 0, R::Search3, qc::FieldStyle::Smooth},
+        {"Balancing (full), smooth field", M::Full, 0, R::Search3, qc::FieldStyle::Smooth}};
     std::vector<Column> cols;
     for (const Setup& s : setups) cols.push_back(run_column(mesh, s));
     print_table(cols);

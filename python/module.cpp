@@ -222,8 +222,7 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                     const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations, bool keep_better, int stiffening, int relaxation,
-                          const std::string& field) {
+                    long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field) {
   const Mesh mesh = make_mesh(V, F);
   ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);

@@ -221,7 +221,9 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
-  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--align", opt->align,
                   "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();

@@ -167,7 +167,9 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
-  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
+  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,

@@ -146,8 +146,8 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
     // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
     // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
     const double shift = std::abs(sum / count - curves[k].value);
-    curves[k].enforced = consistent && length >= limits.min_length && shift <= limits.max_shift &&
-                         hi - lo <= limits.max_spread;
+    curves[k].enforced =
+        consistent && length >= limits.min_length && shift <= limits.max_shift && hi - lo <= limits.max_spread;
   }
   std::vector<double>& n_of = n_of_;
   n_of.assign(static_cast<std::size_t>(ns), 0);

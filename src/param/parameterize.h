@@ -9,8 +9,8 @@
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/lattice.h"
-#include "param/period_rounding.h"
 #include "param/parameterization.h"
+#include "param/period_rounding.h"
 #include "param/relaxation.h"
 #include "param/stiffening.h"
 

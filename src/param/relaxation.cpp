@@ -66,8 +66,8 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
   Eigen::VectorXd w = Eigen::VectorXd::Ones(nf);
   bool weighted = false, weights_changed = false;
   int refactorizations = 0;
-  const int max_refactorizations =
-      std::clamp(static_cast<int>(options.refactorization_budget / std::max(1, nf)), 2, std::max(2, options.iterations));
+  const int max_refactorizations = std::clamp(static_cast<int>(options.refactorization_budget / std::max(1, nf)), 2,
+                                              std::max(2, options.iterations));
   Eigen::SparseMatrix<Complex> Lw;
   for (int it = 0; it < options.iterations && alpha < 1; ++it) {
     if (progress.cancelled()) break;

@@ -19,12 +19,12 @@
 namespace quadcover {
 
 struct RelaxationOptions {
-  int iterations = 20;         ///< local/global rounds at most; 0 turns relaxation off
-  double field_weight = 0.1;   ///< α: share of the frame Z in the target (1: no relaxation)
-  double tolerance = 1e-4;     ///< stop when the energy falls by less than this fraction in one round
+  int iterations = 20;        ///< local/global rounds at most; 0 turns relaxation off
+  double field_weight = 0.1;  ///< α: share of the frame Z in the target (1: no relaxation)
+  double tolerance = 1e-4;    ///< stop when the energy falls by less than this fraction in one round
   /// When a round leaves a triangle flipped that has no extra weight yet, every flipped triangle gets this much
-  /// more weight A_t w_t in the following rounds (the matrix is refactored then; other rounds only re-solve). The nearest rotation of a flipped triangle is its way
-  /// back to a positive orientation.
+  /// more weight A_t w_t in the following rounds (the matrix is refactored then; other rounds only re-solve). The
+  /// nearest rotation of a flipped triangle is its way back to a positive orientation.
   double flip_weight = 10.0;
   /// Refactorizations at most: refactorization_budget / #F, between 2 and `iterations`. More of them keep
   /// unflipping triangles (couplingdown 44 / 40 / 23 flips with 8 / 12 / 20, camelhead 9 / 4 / 2), but each costs a

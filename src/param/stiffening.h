@@ -28,7 +28,6 @@ struct StiffeningOptions {
 /// should follow), σ₂ carrying the sign of det J, so a flipped triangle has d > 1. 0 where Z is degenerate.
 Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, const FramePairs& Z);
 
-
 /// The stiffening loop from the unweighted solution u0: re-solves with w += c·d while triangles are flipped and
 /// returns the u with the fewest flipped triangles (u0 unless a re-solve strictly improves on it; re-solve k is the
 /// k-th call of `solve`, reported as result.kept_iteration). `base` holds the

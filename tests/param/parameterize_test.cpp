@@ -6,9 +6,9 @@
 #include "cover/complex_stiffness.h"
 #include "cover/field_helpers.h"
 #include "field/compute_frame_field.h"
+#include "map_checks.h"
 #include "param/cover_cut.h"
 #include "param/seams.h"
-#include "map_checks.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {

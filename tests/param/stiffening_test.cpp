@@ -7,9 +7,9 @@
 #include <algorithm>
 
 #include "field/compute_frame_field.h"
+#include "map_checks.h"
 #include "param/parameterize.h"
 #include "param/seams.h"
-#include "map_checks.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
