@@ -5,6 +5,7 @@
 // The factorization of 𝔏̄ is computed once and reused for every right-hand side (the period matrix needs one per
 // symmetric path, 6.3.2).
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
 #include "calculus/sparse_cholesky.h"
@@ -47,6 +48,13 @@ class HarmonicCorrection {
   std::vector<int> kernel_pins_;
   SparseCholesky<Complex> chol_;
 };
+
+/// Solve callbacks of the final correction with the caller's constraints (pins, curves), for the relaxation and the
+/// stiffening of param/: u of 𝔏̄ u = b with 𝔏̄ already factored by the caller,
+using CorrectionResolve = std::function<Eigen::VectorXcd(const Eigen::VectorXcd& b)>;
+/// and u of 𝔏̄_w u = b_w for a weighted matrix; refactorize = false reuses the factor of the previous call (same Lw).
+using WeightedCorrectionSolve = std::function<Eigen::VectorXcd(const Eigen::SparseMatrix<Complex>& Lw,
+                                                               const Eigen::VectorXcd& bw, bool refactorize)>;
 
 /// Replaces rows and columns of a Hermitian matrix by those of the identity (the values there pinned to 0).
 void pin_rows(Eigen::SparseMatrix<Complex>& A, const std::vector<int>& rows);

@@ -9,7 +9,6 @@
 // matrix, new right-hand side). Each step lowers the energy; α keeps the quads oriented by the field.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <functional>
 
 #include "common/progress.h"
 #include "param/disk_functions.h"
@@ -39,13 +38,6 @@ FramePairs nearest_rotations(const Mesh& mesh, const Eigen::MatrixX3cd& uv, doub
 
 /// ½ Σ_t A_t |∇φ_t − s R_t|² / (s² Σ_t A_t): the mean ARAP distortion of the map at scale s (R_t as above).
 double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s);
-
-/// u of 𝔏̄ u = b with the unweighted matrix already factored by the caller (and the caller's constraints).
-using CorrectionResolve = std::function<Eigen::VectorXcd(const Eigen::VectorXcd& b)>;
-/// u of 𝔏̄_w u = b_w for a weighted matrix, with the caller's constraints; refactorize = false reuses the factor of
-/// the previous call (same Lw).
-using WeightedCorrectionSolve = std::function<Eigen::VectorXcd(const Eigen::SparseMatrix<Complex>& Lw,
-                                                               const Eigen::VectorXcd& bw, bool refactorize)>;
 
 struct RelaxedCorrection {
   Eigen::VectorXcd u;

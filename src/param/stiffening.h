@@ -13,7 +13,6 @@
 #include "param/disk_functions.h"
 #include "param/harmonic_correction.h"
 #include "param/parameterization.h"
-#include "param/relaxation.h"
 
 namespace quadcover {
 
