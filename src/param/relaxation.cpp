@@ -23,12 +23,11 @@ Complex nearest_rotation_row0(Complex g0, Complex g1) {
 
 }  // namespace
 
-FramePairs nearest_rotations(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s) {
-  const int nf = mesh.num_faces();
+FramePairs nearest_rotations(const FramePairs& gradient, double s) {
+  const Eigen::Index nf = gradient.rows();
   FramePairs R(nf, 2);
-  for (int f = 0; f < nf; ++f) {
-    const auto [g0, g1] = face_gradient(mesh, uv, f);
-    const Complex r0 = nearest_rotation_row0(g0, g1);
+  for (Eigen::Index f = 0; f < nf; ++f) {
+    const Complex r0 = nearest_rotation_row0(gradient(f, 0), gradient(f, 1));
     R(f, 0) = s * r0;
     R(f, 1) = s * Complex(0, 1) * r0;
   }
@@ -37,7 +36,7 @@ FramePairs nearest_rotations(const Mesh& mesh, const Eigen::MatrixX3cd& uv, doub
 
 double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s) {
   const FramePairs G = corner_gradient(mesh, uv);
-  return 0.5 * frame_norm2(mesh, G - nearest_rotations(mesh, uv, s)) / (s * s * mesh.total_area());
+  return 0.5 * frame_norm2(mesh, G - nearest_rotations(G, s)) / (s * s * mesh.total_area());
 }
 
 RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
@@ -54,7 +53,7 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
   // G = (1 − α) s R(φ) + α Z and the blended energy at (φ, R(φ)), the quantity each local and global step lowers
   // (for fixed weights).
   auto targets_of = [&](const Eigen::MatrixX3cd& uv, FramePairs& G) {
-    const FramePairs R = nearest_rotations(mesh, uv, s), grad = corner_gradient(mesh, uv);
+    const FramePairs grad = corner_gradient(mesh, uv), R = nearest_rotations(grad, s);
     G = (1 - alpha) * R + alpha * Z;
     return 0.5 * ((1 - alpha) * frame_norm2(mesh, grad - R) + alpha * frame_norm2(mesh, grad - Z));
   };

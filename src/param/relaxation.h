@@ -33,8 +33,9 @@ struct RelaxationOptions {
 };
 
 /// Per face, the target gradient pair (∇φ⁰, ∇φ¹) = s R_t of the rotation nearest to the map's Jacobian on f
-/// (R_t = argmin over proper rotations of ‖J_t − R‖_F, J_t rows ∇φ⁰, ∇φ¹ in f's frame).
-FramePairs nearest_rotations(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s);
+/// (R_t = argmin over proper rotations of ‖J_t − R‖_F, J_t rows ∇φ⁰, ∇φ¹ in f's frame), from the map's gradients
+/// (corner_gradient).
+FramePairs nearest_rotations(const FramePairs& gradient, double s);
 
 /// ½ Σ_t A_t |∇φ_t − s R_t|² / (s² Σ_t A_t): the mean ARAP distortion of the map at scale s (R_t as above).
 double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s);

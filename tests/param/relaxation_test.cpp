@@ -27,8 +27,8 @@ TEST(Relaxation, RigidityEnergyOfLinearMaps) {
   EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 1.0, Complex(0, -1)), 1.0), 2, 1e-12);
   EXPECT_NEAR(rigidity_energy(grid, testing::linear_map(grid, 2.0, Complex(0, 0.5)), 1.0), 0.625, 1e-12);
   // The nearest rotation of a scaled rotation is that rotation, in the gradient rows (∇φ⁰, ∇φ¹) = s(e, ie).
-  const FramePairs R = nearest_rotations(grid, testing::linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r), 1.5);
   const FramePairs G = corner_gradient(grid, testing::linear_map(grid, 2.0 * r, 2.0 * Complex(0, 1) * r));
+  const FramePairs R = nearest_rotations(G, 1.5);
   for (int f = 0; f < grid.num_faces(); ++f) {
     EXPECT_NEAR(std::abs(R(f, 0) - 0.75 * G(f, 0)), 0, 1e-12) << f;
     EXPECT_NEAR(std::abs(R(f, 1) - 0.75 * G(f, 1)), 0, 1e-12) << f;
