@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "cli/commands.h"
 #include "common/errors.h"
 #include "render/html_report.h"
 #include "render/plots.h"
@@ -44,6 +45,12 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
                  "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
       ->capture_default_str();
+  cmd.add_option("--relaxation", options.relaxation, kRelaxationHelp)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd.add_option("--stiffening", options.stiffening, kStiffeningHelp)
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 }
 
 FieldOptions field_options(const OptimizeCliOptions& cli) { return field_options(parse_field_style(cli.field)); }
@@ -57,12 +64,14 @@ OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOp
   return o;
 }
 
-void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param) {
+void apply_param_options(const OptimizeCliOptions& cli, ParamOptions& param) {
   try {
     param.rounding.strategy = parse_rounding_strategy(cli.rounding);
   } catch (const InputError& e) {
     throw InputError("--rounding", 0, e.what());
   }
+  param.relaxation.iterations = cli.relaxation;
+  param.stiffening.max_iterations = cli.stiffening;
 }
 
 FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,

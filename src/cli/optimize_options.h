@@ -22,19 +22,23 @@ struct OptimizeCliOptions {
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
   bool keep_better = true;            ///< see parameterize_best()
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
+  int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
+  int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
 };
 
 /// The field stage's options of --field (its λ also serves the re-smoothing of --optimize).
 FieldOptions field_options(const OptimizeCliOptions& cli);
 
-/// Adds --field, --optimize, --rounding, --max-iterations and --keep-better to `cmd` (validated by CLI11).
+/// Adds --field, --optimize, --rounding, --max-iterations, --keep-better, --relaxation and --stiffening to `cmd`
+/// (validated by CLI11).
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
 /// Library options from the parsed command line (param options are used by --optimize full to measure E_H).
 OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOptions& param = {});
 
-/// Sets param.rounding from --rounding. \throw InputError for an unknown strategy.
-void apply_rounding(const OptimizeCliOptions& cli, ParamOptions& param);
+/// Sets param.rounding, param.relaxation and param.stiffening from the command line. \throw InputError for an unknown
+/// rounding strategy.
+void apply_param_options(const OptimizeCliOptions& cli, ParamOptions& param);
 
 /// Runs the optimization on a computed field and returns the field to parameterize; `report` receives the
 /// "optimize" object of to_json() (E_D before/after each phase, branch points, log, timings under "seconds").

@@ -33,8 +33,6 @@ struct ParamCmdOptions {
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
   bool align = true;
-  int stiffening = StiffeningOptions{}.max_iterations;
-  int relaxation = RelaxationOptions{}.iterations;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
@@ -74,9 +72,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   po.edge_length = opt.edge_length;
   po.target_quads = opt.quads;
   po.align_curves = opt.align;
-  po.stiffening.max_iterations = opt.stiffening;
-  po.relaxation.iterations = opt.relaxation;
-  apply_rounding(opt.optimize, po);
+  apply_param_options(opt.optimize, po);
   if (!out.plot.empty() && opt.optimize.optimize == "none")
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
@@ -219,10 +215,6 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
-      ->capture_default_str();
-  cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
-  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--align", opt->align,
                   "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")

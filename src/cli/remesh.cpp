@@ -30,8 +30,6 @@ struct RemeshOptions {
   int vertices = 0;
   double edge_length = 0;
   std::string lattice = "rotated";
-  int stiffening = StiffeningOptions{}.max_iterations;
-  int relaxation = RelaxationOptions{}.iterations;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
@@ -74,12 +72,10 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   lap("read");
   ParamOptions po;
   po.lattice = parse_lattice(opt.lattice);
-  po.stiffening.max_iterations = opt.stiffening;
-  po.relaxation.iterations = opt.relaxation;
   po.edge_length = opt.edge_length;
   // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
   po.target_quads = opt.vertices;
-  apply_rounding(opt.optimize, po);
+  apply_param_options(opt.optimize, po);
   const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
   lap("field");
   fix_default_density(mesh, detailed.field, po);  // one scale for the optimization, keep-better and the map
@@ -165,10 +161,6 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->excludes(nv);
   cmd->add_option("--lattice", opt->lattice, "Period lattice (4.2.2): unit, coarse or rotated")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
-      ->capture_default_str();
-  cmd->add_option("--stiffening", opt->stiffening, kStiffeningHelp)->check(CLI::NonNegativeNumber)->capture_default_str();
-  cmd->add_option("--relaxation", opt->relaxation, kRelaxationHelp)
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
