@@ -6,6 +6,7 @@
 #include <random>
 
 #include "metrics/report.h"
+#include "mesh/triangle_tree.h"
 #include "metrics/surface_distance.h"
 #include "quad/extract_quads.h"
 #include "quad/quad_test_maps.h"

@@ -1,0 +1,35 @@
+#pragma once
+// Closest points on a triangle set through a bounding volume hierarchy (surface distances, projection onto the input).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+namespace quadcover {
+
+/// Closest-point queries on a fixed triangle set (AABB tree, median splits). Build O(n log n), query ~O(log n).
+class TriangleTree {
+ public:
+  /// V #V by 3, F #F by 3.
+  TriangleTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+  /// Squared distance from p to the nearest triangle (infinity for an empty set); `face` receives its index.
+  double squared_distance(const Eigen::Vector3d& p, int* face = nullptr) const;
+
+ private:
+  struct Node {
+    Eigen::AlignedBox3d box;
+    int left = -1, right = -1;  ///< children, or -1 for a leaf
+    int begin = 0, end = 0;     ///< leaf range in order_
+  };
+  int build(int begin, int end);
+  Eigen::MatrixX3d V_;
+  Eigen::MatrixX3i F_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+  std::vector<Eigen::Vector3d> centroid_;
+};
+
+/// Closest point to p on triangle (a, b, c) (region test on the barycentric coordinates).
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c);
+
+}  // namespace quadcover
