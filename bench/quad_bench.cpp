@@ -6,6 +6,8 @@
 //  - ExtractMesh/<quads>: the real pipeline input: field → parameterize at that many target quads (computed once,
 //    not timed) → extract_quads (timed, with collapse + fold repair). Mesh: the first non-flag argument, else
 //    $QUADCOVER_BENCH_MESH, else tests/data/bunny_20k_holes.obj.
+//  - SmoothMesh/<quads>: tangential smoothing (smooth_quads, 20 rounds: the remesh default) of that extraction,
+//    from a copy each time (the copy is timed too; it is small against a round).
 //   bench_quad [--benchmark_flags...] [mesh]
 #include <benchmark/benchmark.h>
 
@@ -22,6 +24,7 @@
 #include "io/read_mesh.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
 #include "quad/transitions.h"
 
 namespace {
@@ -85,15 +88,19 @@ const Mesh& bench_mesh() {
   return mesh;
 }
 
-void BM_ExtractMesh(benchmark::State& state) {
+// The bench mesh's map at `target` quads (computed once per target).
+const Parameterization& bench_param(long target) {
   static std::map<long, Parameterization> params;
-  const long target = state.range(0);
   if (!params.count(target)) {
     ParamOptions po;
     po.target_quads = static_cast<int>(target);
     params[target] = parameterize(bench_mesh(), compute_frame_field(bench_mesh()), po);
   }
-  const Parameterization& P = params[target];
+  return params[target];
+}
+
+void BM_ExtractMesh(benchmark::State& state) {
+  const Parameterization& P = bench_param(state.range(0));
   ExtractionResult r;
   for (auto _ : state) r = extract_quads(bench_mesh(), P);
   const ExtractionReport& x = r.report;
@@ -104,6 +111,19 @@ void BM_ExtractMesh(benchmark::State& state) {
   state.counters["left_flipped"] = x.flipped_triangles + x.degenerate_triangles;
   state.counters["collapsed"] = x.collapsed_edges;
   state.counters["quads_per_s"] = benchmark::Counter(x.quads, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_SmoothMesh(benchmark::State& state) {
+  const Parameterization& P = bench_param(state.range(0));
+  const ExtractionResult ex = extract_quads(bench_mesh(), P);
+  QuadSmoothingReport r;
+  for (auto _ : state) {
+    QuadMesh q = ex.mesh;
+    r = smooth_quads(q, bench_mesh(), P, {});
+  }
+  state.counters["quads"] = ex.report.quads;
+  state.counters["rejected_moves"] = r.rejected_moves;
+  state.counters["quads_per_s"] = benchmark::Counter(ex.report.quads, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace
@@ -124,6 +144,11 @@ int main(int argc, char** argv) {
       ->Arg(400000)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("ExtractMesh", BM_ExtractMesh)
+      ->Arg(2000)
+      ->Arg(20000)
+      ->Arg(100000)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("SmoothMesh", BM_SmoothMesh)
       ->Arg(2000)
       ->Arg(20000)
       ->Arg(100000)

@@ -17,6 +17,7 @@
 #include "optimize/optimize_field.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
 
 namespace qc = quadcover;
 
@@ -32,6 +33,7 @@ struct Setup {
   long max_evaluations = 0;  ///< 0 = until converged
   qc::RoundingStrategy rounding = qc::RoundingStrategy::Direct;
   qc::FieldStyle field = qc::FieldStyle::Curvature;  ///< --field of the CLI
+  int smooth_rounds = 0;  ///< --smooth-quads of the CLI (tangential smoothing after extraction)
 };
 
 struct Column {
@@ -64,7 +66,11 @@ qc::ExtractionResult pipeline(const qc::Mesh& mesh, const Setup& setup, int quad
   oo.param = po;
   opt = qc::optimize_field(mesh, field, oo);
   P = qc::parameterize(mesh, opt.field, po);
-  return qc::extract_quads(mesh, P);
+  qc::ExtractionResult ex = qc::extract_quads(mesh, P);
+  qc::QuadSmoothingOptions so;
+  so.iterations = setup.smooth_rounds;
+  qc::smooth_quads(ex.mesh, mesh, P, so);
+  return ex;
 }
 
 // One column of Table 7.1. The density is calibrated once so that the output has about `target_vertices`
@@ -150,7 +156,7 @@ void print_table(const std::vector<Column>& cols) {
     check(c.quads.irregular_vertices <= 93, "> 93 irregular");
     return missed.empty() ? std::string("none") : missed;
   });
-  row("seconds (one field+param+opt+extract run)", "– | – | –", [](const Column& c) { return fmt("%.2f", c.seconds); });
+  row("seconds (one field+param+opt+extract[+smooth] run)", "– | – | –", [](const Column& c) { return fmt("%.2f", c.seconds); });
   for (const auto& c : cols)
     if (!c.available) std::printf("\n%s: %s\n", c.name.c_str(), c.note.c_str());
   if (std::getenv("QUADCOVER_BENCH_VERBOSE"))
@@ -205,7 +211,11 @@ int main(int argc, char** argv) {
         {"Balancing (full)", M::Full, 0, R::Search3},
         {"full, CLI budget 3000", M::Full, 3000, R::Search3},
         {"Relocation, smooth field", M::Relocate, 0, R::Search3, qc::FieldStyle::Smooth},
-        {"Balancing (full), smooth field", M::Full, 0, R::Search3, qc::FieldStyle::Smooth}};
+        {"Balancing (full), smooth field", M::Full, 0, R::Search3, qc::FieldStyle::Smooth},
+        {"Relocation, smooth field, quad smoothing", M::Relocate, 0, R::Search3, qc::FieldStyle::Smooth,
+         qc::QuadSmoothingOptions{}.iterations},
+        {"Balancing (full), smooth field, quad smoothing", M::Full, 0, R::Search3, qc::FieldStyle::Smooth,
+         qc::QuadSmoothingOptions{}.iterations}};
     std::vector<Column> cols;
     for (const Setup& s : setups) cols.push_back(run_column(mesh, s));
     print_table(cols);

@@ -19,6 +19,7 @@
 #include "metrics/report.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
 
 namespace py = pybind11;
 using namespace quadcover;
@@ -222,14 +223,20 @@ py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double e
 
 py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
                     const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field) {
+                    long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
+                    int smooth_quads_rounds, double smooth_rigidity) {
+  if (smooth_quads_rounds < 0) throw InputError("smooth_quads", 0, "must be >= 0 (0 = off)");
+  if (!(smooth_rigidity >= 0 && smooth_rigidity <= 1)) throw InputError("smooth_rigidity", 0, "must be in [0, 1]");
+  QuadSmoothingOptions sopt;
+  sopt.iterations = smooth_quads_rounds;
+  sopt.rigidity = smooth_rigidity;
   const Mesh mesh = make_mesh(V, F);
   ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
   const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
   PythonProgress progress;
   ExtractionResult ex;
   Report report;
-  nlohmann::json optimize_report, rounding_report, relaxation_report, stiffening_report;
+  nlohmann::json optimize_report, rounding_report, relaxation_report, stiffening_report, smoothing_report;
   {
     py::gil_scoped_release release;
     FrameField original;
@@ -240,6 +247,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
     relaxation_report = relaxation_to_json(p);
     stiffening_report = stiffening_to_json(p);
     ex = extract_quads(mesh, p, {}, progress);
+    smoothing_report = quad_smoothing_to_json(sopt, smooth_quads(ex.mesh, mesh, p, sopt, progress));
     report.parameterization = param_quality(mesh, p);
     report.extraction = ex.report;
     report.quad_mesh = quad_quality(ex.mesh);
@@ -263,6 +271,7 @@ py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_le
   j["rounding"] = rounding_report;
   j["relaxation"] = relaxation_report;
   j["stiffening"] = stiffening_report;
+  j["quad_smoothing"] = smoothing_report;
   return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(j));
 }
 
@@ -319,8 +328,12 @@ PYBIND11_MODULE(quadcover, m) {
         py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
         py::arg("stiffening") = StiffeningOptions{}.max_iterations,
         py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-        "Quad remeshing (field -> optimization -> parameterization -> extraction): returns (QV #Q×3, faces, report) "
-        "where faces is a #faces×4 int array when every face is a quad, else a list of polygons. optimize, "
-        "rounding, max_iterations, keep_better, stiffening, relaxation and field as in parameterize(); the report has "
-        "the same 'optimize', 'rounding', 'relaxation' and 'stiffening' objects.");
+        py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
+        py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
+        "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing): returns (QV #Q×3, "
+        "faces, report) where faces is a #faces×4 int array when every face is a quad, else a list of polygons. "
+        "optimize, rounding, max_iterations, keep_better, stiffening, relaxation and field as in parameterize(); "
+        "smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the integer points) "
+        "with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size (0). The report "
+        "has the same 'optimize', 'rounding', 'relaxation' and 'stiffening' objects and 'quad_smoothing'.");
 }

@@ -131,6 +131,21 @@ def test_remesh_torus_gives_a_closed_quad_mesh():
     assert report["quad_mesh"] is not None and report["extraction"]["quads"] == Q.shape[0]
 
 
+def test_remesh_quad_smoothing_keeps_connectivity_and_evens_out_edges():
+    V, F = mesh("bunny_3k")
+    QV0, Q0, r0 = quadcover.remesh(V, F, smooth_quads=0)
+    QV, Q, r = quadcover.remesh(V, F)
+    assert r0["quad_smoothing"]["iterations"] == 0
+    assert r["quad_smoothing"]["iterations"] == 20 and r["quad_smoothing"]["rigidity"] == 0.5
+    assert np.array_equal(Q, Q0)  # same faces, only the vertices move
+    assert np.abs(QV - QV0).max() > 0
+    assert r["quad_mesh"]["rsd_edge_length"] < r0["quad_mesh"]["rsd_edge_length"]
+    assert r["quad_mesh"]["rsd_corner_angle"] < r0["quad_mesh"]["rsd_corner_angle"]
+    assert r["parameterization"] == r0["parameterization"]  # the map itself is untouched
+    with pytest.raises(ValueError, match="smooth_rigidity"):
+        quadcover.remesh(V, F, smooth_rigidity=1.5)
+
+
 def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
     V, F = mesh("bunny_3k")
     _, none = quadcover.parameterize(V, F, optimize="none")

@@ -16,6 +16,7 @@
 #include "metrics/report.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
 #include "render/pipeline_pictures.h"
 
 namespace quadcover::cli {
@@ -30,6 +31,7 @@ struct RemeshOptions {
   int vertices = 0;
   double edge_length = 0;
   std::string lattice = "rotated";
+  QuadSmoothingOptions smoothing;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
@@ -97,6 +99,8 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
                               : ""));
   ExtractionResult ex = extract_quads(mesh, P, ExtractOptions{}, progress);
   lap("extract");
+  const QuadSmoothingReport smoothing = smooth_quads(ex.mesh, mesh, P, opt.smoothing, progress);
+  lap("smooth");
   report.parameterization = param_quality(mesh, P);
   report.extraction = ex.report;
   report.quad_mesh = quad_quality(ex.mesh);
@@ -115,6 +119,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   j["rounding"] = rounding_to_json(po, P);
   j["relaxation"] = relaxation_to_json(P);
   j["stiffening"] = stiffening_to_json(P);
+  j["quad_smoothing"] = quad_smoothing_to_json(opt.smoothing, smoothing);
   if (!out.report.empty()) write_json_atomically(out.report, j);
   if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
   if (!out.plot.empty()) write_optimization_plot(out.plot, optimize);
@@ -163,6 +168,15 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
+  cmd->add_option("--smooth-quads", opt->smoothing.iterations,
+                  "Rounds of tangential smoothing of the quad mesh on the input surface after extraction (0 = off: "
+                  "the vertices stay at the integer points of the map)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--smooth-rigidity", opt->smoothing.rigidity,
+                  "Smoothing target: 1 evens out edge lengths, 0 only squares up the quads")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,
                   "Also write the parameterization as OBJ with per-corner vt (one input) or a folder for them");

@@ -165,6 +165,13 @@ nlohmann::json relaxation_to_json(const Parameterization& p) {
           {"E_R", r.energy}};
 }
 
+nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const QuadSmoothingReport& r) {
+  return {{"iterations", r.iterations},           {"rigidity", options.rigidity},
+          {"edge_length", r.edge_length},         {"fixed_vertices", r.fixed_vertices},
+          {"rejected_moves", r.rejected_moves},   {"mean_displacement", r.mean_displacement},
+          {"max_displacement", r.max_displacement}};
+}
+
 nlohmann::json stiffening_to_json(const Parameterization& p) {
   const auto& s = p.stiffening;
   return {{"iterations", s.iterations},

@@ -11,6 +11,7 @@
 #include "metrics/surface_distance.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
 
 namespace quadcover {
 
@@ -41,6 +42,8 @@ nlohmann::json relaxation_to_json(const Parameterization& p);
 /// The local stiffening of a map (param/stiffening.h): re-solves, the one kept, flipped triangles before and after,
 /// and its price E_S (E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖²).
 nlohmann::json stiffening_to_json(const Parameterization& p);
+/// The tangential smoothing of a quad mesh (quad/smooth_quads.h): the options used and what it did.
+nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const QuadSmoothingReport& r);
 
 /// Human-readable lines ("RSD edge length: 8.1 %"), one per key number, for the CLI.
 std::string to_text(const Report& report);
