@@ -96,7 +96,7 @@ ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, cons
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < 3; ++c) {
       const Complex a = param.uv(f, (c + 1) % 3) - param.uv(f, c), b = param.uv(f, (c + 2) % 3) - param.uv(f, c);
-      theta[mesh.F()(f, c)] += std::abs(std::arg(b / a));
+      theta[mesh.F()(f, c)] += std::arg(b / a);  // signed: a flipped corner counts negative
       corner_face[mesh.F()(f, c)] = f;
       corner_idx[mesh.F()(f, c)] = c;
     }

@@ -27,7 +27,8 @@ struct ParamQuality {
   int degenerate_triangles = 0;        ///< |parameter area| ≤ 1e-12 × mean |area| (round-off collapse)
   double uv_area = 0;                  ///< Σ |area(φ(t))| before scaling (the quad count of a closed map)
   double energy_curl = 0, energy_harmonic = 0;  ///< E_D and E_H passed through from the Parameterization
-  /// Cone points of the map: interior vertices whose parameter angle sum Θ ≠ 2π, by quarter index
+  /// Cone points of the map: interior vertices whose signed parameter angle sum Θ ≠ 2π (flipped corners count
+  /// negative, so Θ is the map's winding: a vertex folded out of its link has Θ = 0, index 4), by quarter index
   /// round(4 − 2Θ/π) (4·ind, the convention of FrameField), and their total.
   std::map<int, int> branch_points_by_index;
   int branch_points = 0;

@@ -80,6 +80,29 @@ TEST(ParamQuality, MirrorImageIsFlipped) {
   EXPECT_EQ(q.arap_histogram.back(), mesh.num_faces());  // all above the last bin edge 1.0
 }
 
+// Branch points count the map's winding (signed angle sums), which folds do not blur: moving one interior vertex of
+// the grid's map just across an edge of its link flips one triangle and leaves the vertex outside its link (winding
+// 0: quarter index 4, a whole turn), while every neighbour still winds once. Unsigned angle sums would give the
+// vertex and its neighbours non-quantized sums.
+TEST(ParamQuality, FoldedVertexWindsZeroTimes) {
+  const Mesh mesh = testing::make_grid(4);
+  int centre = -1;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if ((mesh.V().row(v) - Eigen::RowVector3d(0.5, 0.5, 0)).norm() < 1e-12) centre = v;
+  ASSERT_GE(centre, 0);
+  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.F()(f, c);
+      const auto p = mesh.V().row(v);
+      uv(f, c) = v == centre ? Complex(0.8, 0.6) : Complex(p.x(), p.y());  // just across its link edge x = 0.75
+    }
+  const ParamQuality q = param_quality(mesh, parameterization_from_uv(mesh, uv));
+  EXPECT_EQ(q.flipped_triangles, 1);
+  EXPECT_EQ(q.branch_points, 1);
+  EXPECT_EQ(q.branch_points_by_index, (std::map<int, int>{{4, 1}}));
+}
+
 TEST(ParamQuality, SeamlessTorusAndCubeBranchPoints) {
   const auto torus = testing::torus_map(24, 12, 17, 7, 2);
   const ParamQuality t = param_quality(torus.mesh, torus.param);
