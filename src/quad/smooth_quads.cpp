@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "common/errors.h"
 #include "field/feature_alignment.h"
 #include "mesh/triangle_tree.h"
 
@@ -66,8 +67,12 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   QuadSmoothingReport report;
   const int nv = q.num_vertices(), nf = q.num_faces();
   if (options.iterations <= 0 || nv == 0) return report;
+  if (q.source_face.size() != nv || q.uv.size() != nv)
+    throw InputError("smooth_quads", 0, "the quad mesh has no source face or uv per vertex (not from extract_quads)");
+  if (param.uv.rows() != mesh.num_faces())
+    throw InputError("smooth_quads", 0, "the parameterization does not belong to the mesh (uv rows != faces)");
 
-  // Fixed vertices: on the boundary (edges of one face) and corners of non-quads.
+  // Fixed vertices: on the boundary (edges of one face), corners of non-quads, on sharp feature edges (below).
   std::vector<char> fixed(nv, 0);
   // Per undirected edge: number of faces, and whether a quad has it. h = mean length of the quads' edges.
   std::map<std::pair<int, int>, std::pair<int, bool>> edges;

@@ -36,6 +36,7 @@ struct QuadSmoothingReport {
 /// would make a corner of an incident quad point against the surface normal is undone. Updates V, source_face
 /// and uv (φ at the new point, so grid vertices are no longer at integer points). Deterministic; O(#V log #F) a
 /// round. \pre q was extracted from `param` on `mesh`.
+/// \throw InputError if q has no source face / uv per vertex or param.uv does not match the mesh.
 QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameterization& param,
                                  const QuadSmoothingOptions& options, ProgressSink& progress = null_progress());
 

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "common/errors.h"
 #include "field/compute_frame_field.h"
 #include "mesh/triangle_tree.h"
 #include "param/parameterize.h"
@@ -115,6 +116,13 @@ TEST(SmoothQuads, NoRoundsChangeNothing) {
   EXPECT_EQ(r.iterations, 0);
   EXPECT_EQ(q.V, before.V);
   EXPECT_EQ(q.uv, before.uv);
+}
+
+TEST(SmoothQuads, RefusesAQuadMeshWithoutSourceFaces) {
+  const auto [mesh, param] = testing::square_map(4, 6.0, 0.0, {0, 0});
+  QuadMesh q = extract_quads(mesh, param).mesh;
+  q.source_face.resize(0);
+  EXPECT_THROW(smooth_quads(q, mesh, param, {}), InputError);
 }
 
 class SmoothShipped : public ::testing::TestWithParam<const char*> {};
