@@ -154,7 +154,9 @@ TEST_F(OptimizeCli, RoundingStrategiesAreSelectableAndBadOptionsFailWithoutOutpu
     EXPECT_FALSE(rr["stopped_early"].get<bool>());
     // The period matrix's prediction: the chosen rounding is never worse than direct rounding (6.3).
     EXPECT_LE(rr["E_H_predicted"].get<double>(), rr["E_H_predicted_direct"].get<double>() * (1 + 1e-12));
-    if (strategy == "exact") EXPECT_TRUE(rr["proven_optimal"].get<bool>());
+    if (strategy == "exact") {
+      EXPECT_TRUE(rr["proven_optimal"].get<bool>());
+    }
   }
   fs::remove(path("p.obj"));
   EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize everything").code, 2);

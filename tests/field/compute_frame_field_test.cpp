@@ -141,8 +141,9 @@ TEST_P(BranchPointRegression, FewBranchPoints) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
   const FrameFieldResult r = compute_frame_field_detailed(mesh);
   EXPECT_LE(r.branch_points.size(), GetParam().max_branch_points);
-  if (mesh.num_boundary_loops() == 0)
+  if (mesh.num_boundary_loops() == 0) {
     EXPECT_EQ(cross_field_quarter_index(mesh, r.field).sum(), 4 * mesh.euler_characteristic());
+  }
   // Still curvature-aligned where curvature is stable: mean deviation of the cross from the principal
   // directions over the 5% most stable unconstrained faces (constrained ones follow their curve instead).
   std::vector<int> faces;

@@ -22,7 +22,9 @@ TEST(Stability, CylinderAndPlane) {
   for (int t = 0; t < cyl.num_faces(); ++t) {
     bool boundary = false;
     for (int k = 0; k < 3; ++k) boundary |= cyl.is_boundary_vertex(cyl.F()(t, k));
-    if (!boundary) EXPECT_NEAR(w[t], 0.5, 0.02) << t;
+    if (!boundary) {
+      EXPECT_NEAR(w[t], 0.5, 0.02) << t;
+    }
   }
   const Mesh plane = testing::make_grid(5);
   const CurvatureFrames flat = principal_curvature_frames(plane);

@@ -58,13 +58,17 @@ TEST(Relocation, MovesExactlyOneBranchPoint) {
     path_edges.insert(c.edge);
   }
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!path_edges.count(e)) ASSERT_EQ(matching[e], smoothed.matching[e]) << "edge " << e;
+    if (!path_edges.count(e)) {
+      ASSERT_EQ(matching[e], smoothed.matching[e]) << "edge " << e;
+    }
 
   const Eigen::VectorXi match_after = matching_quarter_index(mesh, matching);
   EXPECT_EQ(match_after[p], 0);
   EXPECT_EQ(match_after[q], match_before[q] + match_before[p]);
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (v != p && v != q) ASSERT_EQ(match_after[v], match_before[v]) << "vertex " << v;
+    if (v != p && v != q) {
+      ASSERT_EQ(match_after[v], match_before[v]) << "vertex " << v;
+    }
 
   for (const auto& c : changes) smoother.change_matching(c.edge, c.k);
   ASSERT_EQ(smoother.matching(), matching);
@@ -77,7 +81,9 @@ TEST(Relocation, MovesExactlyOneBranchPoint) {
   for (const auto& b : after) got.insert(b.vertex);
   EXPECT_EQ(got, expected);
   for (const auto& b : after)
-    if (b.vertex == q) EXPECT_EQ(((b.quarter_index - before.front().quarter_index) % 4 + 4) % 4, 0);
+    if (b.vertex == q) {
+      EXPECT_EQ(((b.quarter_index - before.front().quarter_index) % 4 + 4) % 4, 0);
+    }
   EXPECT_EQ(cross_field_quarter_index(mesh, moved).sum(), 4 * mesh.euler_characteristic());
 }
 

@@ -67,7 +67,9 @@ TEST(Adversarial, FlatDiskHasZeroInteriorCurvature) {
   EXPECT_EQ(m.euler_characteristic(), 1);
   EXPECT_EQ(m.num_boundary_loops(), 1);
   for (int v = 0; v < m.num_vertices(); ++v)
-    if (!m.is_boundary_vertex(v)) ASSERT_NEAR(m.angle_defect()[v], 0.0, 1e-12);
+    if (!m.is_boundary_vertex(v)) {
+      ASSERT_NEAR(m.angle_defect()[v], 0.0, 1e-12);
+    }
   expect_sane_geometry(m);
 }
 

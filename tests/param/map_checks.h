@@ -51,7 +51,9 @@ inline void expect_seamless_grid_map(const Mesh& mesh, const Parameterization& P
     }
   }
   for (const auto& curve : P.aligned_curves)
-    if (curve.enforced) EXPECT_LT(curve.max_deviation, tol) << curve.value;
+    if (curve.enforced) {
+      EXPECT_LT(curve.max_deviation, tol) << curve.value;
+    }
 }
 
 }  // namespace quadcover::testing

@@ -75,7 +75,9 @@ TEST_P(OnTestMeshes, SeamlessIntegerGridMap) {
         } else if (lattice == Lattice::Rotated) {
           const bool unfixed = std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(),
                                           bp.vertex) > 0;
-          if (!unfixed) EXPECT_LT(frac, tol) << "even branch point " << bp.vertex << " at " << z;
+          if (!unfixed) {
+            EXPECT_LT(frac, tol) << "even branch point " << bp.vertex << " at " << z;
+          }
         } else if (odd) {
           // Z[i]: odd branch points have equal fractional parts in both coordinates, 0 or ½ (4.2.2).
           const Complex h = 2.0 * z;
@@ -141,8 +143,9 @@ TEST(Parameterize, RandomFieldsManyBranchPoints) {
   EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
   for (const BranchPoint& bp : P.branch_points)
     for (const Complex z : values_at(mesh, P, bp.vertex))
-      if (std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(), bp.vertex) == 0)
+      if (std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(), bp.vertex) == 0) {
         EXPECT_LT(std::abs(z - round_gauss(z)), 1e-9 * seams.parameter_extent);
+      }
 }
 
 // Without branch points (torus, field with trivial holonomy): 2g complex periods, h_sym = 4g, and a constant field

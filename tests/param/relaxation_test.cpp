@@ -51,9 +51,13 @@ TEST(Relaxation, RigidityDecreasesWithEveryRound) {
     const Parameterization P = parameterize(mesh, field, o);
     EXPECT_EQ(P.relaxation.iterations, rounds);
     const double e = rigidity_energy(mesh, P.uv, 1.0 / P.edge_length);
-    if (rounds > 0) EXPECT_NEAR(P.relaxation.rigidity_after, e, 1e-12 * e);
+    if (rounds > 0) {
+      EXPECT_NEAR(P.relaxation.rigidity_after, e, 1e-12 * e);
+    }
     EXPECT_LT(e, previous * (1 + 1e-12)) << rounds << " rounds";
-    if (rounds == 1) EXPECT_LT(e, 0.99 * previous);  // the first round does measurable work
+    if (rounds == 1) {  // the first round does measurable work
+      EXPECT_LT(e, 0.99 * previous);
+    }
     previous = e;
   }
 }

@@ -154,7 +154,9 @@ TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
   for (const auto& f : res.mesh.faces) {
     const double a = uv_area(res.mesh, f);
     EXPECT_GT(a, 0);             // counter-clockwise, not folded
-    if (f.size() == 4) EXPECT_LE(a, 1 + 1e-9);
+    if (f.size() == 4) {
+      EXPECT_LE(a, 1 + 1e-9);
+    }
     total += a;
   }
   EXPECT_LE(total, scale * scale + 1e-6);
@@ -303,8 +305,12 @@ TEST(RepairFolds, KernelSweepsNeverIncreaseFolds) {
     opt.kernel_sweeps = sweeps;
     const FoldRepairResult fr = repair_folds(mesh, param, opt);
     EXPECT_LE(fr.bad_after, bad);
-    if (sweeps == 0) EXPECT_EQ(fr.bad_after, bad);
-    if (sweeps == 40) EXPECT_EQ(fr.bad_after, 0);
+    if (sweeps == 0) {
+      EXPECT_EQ(fr.bad_after, bad);
+    }
+    if (sweeps == 40) {
+      EXPECT_EQ(fr.bad_after, 0);
+    }
   }
   const ExtractionResult res = extract_quads(mesh, param);
   const testing::PolygonCheck pc = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);

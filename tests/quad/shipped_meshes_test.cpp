@@ -24,7 +24,9 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
   EXPECT_EQ(t.non_manifold_vertices, 0);
   EXPECT_EQ(t.degenerate_faces, 0);
   EXPECT_EQ(r.failed_traces, 0);
-  if (r.flipped_triangles + r.degenerate_triangles == 0) EXPECT_EQ(r.dropped_faces, 0);
+  if (r.flipped_triangles + r.degenerate_triangles == 0) {
+    EXPECT_EQ(r.dropped_faces, 0);
+  }
   EXPECT_EQ(r.torn_seams, 0);
   // The report is honest: an independent check of the same faces agrees, and no vertex is left unused.
   const testing::PolygonCheck pc = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);
@@ -43,14 +45,17 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
   if (pc.components > 1) {
     for (const auto& piece : testing::split_components(res.mesh.faces)) {
       const testing::PolygonCheck c = testing::check_polygons(res.mesh.num_vertices(), piece);
-      if (c.boundary_edges == 0) EXPECT_GE(c.faces, 6) << "closed piece of " << c.faces << " faces";
+      if (c.boundary_edges == 0) {
+        EXPECT_GE(c.faces, 6) << "closed piece of " << c.faces << " faces";
+      }
     }
   }
   // A closed all-quad output of a closed input is the same surface with one quad per unit of parameter area.
   if (mesh.num_boundary_loops() == 0 && t.closed() && r.non_quads == 0) {
     EXPECT_EQ(t.euler_characteristic, mesh.euler_characteristic());
-    if (r.split_polygons + r.merged_polygons + r.flipped_triangles + r.degenerate_triangles == 0)
+    if (r.split_polygons + r.merged_polygons + r.flipped_triangles + r.degenerate_triangles == 0) {
       EXPECT_NEAR(r.quads, r.active_parameter_area, 1e-6 * area);
+    }
   }
   // Each quad is one unit cell of the parameter domain. Polygons at the boundary or around cut-out folds are
   // partial or merged cells (at most 4 cells each), so the count is the extracted area up to them; polygons split
@@ -66,8 +71,9 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
       const Complex z = P.uv(fc.face, fc.corner);
       cones_on_grid &= std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))) < 1e-6;
     }
-  if (mesh.num_boundary_loops() == 0 && r.flipped_triangles + r.degenerate_triangles == 0 && cones_on_grid)
+  if (mesh.num_boundary_loops() == 0 && r.flipped_triangles + r.degenerate_triangles == 0 && cones_on_grid) {
     EXPECT_EQ(r.non_quads, 0);
+  }
   EXPECT_GT(r.quads, 0.5 * area);
 }
 INSTANTIATE_TEST_SUITE_P(Meshes, ShippedMeshes,
@@ -111,7 +117,9 @@ TEST(ShippedMeshes, BunnyAtTable71DensityIsClosedAllQuad) {
   const ExtractionReport& r = res.report;
   const int repairs = r.flipped_triangles + r.degenerate_triangles + r.split_polygons + r.merged_polygons + r.filled_holes;
   EXPECT_NEAR(r.quads, signed_area, 4.0 * repairs + 1e-6 * r.quads);
-  if (repairs == 0) EXPECT_NEAR(r.quads, r.active_parameter_area, 1e-6 * r.quads);
+  if (repairs == 0) {
+    EXPECT_NEAR(r.quads, r.active_parameter_area, 1e-6 * r.quads);
+  }
 }
 
 }  // namespace

@@ -53,7 +53,9 @@ TEST_P(HomologyOnMeshes, GeneratorsAreWalksOnTheCutGraph) {
       const int e = g.edges[i], a = mesh_.E()(e, 0), b = mesh_.E()(e, 1);
       EXPECT_TRUE((a == g.vertices[i] && b == g.vertices[i + 1]) || (b == g.vertices[i] && a == g.vertices[i + 1]));
       EXPECT_EQ(graph_.cut[e], 1);
-      if (i > 0) EXPECT_NE(g.edges[i], g.edges[i - 1]) << "backtracking left in the walk";
+      if (i > 0) {
+        EXPECT_NE(g.edges[i], g.edges[i - 1]) << "backtracking left in the walk";
+      }
     }
     for (std::size_t i = 1; i + 1 < g.vertices.size(); ++i) EXPECT_FALSE(mesh_.is_boundary_vertex(g.vertices[i]));
     if (g.closed) {
