@@ -53,6 +53,13 @@ Reading the table (the row "issue-7 goals missed" lists the goals each column mi
 - Full optimization with the smooth field and quad smoothing (the CLI's \`remesh --field smooth --optimize full
   --max-iterations 0\`) meets every goal of issue 7: RSD edge 7.9 % (thesis 8.1 %, MIQ + QEx 9.2 %), RSD angle
   5.9 % (7.2 %, 7.0 %), ARAP 0.0101 (MIQ 0.0123), 0 flips, closed all-quad, 51 irregular vertices (≤ 93; MIQ 34).
+- How much of that is the chosen density: the same pipeline through the CLI at \`--vertices\` 6000 / 6300 / 6500 /
+  6800 / 7000 (5884-6830 output vertices, uncalibrated) gives RSD edge 8.0 / 8.0 / 7.9 / 7.9 / 8.2 %, RSD angle
+  6.0 / 6.1 / 6.0 / 5.8 / 6.1 %, ARAP 0.0101-0.0104, 50-51 irregular vertices, all closed all-quad; at 6500 and 6800
+  the map has one flipped triangle. That triangle has a branch point at each corner (indices -2, +1, +1 next to each
+  other after creation), so rounding puts all three corners on integer points in the wrong order and no solve can
+  unflip it; extraction cuts it out and the output stays all-quad. (At the default density the remaining flips of
+  the shipped meshes have at most one branch point corner.)
 - Without quad smoothing (vertices at the integer points) the same map gives RSD edge 8.6 % and angle 6.9 %: it
   beats MIQ + QEx on every number but the irregular vertex count and misses RSD edge < 8.1 %. What is left there is
   mostly high-frequency: a quad's edges follow the Jacobian of the one or two input triangles under it (bunny_3k
