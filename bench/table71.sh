@@ -51,16 +51,19 @@ irregular vertices, ARAP 0.0123, 0 flips, in 0.4 s.
 
 Reading the table (the row "issue-7 goals missed" lists the goals each column misses):
 - Full optimization with the smooth field and quad smoothing (the CLI's \`remesh --field smooth --optimize full
-  --max-iterations 0\`) meets every goal of issue 7: RSD edge 7.9 % (thesis 8.1 %, MIQ + QEx 9.2 %), RSD angle
-  5.9 % (7.2 %, 7.0 %), ARAP 0.0101 (MIQ 0.0123), 0 flips, closed all-quad, 51 irregular vertices (≤ 93; MIQ 34).
+  --max-iterations 0\`) meets every goal of issue 7: RSD edge 8.0 % (8.01; thesis 8.1 %, MIQ + QEx 9.2 %), RSD
+  angle 5.8 % (7.2 %, 7.0 %), ARAP 0.0104 (MIQ 0.0123), 0 flips, closed all-quad, 53 irregular vertices (≤ 93; MIQ
+  34).
 - How much of that is the chosen density: the same pipeline through the CLI at \`--vertices\` 6000 / 6300 / 6500 /
-  6800 / 7000 (5884-6830 output vertices, uncalibrated) gives RSD edge 8.0 / 8.0 / 7.9 / 7.9 / 8.2 %, RSD angle
-  6.0 / 6.1 / 6.0 / 5.8 / 6.1 %, ARAP 0.0101-0.0104, 50-51 irregular vertices, all closed all-quad; at 6500 and 6800
-  the map has one flipped triangle. That triangle has a branch point at each corner (indices -2, +1, +1 next to each
-  other after creation), so rounding puts all three corners on integer points in the wrong order and no solve can
-  unflip it; extraction cuts it out and the output stays all-quad. (At the default density the remaining flips of
-  the shipped meshes have at most one branch point corner.)
-- Without quad smoothing (vertices at the integer points) the same map gives RSD edge 8.6 % and angle 6.9 %: it
+  6800 / 7000 (5868-6849 output vertices, uncalibrated) gives RSD edge 8.1 / 8.1 / 7.9 / 8.1 / 8.1 % (8.14, 8.10,
+  7.88, 8.09, 8.09), RSD angle 5.5-6.0 %, ARAP 0.0103-0.0106, 53 irregular vertices, 0 flips, all closed all-quad:
+  the RSD edge goal holds at the table's density and is at its edge around it.
+- Branch points are kept apart (\`CurlReductionOptions::separate_branch_points\`, beyond the thesis): Algorithm 6.1
+  skips a move that would leave a triangle with a branch point at each corner. Without it, creation on this mesh
+  left such triangles (indices -2, +1, +1 side by side); the parameterization puts all three corners on integer
+  points, in the wrong order, and no solve can unflip the triangle: one flip at two of these five densities, and
+  2 flips + 2 non-quads in the curvature-field Balancing column (now 0 / 0, RSD edge 11.6 → 10.6 %).
+- Without quad smoothing (vertices at the integer points) the same map gives RSD edge 8.8 % and angle 6.8 %: it
   beats MIQ + QEx on every number but the irregular vertex count and misses RSD edge < 8.1 %. What is left there is
   mostly high-frequency: a quad's edges follow the Jacobian of the one or two input triangles under it (bunny_3k
   has 3k triangles for 6.5k quads), so neighbouring quads differ in size and shape although the map's scale varies
@@ -72,9 +75,9 @@ Reading the table (the row "issue-7 goals missed" lists the goals each column mi
   rim of this bunny is a sharp crease whose three lines wiggle by 0.7-2.2 grid units in the free map; pinning them
   to integer iso-lines cost E_H 7 → 42 and ARAP 0.017 → 0.024 with 4 flips, and they are now left free; then the
   smooth field (ARAP 0.017 → 0.012); the ARAP relaxation gives a few % more (it cannot move branch points).
-- With the curvature field, relocation and full stay at RSD 11-12 % / 8-9 %, ARAP 0.016-0.017: its trusted frames
-  follow noisy principal directions on this coarse scan, which costs curl (E_D 296 against 163).
-- Creation and balancing (6.4) add branch points (51-74) and lower E_D and ARAP further; run to convergence they
+- With the curvature field, relocation and full stay at RSD 10.6-11.2 % / 7.8-8.2 %, ARAP 0.015-0.017: its trusted
+  frames follow noisy principal directions on this coarse scan, which costs curl (E_D 296 against 163).
+- Creation and balancing (6.4) add branch points (41-66) and lower E_D and ARAP further; run to convergence they
   take ~15-20 × the time of relocation.
 MD
 )

@@ -90,6 +90,21 @@ class Reducer {
     undo_indices(path);
     return bp_ + delta;
   }
+  // Whether a triangle at an endpoint of a changed edge has a branch point at each corner after `path`.
+  bool crowds_a_triangle(const Path& path) {
+    for (const auto& c : path) q_[mesh_.E()(c.edge, 0)] += c.delta, q_[mesh_.E()(c.edge, 1)] -= c.delta;
+    bool crowded = false;
+    for (std::size_t i = 0; i < path.size() && !crowded; ++i)
+      for (int s = 0; s < 2 && !crowded; ++s)
+        for (const auto& fc : mesh_.fan(mesh_.E()(path[i].edge, s)))
+          if (is_branch(mesh_.F()(fc.face, 0)) && is_branch(mesh_.F()(fc.face, 1)) &&
+              is_branch(mesh_.F()(fc.face, 2))) {
+            crowded = true;
+            break;
+          }
+    undo_indices(path);
+    return crowded;
+  }
   void undo_indices(const Path& path) {
     for (const auto& c : path) q_[mesh_.E()(c.edge, 0)] -= c.delta, q_[mesh_.E()(c.edge, 1)] += c.delta;
   }
@@ -225,6 +240,7 @@ class Reducer {
           const double theta = ed_.curvature(e);
           Path path{{e, theta > 0 ? -1 : 1}};  // m_e <- m_e - sign(θ_e)
           if (!creation && branch_points_after(path) > bp_) continue;
+          if (opt_.separate_branch_points && crowds_a_triangle(path)) continue;
           paths.push_back(std::move(path));
           after.push_back(next);
         }

@@ -39,6 +39,9 @@ struct CurlReductionOptions {
   double path_screening_margin = 0.03;
   /// Threads for screening batches (0 = all cores); results do not depend on it.
   int threads = 0;
+  /// Skip reduction moves that leave a triangle with a branch point at each corner (beyond the thesis): the
+  /// parameterization puts all three on integer points (4.2.2), which can flip that triangle beyond repair.
+  bool separate_branch_points = true;
 };
 
 /// One line of the per-iteration log (enough for Figure 6.1 and 6.5).

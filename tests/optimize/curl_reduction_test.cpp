@@ -142,6 +142,31 @@ TEST(CurlReduction, BalancingCancelsPairsBelowTheExpectedContinuityGain) {
 namespace quadcover {
 namespace {
 
+// Triangles of `mesh` with a branch point (index ≢ 0 mod 4, interior) at each corner, for quarter indices q.
+int crowded_triangles(const Mesh& mesh, const Eigen::VectorXi& q) {
+  const auto branch = [&](int v) { return !mesh.is_boundary_vertex(v) && ((q[v] % 4) + 4) % 4 != 0; };
+  int n = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    n += branch(mesh.F()(f, 0)) && branch(mesh.F()(f, 1)) && branch(mesh.F()(f, 2));
+  return n;
+}
+
+// With creation, Algorithm 6.1 on the smoothest field of bunny_3k (λ = 1) clusters branch points; without
+// CurlReductionOptions::separate_branch_points it leaves two triangles with a branch point at each corner (e.g. -2,
+// +1, +1), which the parameterization then flips (BENCHMARKS.md, Table 7.1).
+TEST(CurlReduction, NoTriangleGetsABranchPointAtEachCorner) {
+  const Mesh mesh = testing::load_test_mesh("bunny_3k");
+  const FieldOptions fo = field_options(FieldStyle::Smooth);
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, fo);
+  FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, fo.lambda);
+  CurlEnergy energy(mesh, smoother, SmoothingWeights{fo.lambda, field.stability, field.trusted});
+  CurlReductionOptions o;
+  ASSERT_TRUE(o.separate_branch_points);
+  const CurlReductionResult r = reduce_curl(mesh, energy, o);
+  EXPECT_GT(r.final_branch_points, r.initial_branch_points);  // creation happened
+  EXPECT_EQ(crowded_triangles(mesh, matching_quarter_index(mesh, energy.matching())), 0);
+}
+
 TEST(OptimizeField, RelocateLowersCurlDistortionAndNoneKeepsTheField) {
   const Mesh mesh = testing::load_test_mesh("eight_genus2");
   const FrameFieldResult field = compute_frame_field_detailed(mesh);
