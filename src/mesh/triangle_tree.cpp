@@ -65,8 +65,24 @@ int TriangleTree::build(int begin, int end) {
 }
 
 double TriangleTree::squared_distance(const Eigen::Vector3d& p, int* face) const {
+  int f = -1;
+  Eigen::Vector3d q;
+  const double d = nearest(p, f, q);
+  if (face) *face = f;
+  return d;
+}
+
+Eigen::Vector3d TriangleTree::closest_point(const Eigen::Vector3d& p, int* face) const {
+  int f = -1;
+  Eigen::Vector3d q = p;
+  nearest(p, f, q);
+  if (face) *face = f;
+  return q;
+}
+
+double TriangleTree::nearest(const Eigen::Vector3d& p, int& best_face, Eigen::Vector3d& point) const {
   double best = std::numeric_limits<double>::infinity();
-  int best_face = -1;
+  best_face = -1;
   if (nodes_.empty()) return best;
   std::vector<int> stack = {0};
   while (!stack.empty()) {
@@ -78,7 +94,7 @@ double TriangleTree::squared_distance(const Eigen::Vector3d& p, int* face) const
         const int f = order_[i];
         const Eigen::Vector3d q = closest_point_on_triangle(p, V_.row(F_(f, 0)), V_.row(F_(f, 1)), V_.row(F_(f, 2)));
         const double d = (q - p).squaredNorm();
-        if (d < best) best = d, best_face = f;
+        if (d < best) best = d, best_face = f, point = q;
       }
       continue;
     }
@@ -93,7 +109,6 @@ double TriangleTree::squared_distance(const Eigen::Vector3d& p, int* face) const
       stack.push_back(nd.right);
     }
   }
-  if (face) *face = best_face;
   return best;
 }
 

@@ -13,6 +13,8 @@ class TriangleTree {
   TriangleTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
   /// Squared distance from p to the nearest triangle (infinity for an empty set); `face` receives its index.
   double squared_distance(const Eigen::Vector3d& p, int* face = nullptr) const;
+  /// The point of the nearest triangle closest to p (p itself for an empty set); `face` receives its index (-1).
+  Eigen::Vector3d closest_point(const Eigen::Vector3d& p, int* face = nullptr) const;
 
  private:
   struct Node {
@@ -21,6 +23,8 @@ class TriangleTree {
     int begin = 0, end = 0;     ///< leaf range in order_
   };
   int build(int begin, int end);
+  /// Squared distance to the nearest triangle, its index (-1 if none) and the closest point on it.
+  double nearest(const Eigen::Vector3d& p, int& face, Eigen::Vector3d& point) const;
   Eigen::MatrixX3d V_;
   Eigen::MatrixX3i F_;
   std::vector<int> order_;

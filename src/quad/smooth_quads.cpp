@@ -164,10 +164,9 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
       d -= d.dot(n) * n;
       const Eigen::Vector3d moved = p + options.step * d;
       int face = -1;
-      tree.squared_distance(moved, &face);
+      const Eigen::Vector3d projected = tree.closest_point(moved, &face);
       if (face < 0) return;
-      q.V.row(v) = closest_point_on_triangle(moved, mesh.V().row(mesh.F()(face, 0)), mesh.V().row(mesh.F()(face, 1)),
-                                             mesh.V().row(mesh.F()(face, 2)));
+      q.V.row(v) = projected;
       q.source_face[v] = face;
     });
     // Undo the moves of quads that got a new inside-out corner, until none does.

@@ -114,6 +114,13 @@ TEST(SurfaceDistance, TreeMatchesBruteForceOnBunny) {
       brute = std::min(brute, (closest_point_on_triangle(p, mesh.V().row(mesh.F()(f, 0)), mesh.V().row(mesh.F()(f, 1)),
                                                          mesh.V().row(mesh.F()(f, 2))) - p).squaredNorm());
     EXPECT_DOUBLE_EQ(tree.squared_distance(p), brute);
+    // closest_point: at that distance, on the face it names.
+    int face = -1;
+    const Eigen::Vector3d q = tree.closest_point(p, &face);
+    ASSERT_GE(face, 0);
+    EXPECT_DOUBLE_EQ((q - p).squaredNorm(), brute);
+    EXPECT_EQ(q, closest_point_on_triangle(p, mesh.V().row(mesh.F()(face, 0)), mesh.V().row(mesh.F()(face, 1)),
+                                           mesh.V().row(mesh.F()(face, 2))));
   }
 }
 
