@@ -1,0 +1,78 @@
+#include "pipeline/parameterize_mesh.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "field/compute_frame_field.h"
+#include "optimize/optimize_field.h"
+
+namespace quadcover {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Appends the seconds since `t` under `stage` and restarts the clock.
+void lap(StageSeconds& seconds, Clock::time_point& t, const char* stage) {
+  const auto now = Clock::now();
+  seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
+  t = now;
+}
+
+/// The one-line summary of Algorithm 6.1 for the progress sink.
+std::string optimize_summary(const nlohmann::json& r, double evaluations_per_second, long budget) {
+  const std::string by = r["stopped_by"].get<std::string>();
+  const std::string how = by == "converged"     ? "converged"
+                          : by == "evaluations" ? "stopped on the budget of " + std::to_string(budget)
+                                                : "stopped early (" + by + ")";
+  char line[200];
+  std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s), %s",
+                r["E_D_before"].get<double>(), r["E_D_after"].get<double>(), r["branch_points_before"].get<int>(),
+                r["branch_points_after"].get<int>(), r["evaluations"].get<long>(), evaluations_per_second, how.c_str());
+  return line;
+}
+
+}  // namespace
+
+std::vector<std::string> map_warnings(const Parameterization& map) {
+  std::vector<std::string> warnings;
+  for (int comp : map.holonomy_without_branch_points)
+    warnings.push_back("component " + std::to_string(comp) +
+                       ": the field turns around a handle but has no branch points; no seamless immersion exists "
+                       "there (the map degenerates). Use a field with branch points (e.g. --optimize full).");
+  if (!map.unfixed_even_branch_points.empty())
+    warnings.push_back(std::to_string(map.unfixed_even_branch_points.size()) +
+                       " even branch points stay on half-integers (see unfixed_even_branch_points)");
+  return warnings;
+}
+
+ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+  validate(options);
+  ParamJob job;
+  job.options = options;
+  ParamOptions& param = job.options.param;
+  auto t = Clock::now();
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
+  job.field_branch_points = static_cast<int>(field.branch_points.size());
+  lap(job.seconds, t, "field");
+  fix_default_density(mesh, field.field, param);  // one scale for the optimization, keep-better and the map
+  const OptimizeOptions oo = optimize_stage_options(options, param);
+  const std::string mode = to_string(options.optimize);
+  if (oo.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + mode + ")");
+  OptimizeResult optimized = optimize_field(mesh, field, oo, progress);
+  job.optimize = to_json(optimized, oo.mode);
+  job.optimize["rounding"] = to_string(param.rounding.strategy);
+  if (oo.mode != OptimizeMode::None)
+    progress.report("optimize", 1,
+                    optimize_summary(job.optimize, optimized.evaluations_per_second, optimized.max_evaluations));
+  lap(job.seconds, t, "optimize");
+  job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, progress,
+                                     job.optimize);
+  job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
+  for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
+  job.warnings = map_warnings(job.map);
+  for (const auto& w : job.warnings) progress.report("param", -1, "warning: " + w);
+  return job;
+}
+
+}  // namespace quadcover
