@@ -117,14 +117,18 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "param",
       "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
       "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
-      "--quads N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
+      "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
       "30 quads per branch point of the field");
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");
-  cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--quads", opt->quads, "Target number of quads N (h = sqrt(area / N))")->check(CLI::PositiveNumber);
+  auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
+                ->check(CLI::PositiveNumber);
+  cmd->add_option("--faces,--quads", opt->quads,
+                  "Target number of quads N, hit within 2 % of the map's quad count (h = sqrt(area / N), solved once "
+                  "more at the corrected h when missed); --quads is its old name")
+      ->check(CLI::PositiveNumber)
+      ->excludes(h);
   cmd->add_option("--lattice", opt->lattice,
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")

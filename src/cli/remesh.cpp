@@ -102,7 +102,9 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.quad.obj");
-  auto* nv = cmd->add_option("--vertices", opt->vertices, "Target number of output vertices (≈ quads on a closed mesh)")
+  auto* nv = cmd->add_option("--faces,--vertices", opt->vertices,
+                             "Target number of quads N, hit within 2 % of the map's quad count (on a closed mesh the "
+                             "quad mesh has about as many vertices); --vertices is its old name")
                  ->check(CLI::PositiveNumber);
   cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length in model units")
       ->check(CLI::PositiveNumber)

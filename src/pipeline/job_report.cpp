@@ -91,6 +91,10 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
   r["mesh"] = mesh_json(mesh);
   r["options"] = options_json(job.options);
   r["edge_length"] = map.edge_length;
+  r["density"] = {{"target_quads", job.density.target_quads},
+                  {"first_quads", job.density.first_quads},
+                  {"quads", job.density.quads},
+                  {"resolves", job.density.resolves}};
   r["field"] = field_json(job);
   r["parameterization"] = map_json(mesh, map, uv);
   r["parameterization"]["h_sym"] = map.h_sym;

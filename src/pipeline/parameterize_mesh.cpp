@@ -1,6 +1,7 @@
 #include "pipeline/parameterize_mesh.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "field/compute_frame_field.h"
@@ -32,7 +33,56 @@ std::string optimize_summary(const nlohmann::json& r, double evaluations_per_sec
   return line;
 }
 
+/// Σ_t |area(φ(t))|: the number of quads the map holds (exact for a closed seamless map).
+double quad_count(const Parameterization& map) {
+  double area = 0;
+  for (Eigen::Index f = 0; f < map.uv.rows(); ++f) {
+    const Complex a = map.uv(f, 1) - map.uv(f, 0), b = map.uv(f, 2) - map.uv(f, 0);
+    area += 0.5 * std::abs(std::imag(std::conj(a) * b));
+  }
+  return area;
+}
+
 }  // namespace
+
+DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
+  ParamOptions& param = job.options.param;
+  DensityReport d;
+  d.target_quads = param.target_quads;
+  d.quads = d.first_quads = quad_count(job.map);
+  if (param.target_quads <= 0 || d.first_quads <= 0) return d;
+  const double target = param.target_quads;
+  const auto t = Clock::now();
+  // Quad count ≈ c / h²: re-solve the kept field (field and matching stay) at the h this predicts, interpolating in
+  // log h between the closest tries below and above N once both exist (the periods round to the lattice, so the
+  // count moves in steps); the closest map is kept.
+  std::pair<double, double> below{0, 0}, above{0, 0};  // (h, count) with count < N, count > N
+  auto note = [&](double h, double count) { (count < target ? below : above) = {h, count}; };
+  note(job.map.edge_length, d.quads);
+  double h = job.map.edge_length, count = d.quads;
+  for (int k = 0; k < kDensityResolves && std::abs(d.quads / target - 1) > kDensityTolerance; ++k) {
+    if (below.first > 0 && above.first > 0) {  // count falls with h: above has the smaller h
+      const double s = std::log(target / above.second) / std::log(below.second / above.second);
+      h = above.first * std::pow(below.first / above.first, s);
+    } else {
+      h *= std::sqrt(count / target);
+    }
+    param.edge_length = h;
+    param.target_quads = 0;
+    Parameterization map = parameterize(mesh, job.field, param, progress);
+    count = quad_count(map);
+    note(h, count);
+    ++d.resolves;
+    if (std::abs(count / target - 1) < std::abs(d.quads / target - 1)) {
+      job.map = std::move(map);
+      d.quads = count;
+    }
+    if (progress.cancelled()) break;
+  }
+  param.edge_length = job.map.edge_length;
+  if (d.resolves > 0) job.seconds.emplace_back("density", std::chrono::duration<double>(Clock::now() - t).count());
+  return d;
+}
 
 std::vector<std::string> map_warnings(const Parameterization& map) {
   std::vector<std::string> warnings;
@@ -70,6 +120,7 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
+  job.density = hit_target_count(mesh, job, progress);
   job.warnings = map_warnings(job.map);
   for (const auto& w : job.warnings) progress.report("param", -1, "warning: " + w);
   return job;
