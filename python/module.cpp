@@ -237,6 +237,12 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
   return a;
 }
 
+/// Each of the report's warnings as a Python UserWarning (a degraded result is never only in the dict).
+void warn(const nlohmann::json& report) {
+  for (const auto& w : report["warnings"])
+    if (PyErr_WarnEx(PyExc_UserWarning, w.get<std::string>().c_str(), 1) != 0) throw py::error_already_set();
+}
+
 py::tuple parameterize_py(const py::array& V, const py::array& F, const JobArgs& args, py::object progress_callback) {
   const Mesh mesh = make_mesh(V, F);
   const PipelineOptions options = pipeline_options(args);
@@ -250,6 +256,7 @@ py::tuple parameterize_py(const py::array& V, const py::array& F, const JobArgs&
     uv = job.map.uv;
   }
   progress.raise_if_stopped();
+  warn(report);
   return py::make_tuple(corner_uv_array(uv), to_python(report));
 }
 
@@ -279,6 +286,7 @@ py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args,
     report = remesh_report(mesh, job);
   }
   progress.raise_if_stopped();
+  warn(report);
   const QuadMesh& q = job.extraction.mesh;
   return py::make_tuple(RowMatrixX3d(q.V), face_list(q.faces), to_python(report));
 }

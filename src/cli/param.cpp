@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/job_output.h"
 #include "cli/optimize_options.h"
 #include "cli/pictures.h"
 #include "cli/registry.h"
@@ -11,7 +12,6 @@
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "mesh/mesh.h"
-#include "metrics/param_quality.h"
 #include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
 #include "render/pipeline_pictures.h"
@@ -99,13 +99,9 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   t = std::chrono::steady_clock::now();
   write_obj_with_uv(out.obj, mesh.V(), mesh.F(), UV, FUV);
   report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  if (!out.report.empty()) write_json_atomically(out.report, report);
+  print_warnings(input, report);
   if (!out.png.empty()) write_parameterization_png(out.png, mesh, job.map, views, render_options);
-  if (!out.plot.empty()) write_optimization_plot(out.plot, job.optimize);
-  if (!out.html.empty()) {
-    const ParamQuality quality = param_quality(mesh, job.map);
-    write_pipeline_report(out.html, "quadcover param: " + input, mesh, &job.map, nullptr, report, &quality);
-  }
+  write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, mesh, job.map, nullptr, report);
   nlohmann::json summary = report_summary(report);
   summary["output"] = out.obj;
   return summary;

@@ -4,13 +4,13 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/job_output.h"
 #include "cli/optimize_options.h"
 #include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
-#include "metrics/param_quality.h"
 #include "pipeline/job_report.h"
 #include "pipeline/remesh_mesh.h"
 #include "render/pipeline_pictures.h"
@@ -81,13 +81,10 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   write_polygon_obj(out.quads, quads.V, quads.faces);
   if (!out.param.empty()) write_param_obj(out.param, mesh, job.param.map.uv);
   report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
-  if (!out.report.empty()) write_json_atomically(out.report, report);
+  print_warnings(input, report);
   if (!out.png.empty()) write_quad_mesh_png(out.png, quads, views, render_options);
-  if (!out.plot.empty()) write_optimization_plot(out.plot, job.param.optimize);
-  if (!out.html.empty()) {
-    const ParamQuality quality = param_quality(mesh, job.param.map);
-    write_pipeline_report(out.html, "quadcover remesh: " + input, mesh, &job.param.map, &quads, report, &quality);
-  }
+  write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, mesh, job.param.map, &quads,
+                   report);
   nlohmann::json summary = report_summary(report);
   summary["output"] = out.quads;
   return summary;

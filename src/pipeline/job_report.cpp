@@ -107,6 +107,7 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
   r["quad_mesh"] = nullptr;
   r["surface_distance"] = nullptr;
   r["quad_smoothing"] = nullptr;
+  r["surface_check"] = nullptr;
   r["warnings"] = job.warnings;
   r["seconds"] = seconds_json(job.seconds);
   return r;
@@ -121,6 +122,7 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
   r["quad_mesh"] = to_json(quad_quality(q));
   r["surface_distance"] = to_json(surface_distance(q.V, q.faces, mesh.V(), mesh.F()));
   r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
+  r["surface_check"] = to_json(job.surface);
   r["seconds"]["metrics"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   return r;
 }
@@ -149,6 +151,7 @@ nlohmann::json report_summary(const nlohmann::json& r) {
                           "irregular_vertices", "manifold", "closed"})
     s[key] = q[key];
   s["input_faces"] = r["mesh"]["faces"];
+  s["same_topology"] = r["surface_check"]["same_topology"];
   s["distance_max"] = r["surface_distance"]["max"];
   s["repairs"] = e["failed_traces"].get<int>() + e["dropped_faces"].get<int>() + e["torn_seams"].get<int>();
   return s;

@@ -26,7 +26,9 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
                             const std::string& input = "");
 
 /// The report of the remesh job: param_report() of its map (job "remesh") plus extraction, quad_mesh (measured on
-/// the smoothed quad mesh), surface_distance (to the input) and quad_smoothing; the metrics' seconds are added.
+/// the smoothed quad mesh), surface_distance (to the input), quad_smoothing and surface_check
+/// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
+/// metrics' seconds are added.
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
 
 /// The key numbers of a report, flat (printed by the CLI, tabulated in batches): edge_length, branch_points (of the

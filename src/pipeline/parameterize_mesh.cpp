@@ -122,7 +122,6 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   job.density = hit_target_count(mesh, job, progress);
   job.warnings = map_warnings(job.map);
-  for (const auto& w : job.warnings) progress.report("param", -1, "warning: " + w);
   return job;
 }
 

@@ -37,7 +37,7 @@ struct ParamJob {
   Parameterization map;
   nlohmann::json optimize;            ///< the "optimize" object (optimize/optimize_field.h to_json, plus "kept")
   DensityReport density;              ///< how a requested quad count was met
-  std::vector<std::string> warnings;  ///< degraded results, also sent to progress as "warning: ..."
+  std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
   StageSeconds seconds;
 };
 

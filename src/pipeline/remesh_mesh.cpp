@@ -45,6 +45,8 @@ RemeshJob remesh_mesh(const Mesh& mesh, const PipelineOptions& options, Progress
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
   job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, progress);
   lap("smooth");
+  job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
+  for (const std::string& p : job.surface.problems) job.param.warnings.push_back("remesh changed the surface: " + p);
   return job;
 }
 

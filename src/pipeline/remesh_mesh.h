@@ -3,6 +3,7 @@
 // iso-lines (thesis ch. 7, QEx-style) → tangential smoothing on the input surface. One call for the CLI's `remesh`,
 // the Python module and the benches.
 #include "pipeline/parameterize_mesh.h"
+#include "pipeline/surface_check.h"
 #include "quad/extract_quads.h"
 #include "quad/smooth_quads.h"
 
@@ -12,6 +13,7 @@ struct RemeshJob {
   ParamJob param;
   ExtractionResult extraction;  ///< the quad mesh (smoothed) and what extraction did
   QuadSmoothingReport smoothing;
+  SurfaceCheck surface;  ///< the quad mesh against the input; its problems are in param.warnings
 };
 
 /// Runs the remesh job on `mesh`.
