@@ -186,6 +186,11 @@ void TerminalProgress::report(std::string_view stage, double fraction, std::stri
   printed_any_ = true;
 }
 
+double TerminalProgress::seconds_left() const {
+  if (deadline_ == Clock::time_point::max()) return ProgressSink::seconds_left();
+  return std::chrono::duration<double>(deadline_ - Clock::now()).count();
+}
+
 bool TerminalProgress::cancelled() const {
   const bool by_signal = interrupted();
   const bool by_time = deadline_ != Clock::time_point::max() && Clock::now() >= deadline_;

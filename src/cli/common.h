@@ -101,6 +101,7 @@ class TerminalProgress final : public ProgressSink {
 
   void report(std::string_view stage, double fraction, std::string_view message) override;
   bool cancelled() const override;
+  double seconds_left() const override;
   /// Ends the live line (called by the destructor).
   void finish();
 

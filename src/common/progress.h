@@ -1,5 +1,6 @@
 #pragma once
 // Progress and cancellation for long-running stages. The library never prints; the CLI implements a sink.
+#include <limits>
 #include <string_view>
 
 namespace quadcover {
@@ -12,6 +13,22 @@ class ProgressSink {
   /// `stage` names the pipeline stage, `fraction` is in [0,1] or negative when unknown, `message` is free text.
   virtual void report(std::string_view stage, double fraction, std::string_view message) = 0;
   virtual bool cancelled() const { return false; }
+  /// Seconds until a time limit makes cancelled() true (infinity without one): lets a job leave its later, not
+  /// interruptible stages their time.
+  virtual double seconds_left() const;
+};
+
+/// Forwards reports to `inner` but never cancels: for the stages that make a result valid, which run to the end
+/// even after a Ctrl-C or a time limit stopped the optimization (a second Ctrl-C still ends the process).
+class FinishingProgress final : public ProgressSink {
+ public:
+  explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}
+  void report(std::string_view stage, double fraction, std::string_view message) override {
+    inner_.report(stage, fraction, message);
+  }
+
+ private:
+  ProgressSink& inner_;
 };
 
 /// A sink that ignores everything; the default for library calls.
@@ -19,6 +36,8 @@ class NullProgress final : public ProgressSink {
  public:
   void report(std::string_view, double, std::string_view) override {}
 };
+
+inline double ProgressSink::seconds_left() const { return std::numeric_limits<double>::infinity(); }
 
 inline NullProgress& null_progress() {
   static NullProgress sink;

@@ -43,6 +43,21 @@ double quad_count(const Parameterization& map) {
   return area;
 }
 
+/// With a time limit (progress.seconds_left() finite), Algorithm 6.1, the only stage that can stop with a usable
+/// result at any moment, stops early enough to leave the stages after it their time, estimated from the field stage
+/// (they take about kLaterStagesPerFieldSecond times as long on the shipped meshes, BENCHMARKS.md).
+/// Returns true if the limit set is the caller's (tighter than the stage's own).
+bool leave_time_for_later_stages(const Mesh& mesh, double field_seconds, double seconds_left, OptimizeOptions& oo) {
+  if (!std::isfinite(seconds_left) || oo.mode == OptimizeMode::None) return false;
+  constexpr double kLaterStagesPerFieldSecond = 10;
+  const double budget = std::max(0.01, seconds_left - kLaterStagesPerFieldSecond * field_seconds);
+  const double own = oo.time_limit_seconds > 0           ? oo.time_limit_seconds
+                     : oo.max_evaluations == kAutoBudget ? auto_time_limit(mesh, oo.mode)
+                                                         : 0.0;
+  oo.time_limit_seconds = own > 0 ? std::min(own, budget) : budget;
+  return own <= 0 || budget < own;
+}
+
 }  // namespace
 
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
@@ -106,7 +121,8 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   lap(job.seconds, t, "field");
   fix_default_density(mesh, field.field, param);  // one scale for the optimization, keep-better and the map
-  const OptimizeOptions oo = optimize_stage_options(options, param);
+  OptimizeOptions oo = optimize_stage_options(options, param);
+  const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
   const std::string mode = to_string(options.optimize);
   if (oo.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + mode + ")");
   OptimizeResult optimized = optimize_field(mesh, field, oo, progress);
@@ -116,12 +132,18 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
     progress.report("optimize", 1,
                     optimize_summary(job.optimize, optimized.evaluations_per_second, optimized.max_evaluations));
   lap(job.seconds, t, "optimize");
-  job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, progress,
+  const std::string stopped_by = job.optimize.value("stopped_by", "converged");
+  if (stopped_by == "cancelled" || (stopped_by == "time" && limited))
+    job.warnings.push_back("the optimization was stopped early (" + stopped_by +
+                           ") and kept its best field so far; the map was completed from it");
+  // From here on every stage runs to the end: a stopped run still gives a valid, complete map.
+  FinishingProgress finishing(progress);
+  job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
-  job.density = hit_target_count(mesh, job, progress);
-  job.warnings = map_warnings(job.map);
+  job.density = hit_target_count(mesh, job, finishing);
+  for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   return job;
 }
 

@@ -39,11 +39,12 @@ RemeshJob remesh_mesh(const Mesh& mesh, const PipelineOptions& options, Progress
     job.param.seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
     t = now;
   };
-  job.extraction = extract_quads(mesh, map, options.extraction, progress);
+  FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C
+  job.extraction = extract_quads(mesh, map, options.extraction, finishing);
   lap("extract");
   if (job.extraction.mesh.num_faces() == 0)
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
-  job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, progress);
+  job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
   lap("smooth");
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
   for (const std::string& p : job.surface.problems) job.param.warnings.push_back("remesh changed the surface: " + p);

@@ -2,6 +2,8 @@
 // and the report's surface_check agrees with an independent count of the written quad mesh.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "io/read_mesh.h"
@@ -39,6 +41,25 @@ TEST(JobWarningsCli, EveryReportWarningIsOnStderrAndTheSurfaceCheckMatchesTheFil
     EXPECT_EQ(report["surface_check"]["problems"].size(), check.problems.size()) << name;
     if (!check.closed_all_quads) EXPECT_FALSE(report["warnings"].empty()) << name;
   }
+  fs::remove_all(dir);
+}
+
+// A time limit stops only Algorithm 6.1; the stages that make the result valid (relaxation, stiffening, the density,
+// extraction, quad smoothing) still run, the run says so on stderr, and the whole command stays near the limit.
+TEST(JobWarningsCli, ATimeLimitStopsTheOptimizationButNotTheStagesThatMakeTheResultValid) {
+  const fs::path dir = testing::fresh_dir("warnings_cli", "time");
+  const std::string json = (dir / "q.json").string(), err = (dir / "err.txt").string();
+  const auto r = testing::run_cli("remesh " + testing::data_path("bunny_3k") + " -o " + (dir / "q.obj").string() +
+                                      " --optimize full --max-iterations 0 --time-limit 1 --report " + json + " -q",
+                                  err);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_TRUE(report["optimize"]["stopped_early"].get<bool>());
+  EXPECT_GT(report["relaxation"]["iterations"].get<int>(), 0);
+  EXPECT_GT(report["quad_smoothing"]["iterations"].get<int>(), 0);
+  EXPECT_NE(r.err.find("the optimization was stopped early"), std::string::npos) << r.err;
+  EXPECT_TRUE(report["parameterization"]["seamless"].get<bool>());
   fs::remove_all(dir);
 }
 
