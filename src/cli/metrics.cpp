@@ -8,6 +8,7 @@
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
+#include "metrics/feature_fidelity.h"
 #include "metrics/report.h"
 #include "quad/extract_quads.h"
 #include "quad/transitions.h"
@@ -81,6 +82,7 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
   report.input = input;
   std::optional<Mesh> ref;
   if (!opt.ref.empty()) ref = build_mesh(read_mesh(opt.ref)).mesh;
+  std::optional<FeatureFidelity> fidelity;
   if (soup.has_uv() && all_triangles(soup)) {
     const MeshBuildResult built = build_mesh(soup);
     const Mesh& mesh = built.mesh;
@@ -93,6 +95,7 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
       const Mesh& target = ref ? *ref : mesh;
       if (ex.mesh.num_faces() > 0)
         report.surface_distance = surface_distance(ex.mesh.V, ex.mesh.faces, target.V(), target.F());
+      if (ref && ex.mesh.num_faces() > 0) fidelity = feature_fidelity(*ref, ex.mesh.V, ex.mesh.faces);
     }
   } else {
     const int nv = static_cast<int>(soup.num_vertices());
@@ -106,10 +109,16 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
       }
     report.quad_mesh = quad_quality(soup.positions, faces);
     if (ref) report.surface_distance = surface_distance(soup.positions, faces, ref->V(), ref->F());
+    if (ref && !faces.empty()) fidelity = feature_fidelity(*ref, soup.positions, faces);
   }
-  const nlohmann::json full = to_json(report);
+  nlohmann::json full = to_json(report), brief = summary(report);
+  if (fidelity) {  // the reference's boundary and sharp edges against the output edges
+    full["feature_fidelity"] = feature_fidelity_to_json(*fidelity);
+    brief["features_covered_percent"] = full["feature_fidelity"]["total"]["covered_percent"];
+    brief["features_p95"] = full["feature_fidelity"]["total"]["p95"];
+  }
   if (!report_path.empty()) write_json_atomically(report_path, full);
-  return full_json ? full : summary(report);
+  return full_json ? full : brief;
 }
 
 void register_metrics(CLI::App& app, GlobalOptions& global, int& exit_code) {
@@ -119,7 +128,8 @@ void register_metrics(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "Quality numbers of a parameterized OBJ (per-corner vt: normalized ARAP, flips, cones, seamlessness, and the "
       "extracted quad mesh) or of a quad mesh (RSD of edge lengths and angles, valences, non-quads, Table 7.1)");
   add_input_option(*cmd, opt->inputs, "Parameterized OBJ (triangles with vt) or polygon mesh files, or folders");
-  cmd->add_option("--ref", opt->ref, "Reference triangle mesh for the surface distance")->check(CLI::ExistingFile);
+  cmd->add_option("--ref", opt->ref, "Reference triangle mesh for the surface distance and the feature fidelity")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--report", opt->report, "Write the full JSON report (one input) or a folder for NAME.metrics.json");
   cmd->add_flag("--no-extract", opt->no_extract, "Parameterized input: do not extract and measure the quad mesh");
   add_global_options(*cmd, global);

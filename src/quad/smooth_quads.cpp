@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include "common/errors.h"
 #include "field/feature_alignment.h"
+#include "mesh/segment_grid.h"
 #include "mesh/triangle_tree.h"
 
 namespace quadcover {
@@ -60,6 +63,77 @@ bool corner_positive(const Eigen::MatrixX3d& V, const std::vector<int>& f, int k
   return (next - p).cross(prev - p).dot(n) > 0;
 }
 
+// Input vertices where a feature curve ends or turns by more than 40° (the continuation rule of
+// field/feature_alignment.cpp).
+std::vector<char> feature_corners(const Mesh& mesh, const std::vector<int>& feature_edges) {
+  std::vector<std::vector<int>> at(static_cast<std::size_t>(mesh.num_vertices()));
+  for (int e : feature_edges)
+    for (int j = 0; j < 2; ++j) at[static_cast<std::size_t>(mesh.E()(e, j))].push_back(e);
+  std::vector<char> corner(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  const double continues = -std::cos(40.0 * std::numbers::pi / 180.0);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const auto& edges = at[static_cast<std::size_t>(v)];
+    const auto away = [&](int e) {
+      const int w = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
+      return Eigen::Vector3d((mesh.V().row(w) - mesh.V().row(v)).normalized());
+    };
+    if (!edges.empty()) corner[v] = edges.size() != 2 || away(edges[0]).dot(away(edges[1])) >= continues;
+  }
+  return corner;
+}
+
+// Chooses the vertices that slide along the features (feature_segment ≥ 0), nearest first: within feature_snap·h
+// of a feature, unless a quad would get two opposite corners or three corners on features, or an edge of a quad
+// would get shorter than h/2 (measured to the neighbour's projection if it slides). Vertices already on a feature
+// that may not slide, and those at a feature corner, become fixed.
+void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int>& feature_edges,
+                      const SegmentGrid& grid, const std::vector<std::vector<std::pair<int, int>>>& corners, double h,
+                      const QuadSmoothingOptions& options, std::vector<char>& fixed,
+                      std::vector<int>& feature_segment) {
+  const int nv = q.num_vertices();
+  if (grid.num_segments() == 0) return;
+  const std::vector<char> corner = feature_corners(mesh, feature_edges);
+  std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
+  std::vector<Eigen::Vector3d> proj(nv);
+  std::vector<int> seg(nv, -1);
+  tbb::parallel_for(0, nv, [&](int v) {
+    if (fixed[v]) return;
+    proj[v] = grid.closest_point(q.V.row(v).transpose(), &seg[v]);
+    dist[v] = (proj[v] - q.V.row(v).transpose()).norm();
+  });
+  const double on = options.feature_tolerance * h, reach = std::max(on, options.feature_snap * h);
+  std::vector<int> order;
+  for (int v = 0; v < nv; ++v)
+    if (!fixed[v] && dist[v] <= reach) order.push_back(v);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::pair(dist[a], a) < std::pair(dist[b], b); });
+  for (int v : order) {
+    const int e = feature_edges[static_cast<std::size_t>(seg[v])];
+    bool at_corner = false;
+    for (int j = 0; j < 2; ++j) {
+      const int w = mesh.E()(e, j);
+      at_corner |= corner[w] && (proj[v] - mesh.V().row(w).transpose()).norm() <= on;
+    }
+    bool ok = !at_corner && options.feature_snap > 0;
+    for (const auto& [f, k] : corners[v]) {
+      const std::vector<int>& face = q.faces[f];
+      int sliding = 0;
+      for (int j = 1; j < 4 && ok; ++j) {
+        const int w = face[(k + j) % 4];
+        const bool w_slides = feature_segment[w] >= 0;
+        const Eigen::Vector3d pw = w_slides ? proj[w] : Eigen::Vector3d(q.V.row(w).transpose());
+        if (j != 2) ok = (pw - proj[v]).norm() >= 0.5 * h;  // no edge of the quad collapses
+        if (!w_slides) continue;
+        ++sliding;
+        ok = ok && j != 2;
+      }
+      ok = ok && sliding <= 1;
+    }
+    if (ok)
+      feature_segment[v] = seg[v];
+    else if (dist[v] <= on)
+      fixed[v] = 1;
+  }
+}
 }  // namespace
 
 QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameterization& param,
@@ -94,37 +168,42 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   const double h = quad_edges ? length_sum / quad_edges : 0;
   if (!(h > 0)) return report;
   report.edge_length = h;
-  // Vertices on sharp feature edges of the input (put there by curve alignment) stay on them.
-  std::vector<char> sharp(mesh.num_edges(), 0);
-  for (int e : feature_constraints(mesh).feature_edges) sharp[e] = 1;
-  for (int v = 0; v < nv; ++v) {
-    const int t = q.source_face[v];
-    if (t < 0 || t >= mesh.num_faces()) {
-      fixed[v] = 1;
-      continue;
-    }
-    for (int k = 0; k < 3 && !fixed[v]; ++k) {
-      if (!sharp[mesh.FE()(t, k)]) continue;
-      const Eigen::Vector3d a = mesh.V().row(mesh.F()(t, (k + 1) % 3)), b = mesh.V().row(mesh.F()(t, (k + 2) % 3)),
-                            p = q.V.row(v);
-      const double s = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-      if ((a + s * (b - a) - p).norm() <= options.feature_tolerance * h) fixed[v] = 1;
-    }
-  }
-
   // (quad, corner) pairs of each vertex.
   std::vector<std::vector<std::pair<int, int>>> corners(nv);
   for (int f = 0; f < nf; ++f)
     if (q.faces[f].size() == 4)
       for (int k = 0; k < 4; ++k) corners[q.faces[f][k]].push_back({f, k});
   for (int v = 0; v < nv; ++v) {
-    if (corners[v].empty()) fixed[v] = 1;
-    report.fixed_vertices += fixed[v];
+    const int t = q.source_face[v];
+    if (corners[v].empty() || t < 0 || t >= mesh.num_faces()) fixed[v] = 1;
   }
+  // Sharp feature curves of the input: vertices on or near them slide along them, their corners stay.
+  const std::vector<int> feature_edges = feature_constraints(mesh).feature_edges;
+  Eigen::MatrixX2i feature_segments(static_cast<Eigen::Index>(feature_edges.size()), 2);
+  for (std::size_t s = 0; s < feature_edges.size(); ++s) feature_segments.row(s) = mesh.E().row(feature_edges[s]);
+  const SegmentGrid feature_grid(mesh.V(), feature_segments);
+  std::vector<int> feature_segment(nv, -1);  // sliding vertices: the feature edge (index into feature_edges) under it
+  snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);
+  for (int v = 0; v < nv; ++v) {
+    report.fixed_vertices += fixed[v];
+    report.feature_vertices += feature_segment[v] >= 0;
+  }
+  const auto feature_face = [&](int s) {
+    const int e = feature_edges[static_cast<std::size_t>(s)];
+    return mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+  };
 
   const TriangleTree tree(mesh.V(), mesh.F());
   const Eigen::MatrixX3d original = q.V;
-  const auto surface_normal = [&](int v) -> Eigen::Vector3d { return mesh.face_normals().row(q.source_face[v]); };
+  // On a feature the normal is the mean of the two sides' (a corner of a quad on either side turns around it).
+  const auto surface_normal = [&](int v) -> Eigen::Vector3d {
+    if (feature_segment[v] < 0) return mesh.face_normals().row(q.source_face[v]);
+    const int e = feature_edges[static_cast<std::size_t>(feature_segment[v])];
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 2; ++j)
+      if (mesh.EF()(e, j) >= 0) n += mesh.face_normals().row(mesh.EF()(e, j)).transpose();
+    return n.normalized();
+  };
   // Number of corners of quad f that turn against the surface normal.
   const auto bad_corners = [&](int f) {
     int bad = 0;
@@ -147,6 +226,7 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
     // surface.
     const Eigen::MatrixX3d before = q.V;
     const Eigen::VectorXi face_before = q.source_face;
+    const std::vector<int> segment_before = feature_segment;
     tbb::parallel_for(0, nv, [&](int v) {
       if (fixed[v]) return;
       Eigen::Vector3d target = Eigen::Vector3d::Zero();
@@ -159,7 +239,15 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
         ++count;
       }
       if (count == 0) return;
-      const Eigen::Vector3d p = before.row(v), n = surface_normal(v);
+      const Eigen::Vector3d p = before.row(v);
+      if (feature_segment[v] >= 0) {  // slide along the feature polyline (the first round snaps onto it)
+        int s = -1;
+        q.V.row(v) = feature_grid.closest_point(p + options.step * (target / count - p), &s).transpose();
+        q.source_face[v] = feature_face(s);
+        feature_segment[v] = s;
+        return;
+      }
+      const Eigen::Vector3d n = surface_normal(v);
       Eigen::Vector3d d = target / count - p;
       d -= d.dot(n) * n;
       const Eigen::Vector3d moved = p + options.step * d;
@@ -178,6 +266,7 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
           if (q.source_face[v] != face_before[v] || q.V.row(v) != before.row(v)) {
             q.V.row(v) = before.row(v);
             q.source_face[v] = face_before[v];
+            feature_segment[v] = segment_before[v];
             ++report.rejected_moves;
             changed = true;
           }

@@ -19,14 +19,23 @@ struct QuadSmoothingOptions {
   double rigidity = 0.5;
   /// Fraction of the way to the target taken per round (damped Jacobi).
   double step = 0.5;
-  /// Vertices within this many h of a sharp feature edge of the input (FeatureOptions) do not move.
+  /// Vertices within this many h of a sharp feature edge of the input (FeatureOptions) are on the feature.
   double feature_tolerance = 1e-6;
+  /// Interior vertices within this many h of a sharp feature curve are snapped onto it and then slide along it
+  /// (their moves are projected onto the feature polyline) so that quad edges run on the crease; 0 = off (vertices
+  /// on a feature do not move). A vertex is not snapped where that would shorten an edge of its quads below h/2
+  /// or put more than two corners, or two opposite ones, of a quad on features. Vertices at feature corners (curve
+  /// ends, turns > 40°) do not move. Moving a row by up to this much stretches the quads beside it: on fandisk
+  /// (sharp-edge samples within 0.1 h, RSD edge / angle) 0 gives 46 %, 11.1 / 6.9 %; 0.4 68.7 %, 11.7 / 7.5 %;
+  /// 0.5 74 %, 12.1 / 8.0 %. 0.4 keeps RSD within the regression tolerance of the default.
+  double feature_snap = 0.4;
 };
 
 struct QuadSmoothingReport {
   int iterations = 0;
   double edge_length = 0;        ///< h: mean edge length of the quads before smoothing
-  int fixed_vertices = 0;        ///< on the boundary, on sharp feature edges or corners of non-quads: not moved
+  int fixed_vertices = 0;        ///< on the boundary, at feature corners or corners of non-quads: not moved
+  int feature_vertices = 0;      ///< snapped onto a sharp feature curve and sliding along it
   int rejected_moves = 0;        ///< moves undone because they would have turned a corner of a quad inside out
   double mean_displacement = 0;  ///< mean distance of a free vertex from where extraction put it, in units of h
   double max_displacement = 0;   ///< the largest such distance, in units of h

@@ -7,9 +7,12 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
+#include "field/feature_alignment.h"
+#include "mesh/segment_grid.h"
 #include "mesh/triangle_tree.h"
 #include "param/parameterize.h"
 #include "quad/extract_quads.h"
@@ -41,17 +44,50 @@ std::pair<double, double> quad_rsd(const QuadMesh& q) {
   return {rsd(lengths), rsd(angles)};
 }
 
-// Corners of quads that turn against the normal of the input triangle under their vertex.
+// The input's normal at a quad vertex: its source triangle's, or on an input edge (a crease) the mean of both sides'.
+Eigen::Vector3d normal_at(const QuadMesh& q, const Mesh& mesh, int v) {
+  const int t = q.source_face[v];
+  const Eigen::Vector3d p = q.V.row(v);
+  Eigen::Vector3d n = mesh.face_normals().row(t);
+  for (int k = 0; k < 3; ++k) {
+    const int e = mesh.FE()(t, k), other = mesh.EF()(e, 0) == t ? mesh.EF()(e, 1) : mesh.EF()(e, 0);
+    if (other < 0) continue;
+    const Eigen::Vector3d a = mesh.V().row(mesh.E()(e, 0)), b = mesh.V().row(mesh.E()(e, 1));
+    if ((closest_point_on_segment(p, a, b) - p).norm() <= 1e-9 * (b - a).norm())
+      n += mesh.face_normals().row(other).transpose();
+  }
+  return n.normalized();
+}
+
+// Corners of quads that turn against the input's normal at their vertex.
 int inverted_corners(const QuadMesh& q, const Mesh& mesh) {
   int bad = 0;
   for (const auto& f : q.faces) {
     if (f.size() != 4) continue;
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3d p = q.V.row(f[k]), next = q.V.row(f[(k + 1) % 4]), prev = q.V.row(f[(k + 3) % 4]);
-      bad += (next - p).cross(prev - p).dot(mesh.face_normals().row(q.source_face[f[k]])) <= 0;
+      bad += (next - p).cross(prev - p).dot(normal_at(q, mesh, f[k])) <= 0;
     }
   }
   return bad;
+}
+
+// Share of the input's sharp feature edges whose midpoint is within 0.1 h of an edge of q (1 without features).
+double sharp_edges_covered(const QuadMesh& q, const Mesh& mesh, double h) {
+  std::set<std::pair<int, int>> edges;
+  for (const auto& f : q.faces)
+    for (std::size_t k = 0; k < f.size(); ++k) edges.insert(std::minmax(f[k], f[(k + 1) % f.size()]));
+  Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
+  int i = 0;
+  for (const auto& [a, b] : edges) E.row(i++) << a, b;
+  const SegmentGrid grid(q.V, E);
+  const std::vector<int> sharp = feature_constraints(mesh).feature_edges;
+  int covered = 0;
+  for (int e : sharp) {
+    const Eigen::Vector3d mid = 0.5 * (mesh.V().row(mesh.E()(e, 0)) + mesh.V().row(mesh.E()(e, 1))).transpose();
+    covered += grid.squared_distance(mid) <= 0.01 * h * h;
+  }
+  return sharp.empty() ? 1.0 : static_cast<double>(covered) / static_cast<double>(sharp.size());
 }
 
 TEST(SmoothQuads, ExactGridIsAFixedPoint) {
@@ -125,6 +161,56 @@ TEST(SmoothQuads, RefusesAQuadMeshWithoutSourceFaces) {
   EXPECT_THROW(smooth_quads(q, mesh, param, {}), InputError);
 }
 
+// make_grid(20) folded up by 60° along x = 0.5 (a sharp crease of 20 edges), with φ = 6 p + 0.2 of the unfolded p:
+// the integer line Re φ = 3 runs at x = 0.4667, 0.2 h beside the crease.
+testing::MeshAndMap folded_square_map() {
+  const Mesh grid = testing::make_grid(20);
+  Eigen::MatrixX3d V = grid.V();
+  for (int v = 0; v < V.rows(); ++v)
+    if (V(v, 0) > 0.5) {
+      const double t = V(v, 0) - 0.5;
+      V.row(v) << 0.5 + t * std::cos(std::numbers::pi / 3), V(v, 1), t * std::sin(std::numbers::pi / 3);
+    }
+  testing::MeshAndMap r{Mesh::from_triangles(V, grid.F()), {}};
+  Eigen::MatrixX3cd uv(grid.num_faces(), 3);
+  for (int f = 0; f < grid.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const auto p = grid.V().row(grid.F()(f, c));
+      uv(f, c) = 6.0 * Complex(p.x(), p.y()) + 0.2;
+    }
+  r.param = parameterization_from_uv(r.mesh, uv);
+  return r;
+}
+
+TEST(SmoothQuads, VerticesNearACreaseSnapOntoItAndSlideAlongIt) {
+  const auto [mesh, param] = folded_square_map();
+  const QuadMesh extracted = extract_quads(mesh, param).mesh;
+  // The interior vertices of the line Re φ = 3 (x = 0.4667 unfolded), 5 of them.
+  std::vector<int> row;
+  for (int v = 0; v < extracted.num_vertices(); ++v)
+    if (extracted.on_grid[v] && std::abs(extracted.uv[v].real() - 3) < 1e-9 && extracted.V(v, 1) > 1e-9 &&
+        extracted.V(v, 1) < 1 - 1e-9)
+      row.push_back(v);
+  ASSERT_EQ(row.size(), 5u);
+  QuadMesh q = extracted;
+  const QuadSmoothingReport r = smooth_quads(q, mesh, param, {});
+  EXPECT_EQ(r.feature_vertices, 5);  // the next line, 0.8 h away on the other side, stays free
+  for (int v : row) {
+    EXPECT_NEAR(q.V(v, 0), 0.5, 1e-9) << "vertex " << v << " is not on the crease";
+    EXPECT_NEAR(q.V(v, 2), 0.0, 1e-9);
+    EXPECT_NEAR(q.uv[v].real(), 3.2, 1e-9);  // φ at the crease point
+    EXPECT_NEAR(q.uv[v].imag(), 6 * q.V(v, 1), 1e-9);
+  }
+  EXPECT_EQ(inverted_corners(q, mesh), 0);
+  EXPECT_EQ(q.faces, extracted.faces);
+  // Off: vertices near the crease are smoothed like the others and do not reach it.
+  QuadMesh off = extracted;
+  QuadSmoothingOptions o;
+  o.feature_snap = 0;
+  EXPECT_EQ(smooth_quads(off, mesh, param, o).feature_vertices, 0);
+  for (int v : row) EXPECT_GT(std::abs(off.V(v, 0) - 0.5), 0.01);
+}
+
 class SmoothShipped : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SmoothShipped, StaysOnTheSurfaceAndEvensOutTheQuads) {
@@ -138,11 +224,27 @@ TEST_P(SmoothShipped, StaysOnTheSurfaceAndEvensOutTheQuads) {
   EXPECT_EQ(q.faces, extracted.faces);
   EXPECT_EQ(r.iterations, QuadSmoothingOptions{}.iterations);
 
+  // Without feature sliding the quads even out; sliding trades some of that for quad edges on the creases.
+  QuadMesh plain = extracted;
+  QuadSmoothingOptions no_snap;
+  no_snap.feature_snap = 0;
+  smooth_quads(plain, mesh, P, no_snap);
   const auto [edge_before, angle_before] = quad_rsd(extracted);
+  const auto [edge_plain, angle_plain] = quad_rsd(plain);
   const auto [edge_after, angle_after] = quad_rsd(q);
-  EXPECT_LT(edge_after, edge_before);
-  EXPECT_LT(angle_after, angle_before);
+  EXPECT_LT(edge_plain, edge_before);
+  EXPECT_LT(angle_plain, angle_before);
+  EXPECT_LT(edge_after, 1.1 * edge_before);
+  EXPECT_LT(angle_after, 1.1 * angle_before);
   EXPECT_LE(inverted_corners(q, mesh), inverted_corners(extracted, mesh));
+  EXPECT_LE(inverted_corners(plain, mesh), inverted_corners(extracted, mesh));
+  const double covered = sharp_edges_covered(q, mesh, r.edge_length),
+               before = sharp_edges_covered(extracted, mesh, r.edge_length);
+  EXPECT_GE(covered, before);
+  EXPECT_GE(covered, sharp_edges_covered(plain, mesh, r.edge_length));
+  if (r.feature_vertices > 0) {
+    EXPECT_GT(covered, before);
+  }
 
   const TriangleTree tree(mesh.V(), mesh.F());
   const double diagonal = mesh.bounding_box_diagonal();
