@@ -20,6 +20,7 @@ import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -30,14 +31,16 @@ from ._cli import cli_path
 MESH_EXTENSIONS = (".obj", ".off", ".ply", ".stl")
 COMMANDS = {"remesh": (".quad.obj", ".remesh.json"), "param": (".param.obj", ".param.json")}
 # The columns of summary.csv: the run, then metrics from the CLI's report (blank when it has none).
-RUN_COLUMNS = ["file", "status", "exit_code", "seconds", "peak_memory_mb", "output", "error"]
+RUN_COLUMNS = ["file", "status", "exit_code", "seconds", "peak_memory_mb", "output", "error", "worker"]
 METRIC_PATHS = {
     "faces": [("quad_mesh", "faces")], "quads": [("quad_mesh", "quads")], "non_quads": [("quad_mesh", "non_quads")],
     "rsd_edge_length": [("quad_mesh", "rsd_edge_length")], "rsd_corner_angle": [("quad_mesh", "rsd_corner_angle")],
     "irregular_vertices": [("quad_mesh", "irregular_vertices")],
     "arap": [("parameterization", "arap"), ("arap",)],
     "flipped_triangles": [("parameterization", "flipped_triangles"), ("flipped_triangles",)],
-    "branch_points": [("parameterization", "branch_points"), ("branch_points",)],
+    "branch_points": [("parameterization", "branch_points"), ("branch_points",)],  # a list in param's: its length
+    "E_D": [("parameterization", "energy_curl"), ("E_D",)],
+    "E_H": [("parameterization", "energy_harmonic"), ("E_H",)],
     "distance_max": [("surface_distance", "max")],
 }
 COLUMNS = RUN_COLUMNS + list(METRIC_PATHS)
@@ -70,7 +73,7 @@ def metrics_of(report):
             for key in path:
                 v = v.get(key) if isinstance(v, dict) else None
             if v is not None:
-                out[name] = v
+                out[name] = len(v) if isinstance(v, list) else v
                 break
     return out
 
@@ -91,19 +94,34 @@ def complete_row(rel, out_dir, command):
                 **metrics_of(r))
 
 
+def _peak_kib(pid):
+    """VmHWM (peak resident set) of a running process in KiB, 0 if it has none (exited) or is gone."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1])
+    except (OSError, ValueError):
+        pass
+    return 0
+
+
 def _wait(proc, deadline):
-    """Waits for proc (os.wait4: this child's own peak memory), killing it at the deadline. (status, rusage, timeout)."""
+    """Waits for proc, killing it at the deadline (0: none). Returns (peak KiB, timed out). The peak is the
+    process's own VmHWM sampled every 20 ms (rusage would count the forking worker's memory too)."""
+    peak = 0
     while True:
-        pid, status, usage = os.wait4(proc.pid, os.WNOHANG if deadline else 0)
+        peak = max(peak, _peak_kib(proc.pid))
+        pid, status, _ = os.wait4(proc.pid, os.WNOHANG)
         if pid:
             proc.returncode = os.waitstatus_to_exitcode(status)
-            return status, usage, False
-        if time.monotonic() > deadline:
+            return peak, False
+        if deadline and time.monotonic() > deadline:
             proc.kill()
-            _, status, usage = os.wait4(proc.pid, 0)
+            _, status, _ = os.wait4(proc.pid, 0)
             proc.returncode = os.waitstatus_to_exitcode(status)
-            return status, usage, True
-        time.sleep(0.05)
+            return peak, True
+        time.sleep(0.02)
 
 
 def run_one(in_dir, rel, out_dir, command="remesh", cli=None, cli_args=(), timeout=None):
@@ -114,18 +132,19 @@ def run_one(in_dir, rel, out_dir, command="remesh", cli=None, cli_args=(), timeo
     mesh_out, report_out = output_paths(rel, out_dir, command)
     os.makedirs(os.path.dirname(mesh_out) or ".", exist_ok=True)
     tmp = tempfile.mkdtemp(prefix=".quadcover-" + os.path.basename(rel) + ".", dir=os.path.dirname(mesh_out))
-    row = dict(file=rel, output="", error="", **{k: None for k in METRIC_PATHS})
+    row = dict(file=rel, output="", error="", worker=f"{socket.gethostname()}:{os.getpid()}",
+               **{k: None for k in METRIC_PATHS})
     try:
         tmp_mesh, tmp_report = os.path.join(tmp, "out.obj"), os.path.join(tmp, "report.json")
         args = [cli, command, os.path.join(in_dir, rel), "-o", tmp_mesh, "--report", tmp_report, "-q", *cli_args]
         t0 = time.monotonic()
         with open(os.path.join(tmp, "stderr.txt"), "w+") as err:
             proc = subprocess.Popen(args, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=err)
-            status, usage, timed_out = _wait(proc, t0 + timeout if timeout else 0)
+            peak, timed_out = _wait(proc, t0 + timeout if timeout else 0)
             err.seek(0)
             stderr = err.read().strip()
         row["seconds"] = round(time.monotonic() - t0, 3)
-        row["peak_memory_mb"] = round(usage.ru_maxrss / 1024.0, 1)  # Linux: KiB
+        row["peak_memory_mb"] = round(peak / 1024.0, 1) if peak else None
         code = proc.returncode
         row["exit_code"] = code
         lines = [line for line in stderr.splitlines() if line.strip()]
