@@ -272,6 +272,6 @@ def _():
 
 passed = sum(ok for _, ok, _ in results)
 failed = len(results) - passed
-print(f"blender add-on: {passed} passed, {failed} failed")
+print(f"blender: {passed} passed, {failed} failed")
 sys.stdout.flush()
 os._exit(0 if failed == 0 and passed > 0 else 1)
