@@ -6,8 +6,9 @@ STL), any object with ``vertices`` and ``faces`` attributes (trimesh, a :class:`
 expected, ``faces=`` as the target quad count and a ``progress`` callback on the long calls.
 """
 from . import _quadcover
-from ._quadcover import __version__, field, info, load  # noqa: F401  (re-exported as before)
-from ._api import Cancelled, Mesh, accepts, as_arrays, parameterize, remesh  # noqa: F401
+from ._quadcover import *  # noqa: F401,F403  (every function of the extension, as before)
+from ._quadcover import __version__, load  # noqa: F401
+from ._api import Cancelled, Mesh, accepts, as_arrays, field, info, parameterize, remesh  # noqa: F401
 from ._io import read, write  # noqa: F401
 from ._cli import cli_path  # noqa: F401
 

@@ -108,6 +108,16 @@ def _call(function, stage, mesh, F, progress, faces, kwargs):
     return result
 
 
+def info(mesh, F=None):
+    """Counts and topology (dict): see ``quadcover._quadcover.info``; ``mesh`` as in :func:`as_arrays`."""
+    return _quadcover.info(*as_arrays(mesh, F))
+
+
+def field(mesh, F=None, **kwargs):
+    """Cross field (dict): see ``quadcover._quadcover.field``; ``mesh`` as in :func:`as_arrays`."""
+    return _quadcover.field(*as_arrays(mesh, F), **kwargs)
+
+
 def parameterize(mesh, F=None, *, faces=None, progress=None, **kwargs):
     """Seamless QuadCover parameterization: returns (uv #F×3×2, report). ``mesh``: V (with F) or a mesh-like
     object (see :func:`as_arrays`). ``faces``: target quad count (alias ``quads``), or ``edge_length``.

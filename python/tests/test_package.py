@@ -152,3 +152,11 @@ def test_python_m_quadcover_runs_the_cli(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "quadcover", "info", str(tmp_path / "none.obj")],
                          capture_output=True, text=True)
     assert bad.returncode != 0  # the CLI's own exit code comes through
+
+
+def test_info_and_field_take_mesh_objects_and_new_extension_functions_are_exported():
+    m = quadcover.read(os.path.join(DATA, "torus_5k.obj"))
+    assert quadcover.info(m)["genus"] == 1
+    assert quadcover.field(m)["X"].shape == (len(m.faces),)
+    native = [n for n in dir(quadcover._quadcover) if not n.startswith("_")]
+    assert native and all(hasattr(quadcover, n) for n in native)
