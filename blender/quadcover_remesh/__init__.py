@@ -30,9 +30,10 @@ ADDON = __name__
 def default_module_paths():
     """Where the module may be when the preference is empty: $QUADCOVER_PYTHONPATH, the build tree of the repository
     this add-on lives in (build/python), then whatever `import quadcover` finds (pip install, dist-packages)."""
-    here = os.path.dirname(os.path.realpath(__file__))
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
     paths = [os.environ.get("QUADCOVER_PYTHONPATH", "")]
-    paths.append(os.path.join(os.path.dirname(os.path.dirname(here)), "build", "python"))
+    if os.path.isfile(os.path.join(repo, "blender", "quadcover_remesh", "__init__.py")):  # run from the repository
+        paths.append(os.path.join(repo, "build", "python"))
     return [p for p in paths if p]
 
 
@@ -48,8 +49,8 @@ def load_quadcover(preferred=""):
     try:
         import quadcover
     except ImportError as e:
-        raise ImportError(f"the quadcover Python module was not found (looked in {', '.join(tried) or 'sys.path'} "
-                          f"and sys.path: {e}); build it (-DQUADCOVER_BUILD_PYTHON=ON) or pip install it, and set "
+        where = ", ".join(tried + ["sys.path"])
+        raise ImportError(f"the quadcover Python module was not found (looked in {where}: {e}); build it (-DQUADCOVER_BUILD_PYTHON=ON) or pip install it, and set "
                           "its folder in the add-on preferences") from e
     if not hasattr(quadcover, "remesh") or not hasattr(quadcover, "Cancelled"):
         raise ImportError(f"{getattr(quadcover, '__file__', quadcover)} is not the quadcover package (no remesh)")
