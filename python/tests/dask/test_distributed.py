@@ -46,6 +46,7 @@ def read_summary(out):
     return rows, doc
 
 
+@pytest.mark.filterwarnings("ignore:make_current is deprecated:DeprecationWarning")  # tornado, under Dask 2022.12
 def test_folder_on_two_workers_survives_a_broken_and_a_killed_file_and_resumes(tmp_path):
     src = tmp_path / "in"
     (src / "sub").mkdir(parents=True)
@@ -80,9 +81,13 @@ def test_folder_on_two_workers_survives_a_broken_and_a_killed_file_and_resumes(t
                            os.path.join("sub", "torus_5k.quad.obj"), os.path.join("sub", "torus_5k.remesh.json")])
     assert not [d for _, ds, _ in os.walk(out) for d in ds if d.startswith(".quadcover")]
 
-    # Resume with the real CLI: complete outputs are skipped (untouched), the killed file now runs.
+    # Resume with the real CLI, on a running cluster given by its scheduler address: complete outputs are skipped
+    # (untouched), the killed file now runs.
+    from dask.distributed import LocalCluster
+
     before = os.stat(out / "bunny_3k.quad.obj").st_mtime_ns
-    r = run_cli(["--workers", "2", str(src), str(out), "--", "--vertices", "600"])
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        r = run_cli(["--scheduler", cluster.scheduler_address, str(src), str(out), "--", "--vertices", "600"])
     rows, doc = read_summary(out)
     assert rows["bunny_3k.obj"]["status"] == "skipped" and rows["bunny_3k.obj"]["faces"] != ""
     assert rows[os.path.join("sub", "torus_5k.obj")]["status"] == "skipped"
