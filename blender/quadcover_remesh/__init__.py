@@ -166,29 +166,34 @@ class Session:
         self.props = {n: getattr(props, n) for n in SETTING_NAMES}
         self.names = [o.name for o in objects]
         depsgraph = context.evaluated_depsgraph_get()
-        self.preps, self.same_indices, self.warnings = {}, {}, []
+        meshes, self.same_indices = {}, {}
         for o in objects:
-            V, T, same = mesh_arrays(o, depsgraph)
-            p = prep.prepare(V, T)
-            self.preps[o.name], self.same_indices[o.name] = p, same
+            V, T, self.same_indices[o.name] = mesh_arrays(o, depsgraph)
+            meshes[o.name] = (V, T)
+        self.job = job_module.RemeshJob(self.qc, meshes, settings_from(props))
+
+    def problems(self):
+        """Report lines on what prep.prepare found (after the job ran)."""
+        lines = []
+        for name, p in self.job.objects.items():
             s = p.summary()
             if s:
-                self.warnings.append(f"{o.name}: {s}: cut there, the {len(p.parts)} manifold part"
-                                     f"{'s are' if len(p.parts) != 1 else ' is'} remeshed separately"
-                                     + (" (Select Problems marks them)" if not props.select_problems else ""))
+                lines.append(f"{name}: {s}: cut there, the {len(p.parts)} manifold part"
+                             f"{'s are' if len(p.parts) != 1 else ' is'} remeshed separately"
+                             + (" (Select Problems marks them)" if not self.props["select_problems"] else ""))
             if not p.parts:
-                self.warnings.append(f"{o.name}: nothing to remesh (no manifold part of 4 or more triangles)")
-        self.job = job_module.RemeshJob(self.qc, self.preps, settings_from(props))
+                lines.append(f"{name}: nothing to remesh (no manifold part of 4 or more triangles)")
+        return lines
 
     def apply(self, context):
         """Adds (or swaps in) the results; returns (created objects, warning lines)."""
-        created, lines = [], list(self.warnings)
+        created, lines = [], self.problems()
         for name in self.names:
             obj = bpy.data.objects.get(name)
             r = self.job.results.get(name)
             lines += [f"{name}: {m}" for m in (r.messages if r else [])]
-            if self.props["select_problems"] and obj is not None and self.same_indices[name]:
-                bad = set(self.preps[name].problem_vertices.tolist())
+            if self.props["select_problems"] and obj is not None and self.same_indices[name] and r is not None:
+                bad = set(self.job.objects[name].problem_vertices.tolist())
                 for v in obj.data.vertices:
                     v.select = v.index in bad
             if obj is None or r is None or not r.vertices:

@@ -59,12 +59,14 @@ class ObjectResult:
 
 
 class RemeshJob:
-    """objects: {name: Preparation}. start() runs run() on a thread; cancel() asks it to stop; status() gives
-    (fraction, text) for the status bar; done tells when it has stopped (results in .results, .error)."""
+    """meshes: {name: (V, T)} triangle meshes. start() runs run() on a thread: prep.prepare() on each, then
+    the remesh of every part (.objects: the Preparation of each); cancel() asks it to stop; status() gives (fraction, text) for the status bar; done
+    tells when it has stopped (results in .results, .error)."""
 
-    def __init__(self, quadcover, objects: Dict[str, prep.Preparation], settings: Settings):
+    def __init__(self, quadcover, meshes: Dict[str, tuple], settings: Settings):
         self.qc = quadcover
-        self.objects = objects
+        self.meshes = meshes
+        self.objects: Dict[str, prep.Preparation] = {}
         self.settings = settings
         self.results: Dict[str, ObjectResult] = {}
         self.error: Optional[str] = None
@@ -113,6 +115,11 @@ class RemeshJob:
         self.seconds = time.perf_counter() - t0
 
     def _run(self):
+        for name, (V, T) in self.meshes.items():
+            self._set(0.0, f"{name}: checking {len(T)} triangles")
+            self.objects[name] = prep.prepare(V, T)
+            if self._cancel.is_set():
+                raise self.qc.Cancelled("cancelled")
         jobs = [(name, p, part, n) for name, p in self.objects.items()
                 for part, n in zip(p.parts, prep.face_targets(p.parts, self.settings.target_faces))]
         total = sum(len(part.triangles) for _, _, part, _ in jobs) or 1

@@ -216,6 +216,82 @@ def _():
     assert bpy.ops.object.quadcover_remesh(target_faces=800) == {"FINISHED"}
 
 
+def bad_mesh(name):
+    import quadcover
+
+    return quadcover.read(os.path.join(ROOT, "tests", "data", "bad", name + ".obj"))
+
+
+def quadcover_module_read(name):
+    import quadcover
+
+    return quadcover.read(os.path.join(ROOT, "tests", "data", name + ".obj"))
+
+
+def opposite_halfedges(T):
+    """True if every interior edge of T is traversed once each way (a consistently oriented manifold)."""
+    he = {}
+    for t in T:
+        for k in range(3):
+            e = (int(t[k]), int(t[(k + 1) % 3]))
+            he[e] = he.get(e, 0) + 1
+    return all(n == 1 for n in he.values())
+
+
+@check("prep: flipped triangles reoriented, non-manifold vertex split, Klein bottle cut; parts pass quadcover.info")
+def _():
+    import quadcover
+
+    m = bad_mesh("blobby_inconsistent_orientation")
+    p = prep.prepare(m.vertices, m.faces)
+    assert len(p.parts) == 1 and p.summary() == "" and "flipped" in p.notes[0], (p.summary(), p.notes)
+    assert opposite_halfedges(p.parts[0].triangles)
+    assert quadcover.info(p.parts[0].vertices, p.parts[0].triangles)["faces"] == len(m.faces)
+    # A minority of flipped triangles, the first among them: the majority's orientation is kept.
+    bunny = quadcover_module_read("bunny_3k")
+    T = np.array(bunny.faces)
+    T[:1000] = T[:1000, ::-1]
+    p = prep.prepare(bunny.vertices, T)
+    np.testing.assert_array_equal(p.parts[0].original_vertices[p.parts[0].triangles], bunny.faces)
+    m = bad_mesh("cow_orig_nonmanifold_vertex")
+    with_problem = prep.prepare(m.vertices, m.faces)
+    assert with_problem.summary() == "1 non-manifold vertex" and len(with_problem.nonmanifold_vertices) == 1
+    part = with_problem.parts[0]
+    assert len(part.vertices) == len(m.vertices) + 1  # the vertex is split into its two fans
+    quadcover.info(part.vertices, part.triangles)  # raises if still non-manifold
+    m = bad_mesh("torus_klein_nonorientable")
+    p = prep.prepare(m.vertices, m.faces)
+    assert any("non-orientable" in n for n in p.notes) and len(p.misoriented_edges) > 0
+    for part in p.parts:
+        assert opposite_halfedges(part.triangles)
+
+
+@check("a sphere with half its faces flipped still becomes one all-quad object")
+def _():
+    import bmesh
+
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16)
+    sphere = bpy.context.active_object
+    bm = bmesh.new()
+    bm.from_mesh(sphere.data)
+    bmesh.ops.reverse_faces(bm, faces=[f for f in bm.faces if f.calc_center_median().x > 0.1])
+    bm.to_mesh(sphere.data)
+    bm.free()
+    select_only(sphere)
+    props = bpy.context.scene.quadcover
+    props.target_faces, props.select_problems = 600, False
+    s = quadcover_remesh.Session(bpy.context, [sphere], props)
+    s.job.run()
+    created, lines = s.apply(bpy.context)
+    assert any("flipped to match" in line for line in lines), lines
+    assert len(created) == 1 and np.all(face_sizes(created[0]) == 4) and loose_parts(created[0]) == 1
+    # The orientation of the larger half (x <= 0.1, not reversed: outward) is kept: normals point out.
+    me = created[0].data
+    outward = [np.dot(np.array(p.normal), np.array(p.center)) > 0 for p in me.polygons]
+    assert all(outward), sum(outward)
+
+
 class FakeEvent:
     def __init__(self, type):
         self.type = type
