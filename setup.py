@@ -3,9 +3,11 @@ builds the `quadcover` (CLI) and `quadcover_python` (extension) targets, then in
 python/quadcover with the extension and the CLI (quadcover/bin/quadcover) inside it.
 
 QUADCOVER_BUILD_DIR=PATH reuses an existing CMake build tree (only out-of-date targets are rebuilt); otherwise a
-Release build without tests and benchmarks is made in build/pip. CMAKE_BUILD_PARALLEL_LEVEL sets the jobs."""
+Release build without tests and benchmarks is made in build/pip, configured with the extra options in CMAKE_ARGS
+(e.g. "-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"). CMAKE_BUILD_PARALLEL_LEVEL sets the jobs."""
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -29,7 +31,8 @@ class CMakeBuild(build_ext):
             generator = ["-G", "Ninja"] if shutil.which("ninja") else []
             subprocess.check_call(["cmake", "-S", ROOT, "-B", build, *generator, "-DCMAKE_BUILD_TYPE=Release",
                                    "-DQUADCOVER_BUILD_PYTHON=ON", "-DQUADCOVER_BUILD_TESTS=OFF",
-                                   "-DQUADCOVER_BUILD_BENCH=OFF", f"-DPython_EXECUTABLE={sys.executable}"])
+                                   "-DQUADCOVER_BUILD_BENCH=OFF", f"-DPython_EXECUTABLE={sys.executable}",
+                                   *shlex.split(os.environ.get("CMAKE_ARGS", ""))])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.check_call(["cmake", "--build", build, "--target", "quadcover", "quadcover_python", "-j", jobs])
         package = os.path.join(build, "python", "quadcover")
