@@ -1,5 +1,5 @@
-// The `quadcover` Python module: plain numpy arrays in and out (V #V×3 float, F #F×3 int, 0-based), results as
-// numpy arrays and dicts with the same keys as the CLI's JSON reports.
+// The `quadcover` Python module: plain numpy arrays in and out (V #V×3 float, F #F×3 int, 0-based); parameterize()
+// and remesh() run the library's jobs (src/pipeline/) and return their report, the CLI's --report document.
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -13,13 +13,9 @@
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
-#include "metrics/param_quality.h"
-#include "optimize/optimize_field.h"
-#include "metrics/quad_quality.h"
-#include "metrics/report.h"
-#include "param/parameterize.h"
-#include "quad/extract_quads.h"
-#include "quad/smooth_quads.h"
+#include "pipeline/job_report.h"
+#include "pipeline/parameterize_mesh.h"
+#include "pipeline/remesh_mesh.h"
 
 namespace py = pybind11;
 using namespace quadcover;
@@ -31,27 +27,89 @@ using RowMatrixX3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
-Mesh make_mesh(const RowMatrixX3d& V, const RowMatrixX3i& F) {
-  return build_mesh(PolygonSoup::from_triangles(Eigen::MatrixX3d(V), Eigen::MatrixX3i(F))).mesh;
+/// V as a #V×3 float array of finite values. \throw InputError otherwise.
+RowMatrixX3d vertex_array(const py::array& V) {
+  if (V.ndim() != 2 || V.shape(1) != 3)
+    throw InputError("V", 0, "must be a #V x 3 array of vertex positions");
+  const char kind = V.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') throw InputError("V", 0, "must hold numbers (got dtype kind '" +
+                                                                            std::string(1, kind) + "')");
+  RowMatrixX3d M = py::cast<RowMatrixX3d>(py::array_t<double, py::array::c_style | py::array::forcecast>(V));
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    if (!M.row(i).allFinite())
+      throw InputError("V", 0, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+  return M;
 }
 
-/// Lets Ctrl-C stop long stages from Python: checks for signals (with the GIL) when a stage asks cancelled().
+/// F as a #F×3 int array of vertex indices in [0, n_vertices). Floats are refused, not truncated; indices that do
+/// not fit are refused, not wrapped. \throw InputError otherwise.
+RowMatrixX3i face_array(const py::array& F, Eigen::Index n_vertices) {
+  if (F.ndim() != 2 || F.shape(1) != 3) throw InputError("F", 0, "must be a #F x 3 array of vertex indices");
+  const char kind = F.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    throw InputError("F", 0, "must be an integer array (got dtype " + py::str(F.dtype()).cast<std::string>() + ")");
+  const auto wide = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(F);
+  if (kind == 'u' && F.dtype().itemsize() == 8) {  // uint64 values above 2^63 would wrap negative in int64
+    const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>(F).unchecked<2>();
+    for (py::ssize_t f = 0; f < u.shape(0); ++f)
+      for (py::ssize_t c = 0; c < 3; ++c)
+        if (u(f, c) >= static_cast<std::uint64_t>(n_vertices))
+          throw InputError("F", 0, "face " + std::to_string(f) + " has vertex index " + std::to_string(u(f, c)) +
+                                       ", out of range [0, " + std::to_string(n_vertices) + ")");
+  }
+  const auto w = wide.unchecked<2>();
+  RowMatrixX3i M(w.shape(0), 3);
+  for (py::ssize_t f = 0; f < w.shape(0); ++f)
+    for (py::ssize_t c = 0; c < 3; ++c) {
+      if (w(f, c) < 0 || w(f, c) >= n_vertices)
+        throw InputError("F", 0, "face " + std::to_string(f) + " has vertex index " + std::to_string(w(f, c)) +
+                                     ", out of range [0, " + std::to_string(n_vertices) + ")");
+      M(f, c) = static_cast<int>(w(f, c));
+    }
+  return M;
+}
+
+Mesh make_mesh(const py::array& V, const py::array& F) {
+  const RowMatrixX3d P = vertex_array(V);
+  return build_mesh(PolygonSoup::from_triangles(Eigen::MatrixX3d(P), Eigen::MatrixX3i(face_array(F, P.rows())))).mesh;
+}
+
+/// Progress of long stages for Python: calls `callback(stage, fraction, message)` (with the GIL) if given, whose
+/// truthy return value cancels; Ctrl-C cancels too. Exceptions of the callback cancel and are re-raised.
 class PythonProgress final : public ProgressSink {
  public:
-  void report(std::string_view, double, std::string_view) override {}
-  bool cancelled() const override {
-    if (interrupted_) return true;
+  explicit PythonProgress(py::object callback = py::none()) : callback_(std::move(callback)) {}
+  void report(std::string_view stage, double fraction, std::string_view message) override {
+    if (callback_.is_none() || stopped_) return;
     py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) interrupted_ = true;
-    return interrupted_;
+    try {
+      if (py::bool_(callback_(std::string(stage), fraction, std::string(message)))) stopped_ = cancelled_ = true;
+    } catch (py::error_already_set& e) {
+      error_ = std::make_unique<py::error_already_set>(std::move(e));
+      stopped_ = true;
+    }
   }
-  /// Re-raises the KeyboardInterrupt after the stage returned.
-  void raise_if_interrupted() const {
+  bool cancelled() const override {
+    if (stopped_) return true;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) stopped_ = interrupted_ = true;
+    return stopped_;
+  }
+  /// After the job: re-raises the KeyboardInterrupt or the callback's exception, or raises Cancelled.
+  void raise_if_stopped() {
     if (interrupted_) throw py::error_already_set();
+    if (error_) throw std::move(*error_);
+    if (cancelled_) throw Cancelled();
   }
+  struct Cancelled : std::exception {
+    const char* what() const noexcept override { return "cancelled by the progress callback"; }
+  };
 
  private:
-  mutable std::atomic<bool> interrupted_{false};
+  py::object callback_;
+  std::unique_ptr<py::error_already_set> error_;
+  mutable std::atomic<bool> stopped_{false}, interrupted_{false};
+  std::atomic<bool> cancelled_{false};
 };
 
 FieldOptions field_options(double trusted_fraction, double lambda, int smoothing_rounds) {
@@ -62,46 +120,34 @@ FieldOptions field_options(double trusted_fraction, double lambda, int smoothing
   return o;
 }
 
-ParamOptions param_options(double edge_length, int quads, const std::string& lattice, const std::string& rounding,
-                           int stiffening, int relaxation) {
-  if (stiffening < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
-  if (relaxation < 0) throw InputError("relaxation", 0, "must be >= 0 (0 = off)");
-  ParamOptions o;
-  o.stiffening.max_iterations = stiffening;
-  o.relaxation.iterations = relaxation;
-  o.edge_length = edge_length;
-  o.target_quads = quads;
-  o.lattice = parse_lattice(lattice);
-  o.rounding.strategy = parse_rounding_strategy(rounding);
+/// The keyword arguments shared by parameterize() and remesh(), as pipeline options.
+struct JobArgs {
+  double edge_length = 0;
+  int quads = 0, faces = 0;
+  std::string lattice, optimize, rounding, field;
+  long max_iterations = kAutoBudget;
+  bool keep_better = true;
+  int stiffening = 0, relaxation = 0;
+};
+
+PipelineOptions pipeline_options(const JobArgs& a) {
+  if (a.quads > 0 && a.faces > 0 && a.quads != a.faces)
+    throw InputError("faces/quads", 0, "give the target quad count once (faces= or its alias quads=)");
+  PipelineOptions o;
+  o.param.edge_length = a.edge_length;
+  o.param.target_quads = a.faces > 0 ? a.faces : a.quads;
+  o.param.lattice = parse_lattice(a.lattice);
+  o.param.rounding.strategy = parse_rounding_strategy(a.rounding);
+  o.field_style = parse_field_style(a.field);
+  o.optimize = parse_optimize_mode(a.optimize);
+  o.max_evaluations = a.max_iterations;
+  o.keep_better = a.keep_better;
+  o.param.stiffening.max_iterations = a.stiffening;
+  o.param.relaxation.iterations = a.relaxation;
   return o;
 }
 
-OptimizeOptions optimize_options(const std::string& optimize, long max_iterations, const ParamOptions& popt) {
-  if (max_iterations < kAutoBudget)
-    throw InputError("max_iterations", 0, "must be >= -1 (-1 = auto, 0 = until converged)");
-  OptimizeOptions o;
-  o.mode = parse_optimize_mode(optimize);
-  o.max_evaluations = max_iterations;
-  o.param = popt;
-  return o;
-}
-
-/// Field (ch. 5) then the optimization of its matching (ch. 6); `report` gets the "optimize" object and
-/// `original` the field before the optimization.
-FrameField optimized_field(const Mesh& mesh, const std::string& style, ParamOptions& popt, OptimizeOptions oopt,
-                           ProgressSink& progress, nlohmann::json& report, FrameField& original) {
-  const FieldOptions fo = field_options(parse_field_style(style));
-  oopt.lambda = fo.lambda;  // the re-smoothing of Algorithm 6.1 uses the field stage's λ
-  const FrameFieldResult f = compute_frame_field_detailed(mesh, fo, progress);
-  fix_default_density(mesh, f.field, popt);  // one scale for the optimization, keep-better and the map
-  oopt.param = popt;
-  original = f.field;
-  OptimizeResult r = optimize_field(mesh, f, oopt, progress);
-  report = to_json(r, oopt.mode);
-  return std::move(r.field);
-}
-
-py::dict info(const RowMatrixX3d& V, const RowMatrixX3i& F) {
+py::dict info(const py::array& V, const py::array& F) {
   const Mesh mesh = make_mesh(V, F);
   py::dict d;
   d["vertices"] = mesh.num_vertices();
@@ -155,7 +201,7 @@ py::list branch_list(const std::vector<BranchPoint>& bps) {
   return l;
 }
 
-py::dict field(const RowMatrixX3d& V, const RowMatrixX3i& F, double trusted_fraction, double lambda,
+py::dict field(const py::array& V, const py::array& F, double trusted_fraction, double lambda,
                int smoothing_rounds) {
   const Mesh mesh = make_mesh(V, F);
   PythonProgress progress;
@@ -164,7 +210,7 @@ py::dict field(const RowMatrixX3d& V, const RowMatrixX3i& F, double trusted_frac
     py::gil_scoped_release release;
     r = compute_frame_field_detailed(mesh, field_options(trusted_fraction, lambda, smoothing_rounds), progress);
   }
-  progress.raise_if_interrupted();
+  progress.raise_if_stopped();
   py::dict d;
   d["X"] = Eigen::VectorXcd(r.field.X);
   d["Y"] = Eigen::VectorXcd(r.field.Y);
@@ -191,88 +237,58 @@ py::array_t<double> corner_uv_array(const Eigen::MatrixX3cd& uv) {
   return a;
 }
 
-py::tuple parameterize_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
-                          const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                          long max_iterations, bool keep_better, int stiffening, int relaxation,
-                          const std::string& field) {
-  const Mesh mesh = make_mesh(V, F);
-  ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
-  const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
-  PythonProgress progress;
-  Parameterization p;
-  ParamQuality q;
-  nlohmann::json optimize_report;
-  {
-    py::gil_scoped_release release;
-    FrameField original;
-    const FrameField f = optimized_field(mesh, field, popt, oopt, progress, optimize_report, original);
-    p = parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
-    q = param_quality(mesh, p);
-  }
-  progress.raise_if_interrupted();
-  nlohmann::json report = to_json(q);
-  report["faces"] = mesh.num_faces();
-  report["lattice"] = to_string(popt.lattice);
-  report["edge_length"] = target_edge_length(mesh, popt);
-  report["optimize"] = optimize_report;
-  report["rounding"] = rounding_to_json(popt, p);
-  report["relaxation"] = relaxation_to_json(p);
-  report["stiffening"] = stiffening_to_json(p);
-  return py::make_tuple(corner_uv_array(p.uv), to_python(report));
+/// Each of the report's warnings as a Python UserWarning (a degraded result is never only in the dict).
+void warn(const nlohmann::json& report) {
+  for (const auto& w : report["warnings"])
+    if (PyErr_WarnEx(PyExc_UserWarning, w.get<std::string>().c_str(), 1) != 0) throw py::error_already_set();
 }
 
-py::tuple remesh_py(const RowMatrixX3d& V, const RowMatrixX3i& F, double edge_length, int quads,
-                    const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                    long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                    int smooth_quads_rounds, double smooth_rigidity) {
-  if (smooth_quads_rounds < 0) throw InputError("smooth_quads", 0, "must be >= 0 (0 = off)");
-  if (!(smooth_rigidity >= 0 && smooth_rigidity <= 1)) throw InputError("smooth_rigidity", 0, "must be in [0, 1]");
-  QuadSmoothingOptions sopt;
-  sopt.iterations = smooth_quads_rounds;
-  sopt.rigidity = smooth_rigidity;
+py::tuple parameterize_py(const py::array& V, const py::array& F, const JobArgs& args, py::object progress_callback) {
   const Mesh mesh = make_mesh(V, F);
-  ParamOptions popt = param_options(edge_length, quads, lattice, rounding, stiffening, relaxation);
-  const OptimizeOptions oopt = optimize_options(optimize, max_iterations, popt);
-  PythonProgress progress;
-  ExtractionResult ex;
-  Report report;
-  nlohmann::json optimize_report, rounding_report, relaxation_report, stiffening_report, smoothing_report;
+  const PipelineOptions options = pipeline_options(args);
+  PythonProgress progress(std::move(progress_callback));
+  nlohmann::json report;
+  Eigen::MatrixX3cd uv;
   {
     py::gil_scoped_release release;
-    FrameField original;
-    const FrameField f = optimized_field(mesh, field, popt, oopt, progress, optimize_report, original);
-    const Parameterization p =
-        parameterize_keep_better(mesh, original, f, popt, oopt.mode, keep_better, progress, optimize_report);
-    rounding_report = rounding_to_json(popt, p);
-    relaxation_report = relaxation_to_json(p);
-    stiffening_report = stiffening_to_json(p);
-    ex = extract_quads(mesh, p, {}, progress);
-    smoothing_report = quad_smoothing_to_json(sopt, smooth_quads(ex.mesh, mesh, p, sopt, progress));
-    report.parameterization = param_quality(mesh, p);
-    report.extraction = ex.report;
-    report.quad_mesh = quad_quality(ex.mesh);
+    const ParamJob job = parameterize_mesh(mesh, options, progress);
+    report = param_report(mesh, job, job.map.uv);
+    uv = job.map.uv;
   }
-  progress.raise_if_interrupted();
-  py::list faces;
+  progress.raise_if_stopped();
+  warn(report);
+  return py::make_tuple(corner_uv_array(uv), to_python(report));
+}
+
+/// Faces as a #faces×4 int array when every face is a quad, else a list of polygons.
+py::object face_list(const std::vector<std::vector<int>>& faces) {
   bool all_quads = true;
-  for (const auto& face : ex.mesh.faces) {
-    all_quads = all_quads && face.size() == 4;
-    faces.append(face);
+  for (const auto& face : faces) all_quads = all_quads && face.size() == 4;
+  if (!all_quads) return py::cast(faces);
+  Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor> M(static_cast<Eigen::Index>(faces.size()), 4);
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    for (int k = 0; k < 4; ++k) M(static_cast<Eigen::Index>(i), k) = faces[i][static_cast<std::size_t>(k)];
+  return py::cast(M);
+}
+
+py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args, int smooth_quads_rounds,
+                    double smooth_rigidity, py::object progress_callback) {
+  const Mesh mesh = make_mesh(V, F);
+  PipelineOptions options = pipeline_options(args);
+  options.smoothing.iterations = smooth_quads_rounds;
+  options.smoothing.rigidity = smooth_rigidity;
+  PythonProgress progress(std::move(progress_callback));
+  nlohmann::json report;
+  RemeshJob job;
+  {
+    py::gil_scoped_release release;
+    job = remesh_mesh(mesh, options, progress);
+    report = remesh_report(mesh, job);
   }
-  py::object Q = faces;
-  if (all_quads) {
-    Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor> M(static_cast<Eigen::Index>(ex.mesh.faces.size()), 4);
-    for (std::size_t i = 0; i < ex.mesh.faces.size(); ++i)
-      for (int k = 0; k < 4; ++k) M(static_cast<Eigen::Index>(i), k) = ex.mesh.faces[i][static_cast<std::size_t>(k)];
-    Q = py::cast(M);
-  }
-  nlohmann::json j = to_json(report);
-  j["optimize"] = optimize_report;
-  j["rounding"] = rounding_report;
-  j["relaxation"] = relaxation_report;
-  j["stiffening"] = stiffening_report;
-  j["quad_smoothing"] = smoothing_report;
-  return py::make_tuple(RowMatrixX3d(ex.mesh.V), Q, to_python(j));
+  progress.raise_if_stopped();
+  warn(report);
+  const QuadMesh& q = job.extraction.mesh;
+  return py::make_tuple(RowMatrixX3d(q.V), face_list(q.faces), to_python(report));
 }
 
 }  // namespace
@@ -304,36 +320,64 @@ PYBIND11_MODULE(_quadcover, m) {
         py::arg("smoothing_rounds") = 2,
         "Curvature-guided cross field (thesis Chapter 5): dict with X, Y (#F complex, face basis basis1/basis2), "
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
-  m.def("parameterize", &parameterize_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0,
-        py::arg("quads") = 0, py::arg("lattice") = "rotated", py::arg("optimize") = "relocate",
-        py::arg("rounding") = "search3", py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-        py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-        py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-        "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
-        "units (integer iso-lines are quad edges) and the report dict (E_D, E_H, flips, ARAP, branch points, ...). "
-        "Density: edge_length h, or quads N, or by default twice the mean edge length (finer where needed for 30 "
-        "quads per branch point). optimize: none, relocate "
-        "(Algorithm 6.1 moving/cancelling branch points) or full (with creation and balancing, 6.4), at most "
-        "max_iterations E_D evaluations (-1 = auto: the budget grows with the mesh, plus a time limit for full; 0 = "
-        "until converged); report['optimize'] has E_D and branch points before "
-        "and after and the per-iteration log. rounding of the periods (6.3): direct, greedy, search1, search2, "
-        "search3 or exact; report['rounding'] has the strategy and E_H. keep_better: also parameterize the original "
-        "field and keep the map with the lower E_D + E_H (report['optimize']['kept']). stiffening: re-solves of the "
-        "final correction against flipped triangles (0 = off); report['stiffening'] has the flips before and after "
-        "and the price E_S. relaxation: ARAP local/global rounds of the final map (0 = off); report['relaxation'] "
-        "has the ARAP distortion before and after and the price E_R. field: 'curvature' (thesis ch. 5) or "
-        "'smooth' (smoothest cross field, lower distortion on organic shapes). Ctrl-C stops the optimization early.");
-  m.def("remesh", &remesh_py, py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0,
-        py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-        py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-        py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-        py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-        py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
-        py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
-        "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing): returns (QV #Q×3, "
-        "faces, report) where faces is a #faces×4 int array when every face is a quad, else a list of polygons. "
-        "optimize, rounding, max_iterations, keep_better, stiffening, relaxation and field as in parameterize(); "
-        "smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the integer points) "
-        "with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size (0). The report "
-        "has the same 'optimize', 'rounding', 'relaxation' and 'stiffening' objects and 'quad_smoothing'.");
+  const auto job_args = [](double edge_length, int quads, int faces, const std::string& lattice,
+                            const std::string& optimize, const std::string& rounding, long max_iterations,
+                            bool keep_better, int stiffening, int relaxation, const std::string& field) {
+    return JobArgs{edge_length, quads,      faces,          lattice,     optimize,  rounding,
+                   field,       max_iterations, keep_better, stiffening, relaxation};
+  };
+  m.def(
+      "parameterize",
+      [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
+                 const std::string& lattice, const std::string& optimize, const std::string& rounding,
+                 long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
+                 py::object progress) {
+        return parameterize_py(V, F,
+                               job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
+                                        keep_better, stiffening, relaxation, field),
+                               std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("progress") = py::none(),
+      "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
+      "units (integer iso-lines are quad edges) and the report dict: the same document as the CLI's `param --report` "
+      "JSON (schema_version, parameterization, field, optimize, rounding, relaxation, stiffening, ...). "
+      "Density: edge_length h, or faces N (target quad count; quads is its old name), or by default twice the mean "
+      "edge length (finer where needed for 30 quads per branch point). optimize: none, relocate (Algorithm 6.1 "
+      "moving/cancelling branch points) or full (with creation and balancing, 6.4), at most max_iterations E_D "
+      "evaluations (-1 = auto, 0 = until converged). rounding of the periods (6.3): direct, greedy, search1, "
+      "search2, search3 or exact. keep_better: also parameterize the original field and keep the map with the lower "
+      "E_D + E_H. stiffening: re-solves of the final correction against flipped triangles (0 = off). relaxation: "
+      "ARAP local/global rounds of the final map (0 = off). field: 'curvature' (thesis ch. 5) or 'smooth'. "
+      "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
+      "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
+      "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.");
+  m.def(
+      "remesh",
+      [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
+                 const std::string& lattice, const std::string& optimize, const std::string& rounding,
+                 long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
+                 int smooth_quads, double smooth_rigidity, py::object progress) {
+        return remesh_py(V, F,
+                         job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
+                                  stiffening, relaxation, field),
+                         smooth_quads, smooth_rigidity, std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
+      py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(),
+      "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing), the same job as the "
+      "CLI's `remesh`: returns (QV #Q×3, faces, report) where faces is a #faces×4 int array when every face is a "
+      "quad, else a list of polygons, and report the same document as `remesh --report`. Options as in "
+      "parameterize(); smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the "
+      "integer points) with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size "
+      "(0). Raises ValueError for invalid input or options (the CLI's checks), RuntimeError if the job fails.");
 }

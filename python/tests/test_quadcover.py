@@ -98,15 +98,15 @@ def test_parameterize_is_seamless_with_integer_translations(name):
     worst, cut = seam_defect(F, uv)
     assert worst < 1e-6 * max(1.0, extent)
     assert cut > 0  # a closed surface of genus >= 0 with cones (or a torus) needs a cut somewhere
-    assert report["energy_curl"] >= 0 and report["energy_harmonic"] >= 0
-    assert report["faces"] == F.shape[0]
+    assert report["parameterization"]["energy_curl"] >= 0 and report["parameterization"]["energy_harmonic"] >= 0
+    assert report["mesh"]["faces"] == F.shape[0]
     # The report's flip count matches the signed areas of the returned UVs; triangles collapsed to round-off
     # (|area| <= 1e-12 x mean) count as degenerate, not flipped.
     e1, e2 = uv[:, 1] - uv[:, 0], uv[:, 2] - uv[:, 0]
     area = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
     tiny = 1e-12 * np.abs(area).mean()
-    assert report["flipped_triangles"] == int(np.sum(area < -tiny))
-    assert report["flipped_triangles"] + report["degenerate_triangles"] >= int(np.sum(area < 0))
+    assert report["parameterization"]["flipped_triangles"] == int(np.sum(area < -tiny))
+    assert report["parameterization"]["flipped_triangles"] + report["parameterization"]["degenerate_triangles"] >= int(np.sum(area < 0))
 
 
 def test_parameterize_density_follows_edge_length():
@@ -114,7 +114,7 @@ def test_parameterize_density_follows_edge_length():
     uv1, r1 = quadcover.parameterize(V, F, edge_length=0.2)
     uv2, r2 = quadcover.parameterize(V, F, edge_length=0.1)
     # Halving h doubles the grid coordinates: four times the parameter area (the quad count).
-    assert r2["uv_area"] / r1["uv_area"] == pytest.approx(4.0, rel=0.1)
+    assert r2["parameterization"]["uv_area"] / r1["parameterization"]["uv_area"] == pytest.approx(4.0, rel=0.1)
     with pytest.raises(ValueError):
         quadcover.parameterize(V, F, lattice="hexagonal")
 
@@ -153,23 +153,23 @@ def test_parameterize_relocation_lowers_curl_energy_and_branch_points():
     uv, reloc = quadcover.parameterize(V, F, keep_better=False)
     assert none["optimize"]["mode"] == "none" and reloc["optimize"]["mode"] == "relocate"
     assert reloc["rounding"]["strategy"] == "search3"
-    assert reloc["rounding"]["E_H"] == pytest.approx(reloc["energy_harmonic"], rel=1e-12)
+    assert reloc["rounding"]["E_H"] == pytest.approx(reloc["parameterization"]["energy_harmonic"], rel=1e-12)
     o = reloc["optimize"]
     # Algorithm 6.1 without creation: never more branch points, never a higher E_D along the log. The count
     # before is the field's (measured independently by field()); the cones of the map follow.
     assert o["branch_points_before"] == len(quadcover.field(V, F)["branch_points"])
     assert o["branch_points_after"] <= o["branch_points_before"]
-    assert reloc["branch_points"] <= none["branch_points"]
+    assert reloc["parameterization"]["branch_points"] <= none["parameterization"]["branch_points"]
     eds = [o["E_D_before"]] + [e["E_D"] for e in o["log"]]
     assert all(b <= a * (1 + 1e-12) for a, b in zip(eds, eds[1:]))
     # ... and the parameterization's own E_D (curl removal on the covering) follows.
-    assert reloc["energy_curl"] < none["energy_curl"]
+    assert reloc["parameterization"]["energy_curl"] < none["parameterization"]["energy_curl"]
     worst, _ = seam_defect(F, uv)
     assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
     assert reloc["optimize"]["kept"] == "optimized"
     # keep_better (default): the map with the lower E_D + E_H of the two fields.
     _, best = quadcover.parameterize(V, F)
-    total = lambda r: r["energy_curl"] + r["energy_harmonic"]
+    total = lambda r: r["parameterization"]["energy_curl"] + r["parameterization"]["energy_harmonic"]
     assert total(best) == pytest.approx(min(total(none), total(reloc)), rel=1e-9)
     assert best["optimize"]["kept"] == ("original" if total(none) < total(reloc) else "optimized")
     with pytest.raises(ValueError, match="optimiz"):
@@ -200,9 +200,9 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
     uv0, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0)
     uv1, stiff = quadcover.parameterize(V, F, optimize="none", relaxation=0)
     assert plain["stiffening"]["iterations"] == 0 and plain["stiffening"]["E_S"] == 0
-    assert stiff["stiffening"]["flipped_before"] == plain["flipped_triangles"]
-    assert stiff["flipped_triangles"] == stiff["stiffening"]["flipped_after"] < plain["flipped_triangles"]
-    assert stiff["energy_harmonic"] == pytest.approx(plain["energy_harmonic"], rel=1e-12)
+    assert stiff["stiffening"]["flipped_before"] == plain["parameterization"]["flipped_triangles"]
+    assert stiff["parameterization"]["flipped_triangles"] == stiff["stiffening"]["flipped_after"] < plain["parameterization"]["flipped_triangles"]
+    assert stiff["parameterization"]["energy_harmonic"] == pytest.approx(plain["parameterization"]["energy_harmonic"], rel=1e-12)
     assert stiff["stiffening"]["E_S"] > 0
     worst, _ = seam_defect(F, uv1)
     assert worst < 1e-6 * max(1.0, np.ptp(uv1.reshape(-1, 2), axis=0).max())
@@ -217,14 +217,14 @@ def test_parameterize_relaxation_lowers_arap_and_keeps_the_map_seamless():
     _, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0)
     uv, relaxed = quadcover.parameterize(V, F, optimize="none", stiffening=0)
     assert plain["relaxation"]["iterations"] == 0 and relaxed["relaxation"]["iterations"] > 0
-    assert relaxed["energy_harmonic"] == pytest.approx(plain["energy_harmonic"], rel=1e-12)
+    assert relaxed["parameterization"]["energy_harmonic"] == pytest.approx(plain["parameterization"]["energy_harmonic"], rel=1e-12)
     assert relaxed["relaxation"]["E_R"] > 0
     assert relaxed["relaxation"]["arap_after"] < relaxed["relaxation"]["arap_before"]
-    assert relaxed["arap"] < plain["arap"]
+    assert relaxed["parameterization"]["arap"] < plain["parameterization"]["arap"]
     worst, _ = seam_defect(F, uv)
     assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
     _, smooth = quadcover.parameterize(V, F, optimize="none", field="smooth")
-    assert smooth["energy_curl"] != pytest.approx(relaxed["energy_curl"], rel=1e-6)
+    assert smooth["parameterization"]["energy_curl"] != pytest.approx(relaxed["parameterization"]["energy_curl"], rel=1e-6)
     with pytest.raises(ValueError):
         quadcover.parameterize(V, F, relaxation=-1)
     with pytest.raises(ValueError):

@@ -1,6 +1,5 @@
 #include "cli/optimize_options.h"
 
-#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -53,54 +52,21 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
-FieldOptions field_options(const OptimizeCliOptions& cli) { return field_options(parse_field_style(cli.field)); }
-
-OptimizeOptions to_optimize_options(const OptimizeCliOptions& cli, const ParamOptions& param) {
-  OptimizeOptions o;
-  o.mode = parse_optimize_mode(cli.optimize);
-  o.lambda = field_options(cli).lambda;
-  o.max_evaluations = cli.max_iterations;
-  o.param = param;
-  return o;
-}
-
-void apply_param_options(const OptimizeCliOptions& cli, ParamOptions& param) {
-  try {
-    param.rounding.strategy = parse_rounding_strategy(cli.rounding);
-  } catch (const InputError& e) {
-    throw InputError("--rounding", 0, e.what());
-  }
-  param.relaxation.iterations = cli.relaxation;
-  param.stiffening.max_iterations = cli.stiffening;
-}
-
-FrameField run_optimize(const Mesh& mesh, const FrameFieldResult& field, const OptimizeCliOptions& cli,
-                        const ParamOptions& param, ProgressSink& progress, nlohmann::json& report) {
-  const OptimizeOptions o = to_optimize_options(cli, param);
-  if (o.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + cli.optimize + ")");
-  OptimizeResult r = optimize_field(mesh, field, o, progress);
-  report = to_json(r, o.mode);
-  report["rounding"] = cli.rounding;
-  if (o.mode != OptimizeMode::None) {
-    char line[200];
-    const std::string by = report["stopped_by"].get<std::string>();
-    std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s), %s",
-                  report["E_D_before"].get<double>(), report["E_D_after"].get<double>(),
-                  report["branch_points_before"].get<int>(), report["branch_points_after"].get<int>(),
-                  report["evaluations"].get<long>(), r.evaluations_per_second,
-                  by == "converged"     ? "converged"
-                  : by == "evaluations" ? ("stopped on the budget of " + std::to_string(r.max_evaluations)).c_str()
-                                        : ("stopped early (" + by + ")").c_str());
-    progress.report("optimize", 1, line);
-  }
-  return std::move(r.field);
-}
-
-Parameterization parameterize_best(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
-                                   const OptimizeCliOptions& cli, const ParamOptions& param, ProgressSink& progress,
-                                   nlohmann::json& optimize_report) {
-  return parameterize_keep_better(mesh, original, optimized, param, parse_optimize_mode(cli.optimize), cli.keep_better,
-                                  progress, optimize_report);
+void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options) {
+  auto flag = [](const char* name, auto parse) {
+    try {
+      return parse();
+    } catch (const InputError& e) {
+      throw InputError(name, 0, e.what());
+    }
+  };
+  options.field_style = flag("--field", [&] { return parse_field_style(cli.field); });
+  options.optimize = flag("--optimize", [&] { return parse_optimize_mode(cli.optimize); });
+  options.param.rounding.strategy = flag("--rounding", [&] { return parse_rounding_strategy(cli.rounding); });
+  options.max_evaluations = cli.max_iterations;
+  options.keep_better = cli.keep_better;
+  options.param.relaxation.iterations = cli.relaxation;
+  options.param.stiffening.max_iterations = cli.stiffening;
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

@@ -1,22 +1,19 @@
 // `quadcover param MESH -o OUT.obj`: the seamless QuadCover parameterization (thesis Chapters 2-4) guided by the
 // curvature frame field of Chapter 5, written as an OBJ with per-corner texture coordinates in grid units.
 #include <chrono>
-#include <map>
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
+#include "cli/job_output.h"
 #include "cli/optimize_options.h"
 #include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
-#include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "mesh/mesh.h"
-#include "metrics/param_quality.h"
-#include "metrics/report.h"
-#include "param/parameterize.h"
-#include "param/seams.h"
+#include "pipeline/job_report.h"
+#include "pipeline/parameterize_mesh.h"
 #include "render/pipeline_pictures.h"
 
 namespace quadcover::cli {
@@ -62,138 +59,51 @@ void corner_uv_table(const Mesh& mesh, const Eigen::MatrixX3cd& uv, Eigen::Matri
   for (std::size_t i = 0; i < table.size(); ++i) UV.row(static_cast<Eigen::Index>(i)) << table[i].real(), table[i].imag();
 }
 
+/// The per-corner values as the OBJ stores them (the vt table of corner_uv_table read back per corner).
+Eigen::MatrixX3cd corner_values(const Eigen::MatrixX2d& UV, const Eigen::MatrixX3i& FUV) {
+  Eigen::MatrixX3cd written(FUV.rows(), 3);
+  for (Eigen::Index f = 0; f < FUV.rows(); ++f)
+    for (int c = 0; c < 3; ++c) written(f, c) = Complex(UV(FUV(f, c), 0), UV(FUV(f, c), 1));
+  return written;
+}
+
 nlohmann::json run_param(const std::string& input, const ParamOutputs& out, const ParamCmdOptions& opt,
                          ProgressSink& progress) {
-  const std::string& output = out.obj;
-  if (opt.edge_length > 0 && opt.quads > 0)
-    throw InputError("--edge-length/--quads", 0, "give either --edge-length or --quads, not both");
-  ParamOptions po;
-  po.lattice = parse_lattice(opt.lattice);
-  po.edge_length = opt.edge_length;
-  po.target_quads = opt.quads;
-  po.align_curves = opt.align;
-  apply_param_options(opt.optimize, po);
-  if (!out.plot.empty() && opt.optimize.optimize == "none")
+  PipelineOptions po;
+  po.param.lattice = parse_lattice(opt.lattice);
+  po.param.edge_length = opt.edge_length;
+  po.param.target_quads = opt.quads;
+  po.param.align_curves = opt.align;
+  apply_optimize_options(opt.optimize, po);
+  validate(po);
+  if (!out.plot.empty() && po.optimize == OptimizeMode::None)
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
 
-  using Clock = std::chrono::steady_clock;
-  nlohmann::json seconds = nlohmann::json::object();
-  auto t = Clock::now();
-  auto lap = [&](const char* stage) {
-    const auto now = Clock::now();
-    seconds[stage] = std::chrono::duration<double>(now - t).count();
-    t = now;
-  };
+  auto t = std::chrono::steady_clock::now();
   const Mesh mesh = build_mesh(read_mesh(input)).mesh;
-  lap("read");
-  nlohmann::json optimize;
-  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
-  lap("field");
-  fix_default_density(mesh, detailed.field, po);  // one scale for the optimization, keep-better and the map
-  const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
-  lap("optimize");
-  const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
-  for (const auto& [stage, s] : P.stage_seconds) seconds["param_" + stage] = s;
-  t = Clock::now();
-
+  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  ParamJob job = parameterize_mesh(mesh, po, progress);
+  job.seconds.insert(job.seconds.begin(), {"read", read_seconds});
   Eigen::MatrixX2d UV;
   Eigen::MatrixX3i FUV;
-  corner_uv_table(mesh, P.uv, UV, FUV);
-  write_obj_with_uv(output, mesh.V(), mesh.F(), UV, FUV);
-  lap("write");
-
-  // Measured on the written data: the vt table and the face/vt indices.
-  Eigen::MatrixX3cd written(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c) written(f, c) = Complex(UV(FUV(f, c), 0), UV(FUV(f, c), 1));
-  const SeamReport seams = measure_seams(mesh, written, 1e-9);
-  const FlipReport flips = flipped_triangles(written);
-
-  nlohmann::json bps = nlohmann::json::array();
-  int b_even = 0, b_odd = 0;
-  for (const BranchPoint& b : P.branch_points) {
-    const bool even = ((b.quarter_index % 4) + 4) % 4 == 2;
-    (even ? b_even : b_odd) += 1;
-    bps.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
-  }
-  nlohmann::json curves = nlohmann::json::array();
-  double worst_curve = 0;
-  for (const auto& c : P.aligned_curves) {
-    curves.push_back({{"edges", c.edges.size()},
-                      {"coordinate", c.coordinate == 0 ? "u" : "v"},
-                      {"value", c.value},
-                      {"max_deviation", c.max_deviation}});
-    worst_curve = std::max(worst_curve, c.max_deviation);
-  }
-  nlohmann::json report = {{"file", input},
-                           {"output", output},
-                           {"vertices", mesh.num_vertices()},
-                           {"faces", mesh.num_faces()},
-                           {"genus", mesh.genus()},
-                           {"boundary_loops", mesh.num_boundary_loops()},
-                           {"lattice", to_string(po.lattice)},
-                           {"rounding", rounding_to_json(po, P)},
-                           {"optimize", optimize},
-                           {"edge_length", P.edge_length},
-                           {"parameter_area", flips.parameter_area},
-                           {"branch_points", bps},
-                           {"b_odd", b_odd},
-                           {"b_even", b_even},
-                           {"unfixed_even_branch_points", P.unfixed_even_branch_points},
-                           {"h_sym", P.h_sym},
-                           {"E_D", P.energy_curl},
-                           {"E_H", P.energy_harmonic},
-                           {"E_R", P.relaxation.energy},
-                           {"E_S", P.stiffening.energy},
-                           {"relaxation", relaxation_to_json(P)},
-                           {"stiffening", stiffening_to_json(P)},
-                           {"flipped_triangles", flips.flipped},
-                           {"flipped_faces", flips.flipped_faces},
-                           {"degenerate_triangles", flips.degenerate},
-                           {"seamless", seams.seamless},
-                           {"max_transition_error", seams.max_transition_error},
-                           {"parameter_extent", seams.parameter_extent},
-                           {"cut_edges", seams.cut_edges},
-                           {"aligned_curves", curves},
-                           {"max_curve_deviation", worst_curve},
-                           {"alignment_conflicts", P.alignment_conflicts},
-                           {"seconds", seconds}};
-  nlohmann::json warnings = nlohmann::json::array();
-  for (int comp : P.holonomy_without_branch_points)
-    warnings.push_back("component " + std::to_string(comp) +
-                       ": the field turns around a handle but has no branch points; no seamless immersion exists "
-                       "there (the map degenerates). Use a field with branch points (e.g. --optimize full).");
-  if (!P.unfixed_even_branch_points.empty())
-    warnings.push_back(std::to_string(P.unfixed_even_branch_points.size()) +
-                       " even branch points stay on half-integers (see unfixed_even_branch_points)");
-  for (const auto& w : warnings) progress.report("param", -1, "warning: " + w.get<std::string>());
-  report["warnings"] = warnings;
-  if (!out.report.empty()) write_json_atomically(out.report, report);
-  if (!out.png.empty()) {
-    write_parameterization_png(out.png, mesh, P, views, render_options);
-    report["png"] = out.png;
-  }
-  if (!out.plot.empty()) {
-    write_optimization_plot(out.plot, optimize);
-    report["plot"] = out.plot;
-  }
-  if (!out.html.empty()) {
-    const ParamQuality quality = param_quality(mesh, P);
-    nlohmann::json page = report;
-    page["quality"] = to_json(quality);
-    write_pipeline_report(out.html, "quadcover param: " + input, mesh, &P, nullptr, page, &quality);
-    report["report_html"] = out.html;
-  }
-  nlohmann::json summary = report;
-  summary["branch_points"] = P.branch_points.size();
-  summary.erase("flipped_faces");
-  summary["aligned_curves"] = P.aligned_curves.size();
-  summary["optimize"].erase("log");  // in the --report file; the summary stays short
-  if (!seams.seamless)
-    throw NumericalError("param", "the written parameterization is not seamless (max transition error " +
-                                      std::to_string(seams.max_transition_error) + ")");
+  corner_uv_table(mesh, job.map.uv, UV, FUV);
+  nlohmann::json report = param_report(mesh, job, corner_values(UV, FUV), input);
+  report["output"] = out.obj;
+  // Checked before anything is written: a map that is not seamless is an error, not a file.
+  if (!report["parameterization"]["seamless"].get<bool>())
+    throw NumericalError("param", "the parameterization is not seamless (max transition error " +
+                                      std::to_string(report["parameterization"]["max_transition_error"].get<double>()) +
+                                      "); nothing written");
+  t = std::chrono::steady_clock::now();
+  write_obj_with_uv(out.obj, mesh.V(), mesh.F(), UV, FUV);
+  report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  print_warnings(input, report);
+  if (!out.png.empty()) write_parameterization_png(out.png, mesh, job.map, views, render_options);
+  write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, mesh, job.map, nullptr, report);
+  nlohmann::json summary = report_summary(report);
+  summary["output"] = out.obj;
   return summary;
 }
 
@@ -203,14 +113,18 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "param",
       "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
       "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
-      "--quads N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
+      "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
       "30 quads per branch point of the field");
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");
-  cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--quads", opt->quads, "Target number of quads N (h = sqrt(area / N))")->check(CLI::PositiveNumber);
+  auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
+                ->check(CLI::PositiveNumber);
+  cmd->add_option("--faces,--quads", opt->quads,
+                  "Target number of quads N, hit within 2 % of the map's quad count (h = sqrt(area / N), solved once "
+                  "more at the corrected h when missed); --quads is its old name")
+      ->check(CLI::PositiveNumber)
+      ->excludes(h);
   cmd->add_option("--lattice", opt->lattice,
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")

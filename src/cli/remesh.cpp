@@ -1,22 +1,18 @@
 // `quadcover remesh MESH -o QUADS.obj`: the whole pipeline — frame field (thesis ch. 5) → QuadCover
 // parameterization (ch. 2-4) → quad extraction — with the Table 7.1 metrics of the result.
 #include <chrono>
-#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
-#include "param/seams.h"
+#include "cli/job_output.h"
 #include "cli/optimize_options.h"
 #include "cli/pictures.h"
 #include "cli/registry.h"
 #include "common/errors.h"
-#include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
-#include "metrics/report.h"
-#include "param/parameterize.h"
-#include "quad/extract_quads.h"
-#include "quad/smooth_quads.h"
+#include "pipeline/job_report.h"
+#include "pipeline/remesh_mesh.h"
 #include "render/pipeline_pictures.h"
 
 namespace quadcover::cli {
@@ -54,100 +50,44 @@ void write_param_obj(const std::string& path, const Mesh& mesh, const Eigen::Mat
 
 nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, const RemeshOptions& opt,
                           ProgressSink& progress) {
-  const std::string& output = out.quads;
-  if (opt.vertices > 0 && opt.edge_length > 0)
-    throw InputError("--vertices/--edge-length", 0, "give either --vertices or --edge-length, not both");
-  if (!out.plot.empty() && opt.optimize.optimize == "none")
+  PipelineOptions po;
+  po.param.lattice = parse_lattice(opt.lattice);
+  po.param.edge_length = opt.edge_length;
+  // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
+  po.param.target_quads = opt.vertices;
+  po.smoothing = opt.smoothing;
+  apply_optimize_options(opt.optimize, po);
+  validate(po);
+  if (!out.plot.empty() && po.optimize == OptimizeMode::None)
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   using Clock = std::chrono::steady_clock;
-  Report report;
-  report.input = input;
   auto t = Clock::now();
-  auto lap = [&](const char* stage) {
-    const auto now = Clock::now();
-    report.seconds[stage] = std::chrono::duration<double>(now - t).count();
-    t = now;
-  };
   const Mesh mesh = build_mesh(read_mesh(input)).mesh;
-  lap("read");
-  ParamOptions po;
-  po.lattice = parse_lattice(opt.lattice);
-  po.edge_length = opt.edge_length;
-  // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
-  po.target_quads = opt.vertices;
-  apply_param_options(opt.optimize, po);
-  const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);
-  lap("field");
-  fix_default_density(mesh, detailed.field, po);  // one scale for the optimization, keep-better and the map
-  nlohmann::json optimize;
-  const FrameField field = run_optimize(mesh, detailed, opt.optimize, po, progress, optimize);
-  lap("optimize");
-  const Parameterization P = parameterize_best(mesh, detailed.field, field, opt.optimize, po, progress, optimize);
-  lap("param");
-  // The signed parameter area is the number of quads the map can hold; below a few there is nothing to extract
-  // (too coarse a density, or a map folded onto itself by a field without branch points, e.g. a flat fan).
-  const double area = flipped_triangles(P.uv).parameter_area;
-  if (area < 4)
-    throw InputError(input, 0,
-                     "the map holds about " + std::to_string(static_cast<int>(std::lround(std::max(0.0, area)))) +
-                         " quads, too few to extract a quad mesh; ask for more with --vertices N or a smaller "
-                         "--edge-length" +
-                         (P.branch_points.empty() && mesh.num_boundary_loops() > 0
-                              ? " (if the map folds onto itself, the field's singularities are whole turns)"
-                              : ""));
-  ExtractionResult ex = extract_quads(mesh, P, ExtractOptions{}, progress);
-  lap("extract");
-  const QuadSmoothingReport smoothing = smooth_quads(ex.mesh, mesh, P, opt.smoothing, progress);
-  lap("smooth");
-  report.parameterization = param_quality(mesh, P);
-  report.extraction = ex.report;
-  report.quad_mesh = quad_quality(ex.mesh);
-  report.surface_distance = surface_distance(ex.mesh.V, ex.mesh.faces, mesh.V(), mesh.F());
-  lap("metrics");
-  report.values["edge_length"] = P.edge_length;
-  report.values["field_branch_points"] = static_cast<double>(P.branch_points.size());
-  report.values["input_faces"] = mesh.num_faces();
-  if (ex.mesh.num_faces() == 0)
-    throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
-  write_polygon_obj(output, ex.mesh.V, ex.mesh.faces);
-  if (!out.param.empty()) write_param_obj(out.param, mesh, P.uv);
-  lap("write");
-  nlohmann::json j = to_json(report);
-  j["optimize"] = optimize;
-  j["rounding"] = rounding_to_json(po, P);
-  j["relaxation"] = relaxation_to_json(P);
-  j["stiffening"] = stiffening_to_json(P);
-  j["quad_smoothing"] = quad_smoothing_to_json(opt.smoothing, smoothing);
-  if (!out.report.empty()) write_json_atomically(out.report, j);
-  if (!out.png.empty()) write_quad_mesh_png(out.png, ex.mesh, views, render_options);
-  if (!out.plot.empty()) write_optimization_plot(out.plot, optimize);
-  if (!out.html.empty())
-    write_pipeline_report(out.html, "quadcover remesh: " + input, mesh, &P, &ex.mesh, j,
-                          &*report.parameterization);
-  nlohmann::json brief = optimize;
-  brief.erase("log");  // in the --report file; the summary stays short
-  const auto& q = *report.quad_mesh;
-  return {{"output", output},
-          {"vertices", q.vertices},
-          {"faces", q.faces},
-          {"non_quads", q.non_quads},
-          {"rsd_edge_length", q.rsd_edge_length},
-          {"rsd_corner_angle", q.rsd_corner_angle},
-          {"irregular_vertices", q.irregular_vertices},
-          {"branch_points", report.parameterization->branch_points},
-          {"arap", report.parameterization->arap},
-          {"flipped_triangles", report.parameterization->flipped_triangles},
-          {"manifold", q.topology.manifold()},
-          {"closed", q.topology.closed()},
-          {"distance_max", report.surface_distance->max},
-          {"repairs", ex.report.failed_traces + ex.report.dropped_faces + ex.report.torn_seams},
-          {"E_D", report.parameterization->energy_curl},
-          {"E_H", report.parameterization->energy_harmonic},
-          {"optimize", brief},
-          {"rounding", j["rounding"]},
-          {"seconds", report.seconds}};
+  const double read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
+  RemeshJob job;
+  try {
+    job = remesh_mesh(mesh, po, progress);
+  } catch (const InputError& e) {
+    if (e.file() != "density") throw;
+    throw InputError(input, 0, std::string(e.what()).substr(9) + " (--vertices N or --edge-length h)");
+  }
+  job.param.seconds.insert(job.param.seconds.begin(), {"read", read_seconds});
+  nlohmann::json report = remesh_report(mesh, job, input);
+  report["output"] = out.quads;
+  t = Clock::now();
+  const QuadMesh& quads = job.extraction.mesh;
+  write_polygon_obj(out.quads, quads.V, quads.faces);
+  if (!out.param.empty()) write_param_obj(out.param, mesh, job.param.map.uv);
+  report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
+  print_warnings(input, report);
+  if (!out.png.empty()) write_quad_mesh_png(out.png, quads, views, render_options);
+  write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, mesh, job.param.map, &quads,
+                   report);
+  nlohmann::json summary = report_summary(report);
+  summary["output"] = out.quads;
+  return summary;
 }
 
 void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
@@ -159,7 +99,9 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
   add_input_option(*cmd, opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.quad.obj");
-  auto* nv = cmd->add_option("--vertices", opt->vertices, "Target number of output vertices (≈ quads on a closed mesh)")
+  auto* nv = cmd->add_option("--faces,--vertices", opt->vertices,
+                             "Target number of quads N, hit within 2 % of the map's quad count (on a closed mesh the "
+                             "quad mesh has about as many vertices); --vertices is its old name")
                  ->check(CLI::PositiveNumber);
   cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length in model units")
       ->check(CLI::PositiveNumber)

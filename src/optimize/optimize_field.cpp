@@ -31,11 +31,9 @@ double auto_time_limit(const Mesh& mesh, OptimizeMode mode) {
   return mode == OptimizeMode::Full ? 2.0 + 2.5e-4 * mesh.num_faces() : 0.0;
 }
 
-namespace {
-const char* mode_name(OptimizeMode m) {
+const char* to_string(OptimizeMode m) {
   return m == OptimizeMode::None ? "none" : m == OptimizeMode::Relocate ? "relocate" : "full";
 }
-}  // namespace
 
 OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, const OptimizeOptions& options,
                               ProgressSink& progress) {
@@ -95,7 +93,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
 
 nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
   nlohmann::json j;
-  j["mode"] = mode_name(mode);
+  j["mode"] = to_string(mode);
   const bool balanced = !r.balancing.log.empty();
   const CurlReductionResult& last = balanced ? r.balancing : r.reduction;
   j["E_D_before"] = r.reduction.initial_energy;

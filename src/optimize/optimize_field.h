@@ -20,6 +20,8 @@ enum class OptimizeMode { None, Relocate, Full };
 inline constexpr long kAutoBudget = -1;
 /// Parses "none|relocate|full". \throw InputError otherwise.
 OptimizeMode parse_optimize_mode(std::string_view name);
+/// "none", "relocate" or "full".
+const char* to_string(OptimizeMode mode);
 
 struct OptimizeOptions {
   OptimizeMode mode = OptimizeMode::Relocate;

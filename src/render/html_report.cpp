@@ -155,7 +155,8 @@ std::string html_report(const HtmlReport& r) {
       h << "<tr><td>" << escape_markup(k) << "</td><td class=\"v\">" << escape_markup(v) << "</td></tr>\n";
     h << "</table>\n";
   }
-  nlohmann::json data{{"meshes", nlohmann::json::array()}};
+  // The page's data: the display meshes and the report itself, as the CLI writes it (script id "qc-data").
+  nlohmann::json data{{"meshes", nlohmann::json::array()}, {"report", r.metrics}};
   if (!r.meshes.empty()) {
     h << "<h2>3D views</h2>\n<p>Drag to rotate, scroll to zoom, double-click to reset.</p>\n<div class=\"views\">\n";
     for (std::size_t k = 0; k < r.meshes.size(); ++k) {

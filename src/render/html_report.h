@@ -21,7 +21,7 @@ struct HtmlMesh {
 
 struct HtmlReport {
   std::string title = "quadcover report";
-  nlohmann::json metrics;  ///< shown as a table (nested objects flattened to "a.b" keys)
+  nlohmann::json metrics;  ///< shown as a table (nested objects flattened to "a.b" keys), embedded whole as data.report
   std::vector<std::pair<std::string, std::string>> figures;  ///< (caption, inline SVG)
   std::vector<HtmlMesh> meshes;
 };

@@ -135,7 +135,8 @@ def check_param(binary, mesh_path, name, out, info, src):
     obj_path = os.path.join(out, name + ".param.obj")
     rep_path = os.path.join(out, name + ".param.json")
     _, dt = run(binary, ["param", mesh_path, "-o", obj_path, "--report", rep_path, "-q"])
-    rep = json.load(open(rep_path))
+    report = json.load(open(rep_path))
+    rep = report["parameterization"]
     obj = objcheck.read_obj(obj_path)
     check(len(obj.faces) == info["faces"] and len(obj.v) == len(src.v), f"{name}: param OBJ counts differ from the input")
     check(all(len(f) == 3 for f in obj.faces), f"{name}: param OBJ has non-triangles")
@@ -148,7 +149,7 @@ def check_param(binary, mesh_path, name, out, info, src):
     check(seams.max_transition_error <= tol and seams.max_translation_defect <= tol,
           f"{name}: re-measured seams: transition error {seams.max_transition_error:.3g}, translation off Z[i] by "
           f"{seams.max_translation_defect:.3g} at edge {seams.worst_edge} (tolerance {tol:.3g})")
-    if info["genus"] > 0 or info["boundary_loops"] > 0 or rep["branch_points"]:
+    if info["genus"] > 0 or info["boundary_loops"] > 0 or rep["branch_points"] > 0:
         check(seams.cut_edges > 0, f"{name}: a map with cones or topology but no cut edge")
     areas = objcheck.uv_signed_areas(obj)
     # Flipped = negative parameter area (grid units: one quad = area 1); |area| < 1e-9 may count either way.
@@ -158,15 +159,16 @@ def check_param(binary, mesh_path, name, out, info, src):
           rep["flipped_triangles"] + rep["degenerate_triangles"] >= maybe,
           f"{name}: report flips {rep['flipped_triangles']} (+{rep['degenerate_triangles']} degenerate), "
           f"re-measured: {surely} negative areas, {maybe - surely} near zero")
-    check(rep["E_D"] >= 0 and rep["E_H"] >= 0, f"{name}: negative energy E_D={rep['E_D']} E_H={rep['E_H']}")
-    check(isinstance(rep["branch_points"], list), f"{name}: report branch_points is not a list")
+    check(rep["energy_curl"] >= 0 and rep["energy_harmonic"] >= 0,
+          f"{name}: negative energy E_D={rep['energy_curl']} E_H={rep['energy_harmonic']}")
+    check(isinstance(report["field"]["branch_points"], list), f"{name}: report field.branch_points is not a list")
     # Metrics re-read the written file: same flips, still seamless.
     p, _ = run(binary, ["metrics", obj_path, "--json"])
     met = json.loads(p.stdout)["parameterization"]
     check(surely <= met["flipped_triangles"] <= maybe, f"{name}: metrics flips {met['flipped_triangles']}, but the "
           f"file has {surely} negative parameter areas and {maybe - surely} near zero")
     check(met["max_transition_error"] <= tol, f"{name}: metrics finds seams off by {met['max_transition_error']:.3g}")
-    return rep, dt
+    return report, dt
 
 
 def check_remesh(binary, mesh_path, name, out, info):
@@ -243,9 +245,9 @@ def key_metrics(param_rep, remesh_rep, topo):
     pq, q = remesh_rep["parameterization"], remesh_rep["quad_mesh"]
     ex = remesh_rep["extraction"]
     return {
-        "branch_points": len(param_rep["branch_points"]),
-        "param_flipped_triangles": param_rep["flipped_triangles"],
-        "E_D_plus_E_H": param_rep["E_D"] + param_rep["E_H"],
+        "branch_points": len(param_rep["field"]["branch_points"]),
+        "param_flipped_triangles": param_rep["parameterization"]["flipped_triangles"],
+        "E_D_plus_E_H": param_rep["parameterization"]["energy_curl"] + param_rep["parameterization"]["energy_harmonic"],
         "arap": pq["arap"],
         "remesh_flipped_triangles": pq["flipped_triangles"],
         "rsd_edge_length": q["rsd_edge_length"],

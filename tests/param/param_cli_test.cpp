@@ -68,16 +68,21 @@ TEST(ParamCli, WritesSeamlessObjAndReport) {
     EXPECT_GT(seams.cut_edges, 0);
     std::ifstream in(json);
     const nlohmann::json report = nlohmann::json::parse(in);
-    for (const char* key : {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "flipped_faces",
-                            "seamless", "max_transition_error", "seconds", "aligned_curves"})
+    for (const char* key : {"schema_version", "job", "mesh", "options", "field", "parameterization", "optimize",
+                            "rounding", "relaxation", "stiffening", "aligned_curves", "warnings", "seconds"})
       EXPECT_TRUE(report.contains(key)) << key;
-    EXPECT_EQ(report["faces"], mesh.num_faces());
-    EXPECT_TRUE(report["seamless"].get<bool>());
+    const nlohmann::json& map = report["parameterization"];
+    for (const char* key : {"branch_points", "h_sym", "energy_curl", "energy_harmonic", "flipped_triangles",
+                            "flipped_faces", "seamless", "max_transition_error"})
+      EXPECT_TRUE(map.contains(key)) << key;
+    EXPECT_EQ(report["job"], "param");
+    EXPECT_EQ(report["mesh"]["faces"], mesh.num_faces());
+    EXPECT_TRUE(map["seamless"].get<bool>());
     // Fields with branch points on these meshes: no degenerate-holonomy or half-integer warnings.
     ASSERT_TRUE(report["warnings"].is_array());
     EXPECT_TRUE(report["warnings"].empty()) << report["warnings"].dump();
-    EXPECT_EQ(report["flipped_triangles"].get<int>(), static_cast<int>(report["flipped_faces"].size()));
-    EXPECT_EQ(report["flipped_triangles"].get<int>(), flipped_triangles(uv).flipped);
+    EXPECT_EQ(map["flipped_triangles"].get<int>(), static_cast<int>(map["flipped_faces"].size()));
+    EXPECT_EQ(map["flipped_triangles"].get<int>(), flipped_triangles(uv).flipped);
     // --quads 400: about 400 unit squares of parameter area.
     EXPECT_NEAR(flipped_triangles(uv).parameter_area, 400, 200);
   }

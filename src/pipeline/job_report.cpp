@@ -1,0 +1,160 @@
+#include "pipeline/job_report.h"
+
+#include <chrono>
+
+#include "metrics/param_quality.h"
+#include "metrics/quad_quality.h"
+#include "metrics/report.h"
+#include "metrics/surface_distance.h"
+#include "param/seams.h"
+
+namespace quadcover {
+
+namespace {
+
+nlohmann::json mesh_json(const Mesh& mesh) {
+  return {{"vertices", mesh.num_vertices()},
+          {"faces", mesh.num_faces()},
+          {"genus", mesh.genus()},
+          {"boundary_loops", mesh.num_boundary_loops()},
+          {"components", mesh.num_components()}};
+}
+
+nlohmann::json options_json(const PipelineOptions& o) {
+  return {{"field", to_string(o.field_style)},           {"optimize", to_string(o.optimize)},
+          {"max_iterations", o.max_evaluations},         {"keep_better", o.keep_better},
+          {"lattice", to_string(o.param.lattice)},       {"rounding", to_string(o.param.rounding.strategy)},
+          {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
+          {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
+          {"smooth_rigidity", o.smoothing.rigidity}};
+}
+
+/// The branch points of the field the map was made from (the map's own cones are parameterization.branch_points).
+nlohmann::json field_json(const ParamJob& job) {
+  nlohmann::json list = nlohmann::json::array();
+  int odd = 0, even = 0;
+  for (const BranchPoint& b : job.map.branch_points) {
+    (((b.quarter_index % 4) + 4) % 4 == 2 ? even : odd) += 1;
+    list.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
+  }
+  return {{"branch_points_initial", job.field_branch_points},
+          {"branch_points", list},
+          {"b_odd", odd},
+          {"b_even", even},
+          {"unfixed_even_branch_points", job.map.unfixed_even_branch_points}};
+}
+
+nlohmann::json curves_json(const Parameterization& map) {
+  nlohmann::json curves = nlohmann::json::array();
+  double worst = 0;
+  for (const auto& c : map.aligned_curves) {
+    curves.push_back({{"edges", c.edges.size()},
+                      {"coordinate", c.coordinate == 0 ? "u" : "v"},
+                      {"value", c.value},
+                      {"max_deviation", c.max_deviation},
+                      {"enforced", c.enforced}});
+    worst = std::max(worst, c.max_deviation);
+  }
+  return {{"curves", curves}, {"max_deviation", worst}, {"conflicts", map.alignment_conflicts}};
+}
+
+/// The map's validity and distortion, measured on `uv` (the written coordinates) with the job's transitions.
+nlohmann::json map_json(const Mesh& mesh, const Parameterization& map, const Eigen::MatrixX3cd& uv) {
+  Parameterization written = map;
+  written.uv = uv;
+  nlohmann::json j = to_json(param_quality(mesh, written));
+  const SeamReport seams = measure_seams(mesh, uv, 1e-9);
+  const FlipReport flips = flipped_triangles(uv);
+  j["seamless"] = seams.seamless;
+  j["parameter_extent"] = seams.parameter_extent;
+  j["cut_edges"] = seams.cut_edges;
+  j["parameter_area"] = flips.parameter_area;
+  j["flipped_faces"] = flips.flipped_faces;
+  return j;
+}
+
+nlohmann::json seconds_json(const StageSeconds& seconds) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [stage, s] : seconds) j[stage] = s;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
+                            const std::string& input) {
+  const Parameterization& map = job.map;
+  nlohmann::json r;
+  r["schema_version"] = kReportSchemaVersion;
+  r["job"] = "param";
+  r["input"] = input;
+  r["mesh"] = mesh_json(mesh);
+  r["options"] = options_json(job.options);
+  r["edge_length"] = map.edge_length;
+  r["density"] = {{"target_quads", job.density.target_quads},
+                  {"first_quads", job.density.first_quads},
+                  {"quads", job.density.quads},
+                  {"resolves", job.density.resolves}};
+  r["field"] = field_json(job);
+  r["parameterization"] = map_json(mesh, map, uv);
+  r["parameterization"]["h_sym"] = map.h_sym;
+  r["optimize"] = job.optimize;
+  r["rounding"] = rounding_to_json(job.options.param, map);
+  r["relaxation"] = relaxation_to_json(map);
+  r["stiffening"] = stiffening_to_json(map);
+  r["aligned_curves"] = curves_json(map);
+  r["extraction"] = nullptr;
+  r["quad_mesh"] = nullptr;
+  r["surface_distance"] = nullptr;
+  r["quad_smoothing"] = nullptr;
+  r["surface_check"] = nullptr;
+  r["warnings"] = job.warnings;
+  r["seconds"] = seconds_json(job.seconds);
+  return r;
+}
+
+nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input) {
+  const auto t = std::chrono::steady_clock::now();
+  nlohmann::json r = param_report(mesh, job.param, job.param.map.uv, input);
+  r["job"] = "remesh";
+  const QuadMesh& q = job.extraction.mesh;
+  r["extraction"] = to_json(job.extraction.report);
+  r["quad_mesh"] = to_json(quad_quality(q));
+  r["surface_distance"] = to_json(surface_distance(q.V, q.faces, mesh.V(), mesh.F()));
+  r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
+  r["surface_check"] = to_json(job.surface);
+  r["seconds"]["metrics"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  return r;
+}
+
+nlohmann::json report_summary(const nlohmann::json& r) {
+  const nlohmann::json& p = r["parameterization"];
+  nlohmann::json optimize = r["optimize"];
+  optimize.erase("log");  // in the --report file; the summary stays short
+  nlohmann::json s = {{"edge_length", r["edge_length"]},
+                      {"branch_points", p["branch_points"]},
+                      {"h_sym", p["h_sym"]},
+                      {"flipped_triangles", p["flipped_triangles"]},
+                      {"seamless", p["seamless"]},
+                      {"E_D", p["energy_curl"]},
+                      {"E_H", p["energy_harmonic"]},
+                      {"arap", p["arap"]},
+                      {"optimize", optimize},
+                      {"rounding", r["rounding"]}};
+  if (r["quad_mesh"].is_null()) {  // param: the numbers of the input mesh
+    for (const char* key : {"vertices", "faces", "genus", "boundary_loops"}) s[key] = r["mesh"][key];
+    return s;
+  }
+  const nlohmann::json& q = r["quad_mesh"];
+  const nlohmann::json& e = r["extraction"];
+  for (const char* key : {"vertices", "faces", "quads", "non_quads", "rsd_edge_length", "rsd_corner_angle",
+                          "irregular_vertices", "manifold", "closed"})
+    s[key] = q[key];
+  s["input_faces"] = r["mesh"]["faces"];
+  s["same_topology"] = r["surface_check"]["same_topology"];
+  s["distance_max"] = r["surface_distance"]["max"];
+  s["repairs"] = e["failed_traces"].get<int>() + e["dropped_faces"].get<int>() + e["torn_seams"].get<int>();
+  return s;
+}
+
+}  // namespace quadcover

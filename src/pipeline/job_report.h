@@ -1,0 +1,40 @@
+#pragma once
+// The one report of a job: the CLI's --report JSON, the Python module's report dict and the data of the HTML page
+// are this document (schema below, versioned). Every number about the map is measured on the coordinates as
+// written, every number about the quad mesh on the mesh as written: what an independent checker of the files finds.
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "mesh/mesh.h"
+#include "pipeline/parameterize_mesh.h"
+#include "pipeline/remesh_mesh.h"
+
+namespace quadcover {
+
+/// Bumped whenever a key changes meaning or moves.
+inline constexpr int kReportSchemaVersion = 1;
+
+/// The report of the parameterization job. `uv` is the map as written (#F by 3 per-corner coordinates); `input`
+/// names the source ("" from Python). Keys: schema_version, job ("param"), input, mesh {vertices, faces, genus,
+/// boundary_loops, components}, options, edge_length, density {target_quads, first_quads, quads, resolves}, field
+/// {branch_points_initial, branch_points [{vertex, quarter_index, index}], b_odd, b_even, unfixed_even_branch_points},
+/// parameterization (metrics/report.h to_json(ParamQuality) plus seamless, parameter_extent, cut_edges, flipped_faces),
+/// optimize, rounding, relaxation, stiffening, aligned_curves {curves, max_deviation, conflicts}, extraction,
+/// quad_mesh, surface_distance, quad_smoothing (null for param), warnings, seconds. \pre uv is #F by 3.
+nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
+                            const std::string& input = "");
+
+/// The report of the remesh job: param_report() of its map (job "remesh") plus extraction, quad_mesh (measured on
+/// the smoothed quad mesh), surface_distance (to the input), quad_smoothing and surface_check
+/// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
+/// metrics' seconds are added.
+nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
+
+/// The key numbers of a report, flat (printed by the CLI, tabulated in batches): edge_length, branch_points (of the
+/// map), h_sym, flipped_triangles, seamless, E_D, E_H, arap, optimize (without its log), rounding; for param the
+/// input's vertices, faces, genus, boundary_loops; for remesh the quad mesh's vertices, faces, quads, non_quads,
+/// rsd_edge_length, rsd_corner_angle, irregular_vertices, manifold, closed, and input_faces, distance_max, repairs.
+nlohmann::json report_summary(const nlohmann::json& report);
+
+}  // namespace quadcover

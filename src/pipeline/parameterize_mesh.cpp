@@ -1,0 +1,128 @@
+#include "pipeline/parameterize_mesh.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "field/compute_frame_field.h"
+#include "optimize/optimize_field.h"
+
+namespace quadcover {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Appends the seconds since `t` under `stage` and restarts the clock.
+void lap(StageSeconds& seconds, Clock::time_point& t, const char* stage) {
+  const auto now = Clock::now();
+  seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
+  t = now;
+}
+
+/// The one-line summary of Algorithm 6.1 for the progress sink.
+std::string optimize_summary(const nlohmann::json& r, double evaluations_per_second, long budget) {
+  const std::string by = r["stopped_by"].get<std::string>();
+  const std::string how = by == "converged"     ? "converged"
+                          : by == "evaluations" ? "stopped on the budget of " + std::to_string(budget)
+                                                : "stopped early (" + by + ")";
+  char line[200];
+  std::snprintf(line, sizeof line, "E_D %.4g -> %.4g, branch points %d -> %d, %ld evaluations (%.0f/s), %s",
+                r["E_D_before"].get<double>(), r["E_D_after"].get<double>(), r["branch_points_before"].get<int>(),
+                r["branch_points_after"].get<int>(), r["evaluations"].get<long>(), evaluations_per_second, how.c_str());
+  return line;
+}
+
+/// Σ_t |area(φ(t))|: the number of quads the map holds (exact for a closed seamless map).
+double quad_count(const Parameterization& map) {
+  double area = 0;
+  for (Eigen::Index f = 0; f < map.uv.rows(); ++f) {
+    const Complex a = map.uv(f, 1) - map.uv(f, 0), b = map.uv(f, 2) - map.uv(f, 0);
+    area += 0.5 * std::abs(std::imag(std::conj(a) * b));
+  }
+  return area;
+}
+
+}  // namespace
+
+DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
+  ParamOptions& param = job.options.param;
+  DensityReport d;
+  d.target_quads = param.target_quads;
+  d.quads = d.first_quads = quad_count(job.map);
+  if (param.target_quads <= 0 || d.first_quads <= 0) return d;
+  const double target = param.target_quads;
+  const auto t = Clock::now();
+  // Quad count ≈ c / h²: re-solve the kept field (field and matching stay) at the h this predicts, interpolating in
+  // log h between the closest tries below and above N once both exist (the periods round to the lattice, so the
+  // count moves in steps); the closest map is kept.
+  std::pair<double, double> below{0, 0}, above{0, 0};  // (h, count) with count < N, count > N
+  auto note = [&](double h, double count) { (count < target ? below : above) = {h, count}; };
+  note(job.map.edge_length, d.quads);
+  double h = job.map.edge_length, count = d.quads;
+  for (int k = 0; k < kDensityResolves && std::abs(d.quads / target - 1) > kDensityTolerance; ++k) {
+    if (below.first > 0 && above.first > 0) {  // count falls with h: above has the smaller h
+      const double s = std::log(target / above.second) / std::log(below.second / above.second);
+      h = above.first * std::pow(below.first / above.first, s);
+    } else {
+      h *= std::sqrt(count / target);
+    }
+    param.edge_length = h;
+    param.target_quads = 0;
+    Parameterization map = parameterize(mesh, job.field, param, progress);
+    count = quad_count(map);
+    note(h, count);
+    ++d.resolves;
+    if (std::abs(count / target - 1) < std::abs(d.quads / target - 1)) {
+      job.map = std::move(map);
+      d.quads = count;
+    }
+    if (progress.cancelled()) break;
+  }
+  param.edge_length = job.map.edge_length;
+  if (d.resolves > 0) job.seconds.emplace_back("density", std::chrono::duration<double>(Clock::now() - t).count());
+  return d;
+}
+
+std::vector<std::string> map_warnings(const Parameterization& map) {
+  std::vector<std::string> warnings;
+  for (int comp : map.holonomy_without_branch_points)
+    warnings.push_back("component " + std::to_string(comp) +
+                       ": the field turns around a handle but has no branch points; no seamless immersion exists "
+                       "there (the map degenerates). Use a field with branch points (e.g. --optimize full).");
+  if (!map.unfixed_even_branch_points.empty())
+    warnings.push_back(std::to_string(map.unfixed_even_branch_points.size()) +
+                       " even branch points stay on half-integers (see unfixed_even_branch_points)");
+  return warnings;
+}
+
+ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+  validate(options);
+  ParamJob job;
+  job.options = options;
+  ParamOptions& param = job.options.param;
+  auto t = Clock::now();
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
+  job.field_branch_points = static_cast<int>(field.branch_points.size());
+  lap(job.seconds, t, "field");
+  fix_default_density(mesh, field.field, param);  // one scale for the optimization, keep-better and the map
+  const OptimizeOptions oo = optimize_stage_options(options, param);
+  const std::string mode = to_string(options.optimize);
+  if (oo.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + mode + ")");
+  OptimizeResult optimized = optimize_field(mesh, field, oo, progress);
+  job.optimize = to_json(optimized, oo.mode);
+  job.optimize["rounding"] = to_string(param.rounding.strategy);
+  if (oo.mode != OptimizeMode::None)
+    progress.report("optimize", 1,
+                    optimize_summary(job.optimize, optimized.evaluations_per_second, optimized.max_evaluations));
+  lap(job.seconds, t, "optimize");
+  job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, progress,
+                                     job.optimize);
+  job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
+  for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
+  job.density = hit_target_count(mesh, job, progress);
+  job.warnings = map_warnings(job.map);
+  return job;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,57 @@
+#pragma once
+// The parameterization job: frame field (thesis ch. 5) → default density → Algorithm 6.1 (ch. 6) → keep-better →
+// QuadCover parameterization (ch. 2-4). One call for the CLI's `param`, the Python module and the benches.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/progress.h"
+#include "field/frame_field.h"
+#include "mesh/mesh.h"
+#include "param/parameterization.h"
+#include "pipeline/pipeline_options.h"
+
+namespace quadcover {
+
+/// Wall-clock seconds per stage, in pipeline order.
+using StageSeconds = std::vector<std::pair<std::string, double>>;
+
+/// How the job met a requested quad count N (ParamOptions::target_quads): h = sqrt(area / N) gives a map whose
+/// quad count Σ|area(φ(t))| is off by the field's non-uniform scale; while the count is off by more than
+/// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
+/// above N), at most kDensityResolves times, keeping the closest.
+struct DensityReport {
+  int target_quads = 0;    ///< N asked for (0: an edge length or the default density)
+  double first_quads = 0;  ///< quad count of the first map
+  double quads = 0;        ///< quad count of the final map
+  int resolves = 0;        ///< maps solved again at a corrected edge length
+};
+inline constexpr double kDensityTolerance = 0.02;
+inline constexpr int kDensityResolves = 4;
+
+struct ParamJob {
+  PipelineOptions options;      ///< as given, with the default density fixed to an explicit edge length
+  FrameField field;             ///< the field the map was made from (optimized or original, see optimize["kept"])
+  int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
+  Parameterization map;
+  nlohmann::json optimize;            ///< the "optimize" object (optimize/optimize_field.h to_json, plus "kept")
+  DensityReport density;              ///< how a requested quad count was met
+  std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
+  StageSeconds seconds;
+};
+
+/// Runs the parameterization job on `mesh`.
+/// \pre mesh is a valid triangle mesh (build_mesh).
+/// \throw InputError for invalid options (validate()), NumericalError if a factorization fails.
+/// Honours progress.cancelled(): Algorithm 6.1 stops with its best field; the map is still completed.
+ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
+
+/// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
+DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
+
+/// The warnings a map deserves (handles whose field has holonomy but no branch points, even branch points left on
+/// half-integers), in the words the CLI prints.
+std::vector<std::string> map_warnings(const Parameterization& map);
+
+}  // namespace quadcover

@@ -1,0 +1,33 @@
+#include "pipeline/pipeline_options.h"
+
+#include "common/errors.h"
+
+namespace quadcover {
+
+void validate(const PipelineOptions& o) {
+  const ParamOptions& p = o.param;
+  if (p.edge_length < 0) throw InputError("edge_length", 0, "must be > 0 (0 = default density)");
+  if (p.target_quads < 0) throw InputError("quads", 0, "must be > 0 (0 = default density)");
+  if (p.edge_length > 0 && p.target_quads > 0)
+    throw InputError("edge_length/quads", 0, "give either an edge length or a quad count, not both");
+  if (p.stiffening.max_iterations < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
+  if (p.relaxation.iterations < 0) throw InputError("relaxation", 0, "must be >= 0 (0 = off)");
+  if (o.max_evaluations < kAutoBudget)
+    throw InputError("max_iterations", 0, "must be >= -1 (-1 = auto, 0 = until converged)");
+  if (o.smoothing.iterations < 0) throw InputError("smooth_quads", 0, "must be >= 0 (0 = off)");
+  if (!(o.smoothing.rigidity >= 0 && o.smoothing.rigidity <= 1))
+    throw InputError("smooth_rigidity", 0, "must be in [0, 1]");
+}
+
+FieldOptions field_stage_options(const PipelineOptions& options) { return field_options(options.field_style); }
+
+OptimizeOptions optimize_stage_options(const PipelineOptions& options, const ParamOptions& param) {
+  OptimizeOptions o;
+  o.mode = options.optimize;
+  o.lambda = field_stage_options(options).lambda;
+  o.max_evaluations = options.max_evaluations;
+  o.param = param;
+  return o;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,41 @@
+#pragma once
+// Options of the whole jobs (parameterize a mesh, remesh it): one struct per stage, gathered once, so that the CLI,
+// the Python module and the benches run the same pipeline with the same defaults and the same checks.
+#include <string>
+
+#include "field/compute_frame_field.h"
+#include "optimize/optimize_field.h"
+#include "param/parameterize.h"
+#include "quad/extract_quads.h"
+#include "quad/smooth_quads.h"
+
+namespace quadcover {
+
+struct PipelineOptions {
+  /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5) or smoothest.
+  FieldStyle field_style = FieldStyle::Curvature;
+  /// Optimization of the field's matching (thesis ch. 6, optimize/optimize_field.h).
+  OptimizeMode optimize = OptimizeMode::Relocate;
+  /// E_D evaluations of Algorithm 6.1: kAutoBudget (-1) = auto, 0 = until converged.
+  long max_evaluations = kAutoBudget;
+  /// Also parameterize the original field and keep the map with the lower E_D + E_H (parameterize_keep_better).
+  bool keep_better = true;
+  /// Density, lattice, rounding, relaxation, stiffening (param/parameterize.h).
+  ParamOptions param;
+  /// Remesh only: extraction and tangential smoothing of the quad mesh.
+  ExtractOptions extraction;
+  QuadSmoothingOptions smoothing;
+};
+
+/// Checks every option a user can set, naming it as the Python keyword (the CLI validates its flags first).
+/// \throw InputError for a contradictory or out-of-range option (both edge_length and quads, negative counts,
+/// rigidity outside [0, 1], a budget below -1).
+void validate(const PipelineOptions& options);
+
+/// The FieldOptions of the field stage (the preset), whose λ also serves Algorithm 6.1's re-smoothing.
+FieldOptions field_stage_options(const PipelineOptions& options);
+
+/// The OptimizeOptions of the optimization stage (mode, budget, λ of the field stage, `param` for E_H).
+OptimizeOptions optimize_stage_options(const PipelineOptions& options, const ParamOptions& param);
+
+}  // namespace quadcover

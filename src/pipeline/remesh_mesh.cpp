@@ -1,0 +1,53 @@
+#include "pipeline/remesh_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/errors.h"
+#include "param/seams.h"
+
+namespace quadcover {
+
+namespace {
+
+/// The signed parameter area is the number of quads the map can hold; below a few there is nothing to extract
+/// (too coarse a density, or a map folded onto itself by a field without branch points, e.g. a flat fan).
+void check_extractable(const Mesh& mesh, const Parameterization& map) {
+  const double area = flipped_triangles(map.uv).parameter_area;
+  if (area >= 4) return;
+  const long quads = std::lround(std::max(0.0, area));
+  throw InputError("density", 0,
+                   "the map holds about " + std::to_string(quads) +
+                       " quads, too few to extract a quad mesh; ask for more quads or a smaller edge length" +
+                       (map.branch_points.empty() && mesh.num_boundary_loops() > 0
+                            ? " (if the map folds onto itself, the field's singularities are whole turns)"
+                            : ""));
+}
+
+}  // namespace
+
+RemeshJob remesh_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+  using Clock = std::chrono::steady_clock;
+  RemeshJob job;
+  job.param = parameterize_mesh(mesh, options, progress);
+  const Parameterization& map = job.param.map;
+  check_extractable(mesh, map);
+  auto t = Clock::now();
+  auto lap = [&](const char* stage) {
+    const auto now = Clock::now();
+    job.param.seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
+    t = now;
+  };
+  job.extraction = extract_quads(mesh, map, options.extraction, progress);
+  lap("extract");
+  if (job.extraction.mesh.num_faces() == 0)
+    throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
+  job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, progress);
+  lap("smooth");
+  job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
+  for (const std::string& p : job.surface.problems) job.param.warnings.push_back("remesh changed the surface: " + p);
+  return job;
+}
+
+}  // namespace quadcover

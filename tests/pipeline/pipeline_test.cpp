@@ -1,0 +1,115 @@
+// The jobs of src/pipeline/: the option checks, the stage sequence they run, and the one report.
+#include <gtest/gtest.h>
+
+#include "common/errors.h"
+#include "metrics/param_quality.h"
+#include "metrics/quad_quality.h"
+#include "param/seams.h"
+#include "pipeline/job_report.h"
+#include "pipeline/parameterize_mesh.h"
+#include "pipeline/remesh_mesh.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+/// The report without its timings (the only keys that may differ between two runs).
+nlohmann::json without_seconds(nlohmann::json r) {
+  r.erase("seconds");
+  r["optimize"].erase("seconds");
+  return r;
+}
+
+TEST(PipelineOptions, EveryContradictoryOrOutOfRangeOptionIsNamed) {
+  const std::vector<std::pair<std::function<void(PipelineOptions&)>, std::string>> cases = {
+      {[](PipelineOptions& o) { o.param.edge_length = 0.1, o.param.target_quads = 100; }, "edge_length/quads"},
+      {[](PipelineOptions& o) { o.param.edge_length = -1; }, "edge_length"},
+      {[](PipelineOptions& o) { o.param.target_quads = -5; }, "quads"},
+      {[](PipelineOptions& o) { o.param.stiffening.max_iterations = -1; }, "stiffening"},
+      {[](PipelineOptions& o) { o.param.relaxation.iterations = -1; }, "relaxation"},
+      {[](PipelineOptions& o) { o.max_evaluations = -2; }, "max_iterations"},
+      {[](PipelineOptions& o) { o.smoothing.iterations = -1; }, "smooth_quads"},
+      {[](PipelineOptions& o) { o.smoothing.rigidity = 1.5; }, "smooth_rigidity"},
+  };
+  EXPECT_NO_THROW(validate(PipelineOptions{}));
+  for (const auto& [change, name] : cases) {
+    PipelineOptions o;
+    change(o);
+    try {
+      validate(o);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), name);
+    }
+  }
+}
+
+TEST(ParameterizeMesh, FixesTheDensityOnceAndReportsTheMapAsMeasured) {
+  const Mesh mesh = testing::load_test_mesh("eight_genus2");
+  PipelineOptions options;
+  const ParamJob job = parameterize_mesh(mesh, options);
+  // The default density is made explicit once, so the report says which h every stage used.
+  EXPECT_GT(job.options.param.edge_length, 0);
+  EXPECT_DOUBLE_EQ(job.options.param.edge_length, job.map.edge_length);
+  const nlohmann::json r = param_report(mesh, job, job.map.uv, "eight");
+  EXPECT_EQ(r["schema_version"], kReportSchemaVersion);
+  EXPECT_EQ(r["mesh"]["genus"], 2);
+  const ParamQuality q = param_quality(mesh, job.map);
+  EXPECT_EQ(r["parameterization"]["branch_points"], q.branch_points);
+  EXPECT_EQ(r["parameterization"]["flipped_triangles"], q.flipped_triangles);
+  EXPECT_TRUE(r["parameterization"]["seamless"].get<bool>());
+  // Measured on the coordinates handed in: a map with one folded triangle is reported so.
+  Eigen::MatrixX3cd folded = job.map.uv;
+  std::swap(folded(0, 1), folded(0, 2));
+  const nlohmann::json rf = param_report(mesh, job, folded);
+  EXPECT_FALSE(rf["parameterization"]["seamless"].get<bool>());
+  EXPECT_GE(rf["parameterization"]["flipped_triangles"].get<int>(), 1);
+  // The same input and options give the same report (the jobs are deterministic).
+  EXPECT_EQ(without_seconds(r),
+            without_seconds(param_report(mesh, parameterize_mesh(mesh, options), job.map.uv, "eight")));
+}
+
+TEST(RemeshMesh, ReportIsTheQuadMeshItReturns) {
+  const Mesh mesh = testing::make_torus(40, 20);
+  PipelineOptions options;
+  options.param.target_quads = 600;
+  const RemeshJob job = remesh_mesh(mesh, options);
+  const nlohmann::json r = remesh_report(mesh, job);
+  const QuadQuality q = quad_quality(job.extraction.mesh);
+  EXPECT_EQ(r["job"], "remesh");
+  EXPECT_EQ(r["quad_mesh"]["faces"], q.faces);
+  EXPECT_EQ(r["quad_mesh"]["non_quads"], 0);
+  EXPECT_TRUE(r["quad_mesh"]["closed"].get<bool>());
+  EXPECT_EQ(r["quad_mesh"]["euler_characteristic"], 0);
+  const nlohmann::json s = report_summary(r);
+  EXPECT_EQ(s["faces"], q.faces);
+  EXPECT_EQ(s["input_faces"], mesh.num_faces());
+  EXPECT_FALSE(s["optimize"].contains("log"));
+}
+
+// A requested quad count is met within 3 % on meshes of different shapes (sphere, torus, the bunny), where h =
+// sqrt(area / N) alone misses by up to 10 % (the field's scale varies over the surface).
+TEST(RemeshMesh, HitsTheRequestedQuadCount) {
+  const std::vector<std::pair<std::string, Mesh>> meshes = {{"ellipsoid", testing::make_ellipsoid(3, 1.0, 1.0, 1.6)},
+                                                            {"torus", testing::make_torus(60, 24)},
+                                                            {"bunny_3k", testing::load_test_mesh("bunny_3k")}};
+  for (const auto& [name, mesh] : meshes)
+    for (int target : {400, 1500}) {
+      PipelineOptions options;
+      options.param.target_quads = target;
+      const RemeshJob job = remesh_mesh(mesh, options);
+      const double quads = job.extraction.mesh.num_faces();
+      EXPECT_NEAR(quads / target, 1.0, 0.03) << name << " " << target << ": " << quads;
+      EXPECT_NEAR(job.param.density.quads / target, 1.0, 0.03) << name;
+    }
+}
+
+TEST(RemeshMesh, TooCoarseADensityIsAnInputErrorNotATinyMesh) {
+  const Mesh mesh = testing::make_torus(40, 20);
+  PipelineOptions options;
+  options.param.edge_length = 100;  // the torus is 5.4 across
+  EXPECT_THROW(remesh_mesh(mesh, options), InputError);
+}
+
+}  // namespace
+}  // namespace quadcover
