@@ -59,9 +59,9 @@ class ObjectResult:
 
 
 class RemeshJob:
-    """meshes: {name: (V, T)} triangle meshes. start() runs run() on a thread: prep.prepare() on each, then
-    the remesh of every part (.objects: the Preparation of each); cancel() asks it to stop; status() gives (fraction, text) for the status bar; done
-    tells when it has stopped (results in .results, .error)."""
+    """meshes: {name: (V, T)} triangle meshes. start() runs run() on a thread: prep.prepare() on each (.objects),
+    then the remesh of every part; cancel() asks it to stop; status() gives (fraction, text) for the status bar;
+    done tells when it has stopped (results in .results, .error)."""
 
     def __init__(self, quadcover, meshes: Dict[str, tuple], settings: Settings):
         self.qc = quadcover
@@ -134,7 +134,9 @@ class RemeshJob:
             base = done_tris / total
 
             def progress(stage, fraction, message, base=base, weight=weight, label=label):
-                self._set(base + weight * max(0.0, min(1.0, fraction)), f"{label}: {stage} {message}".strip())
+                # fraction -1: a stage of unknown length; the bar stays where it is.
+                done = self.status()[0] if fraction < 0 else base + weight * min(1.0, fraction)
+                self._set(done, f"{label}: {stage} {message}".strip())
                 return self._cancel.is_set()
 
             self._set(base, f"{label}: remeshing {len(part.triangles)} triangles")

@@ -43,20 +43,22 @@ def accepts(function, name):
 
 
 def _faces_array(faces):
-    """#F×3 int32 triangles; polygons are split into fans (fine for convex ones: triangulate concave n-gons first)."""
-    if isinstance(faces, np.ndarray) and faces.ndim == 2 and faces.shape[1] == 3:
-        return np.ascontiguousarray(faces, dtype=np.int32)
+    """Triangles for the extension. A #F×3 (or other non-polygon) array is passed on as it is, so the extension's
+    own checks (integer type, index range, shape) see it unchanged; polygons (lists of any length, or #F×k arrays
+    with k > 3) are split into fans (fine for convex ones: triangulate concave n-gons first)."""
+    if isinstance(faces, np.ndarray) and (faces.ndim != 2 or faces.shape[1] <= 3):
+        return faces
     tris = []
     for f in faces:
         f = [int(i) for i in f]
         if len(f) < 3:
             raise ValueError(f"face {len(tris)}: a face needs at least 3 vertices, got {len(f)}")
         tris.extend([f[0], f[k], f[k + 1]] for k in range(1, len(f) - 1))
-    return np.asarray(tris, dtype=np.int32).reshape(-1, 3)
+    return np.asarray(tris, dtype=np.int64).reshape(-1, 3)
 
 
 def as_arrays(mesh, F=None):
-    """(V #V×3 float64, F #F×3 int32) from V, F arrays or from one mesh-like object: anything with ``vertices`` and
+    """(V #V×3, F #F×3) for the extension from V, F arrays or from one mesh-like object: anything with ``vertices`` and
     ``faces`` (trimesh, :class:`Mesh`) or ``triangles`` (open3d) attributes, a meshio.Mesh, or :func:`load`'s dict."""
     if F is None:
         if isinstance(mesh, dict) and "V" in mesh:
@@ -71,19 +73,21 @@ def as_arrays(mesh, F=None):
         else:
             raise TypeError("expected V, F arrays or a mesh with 'vertices' and 'faces' attributes, got "
                             + type(mesh).__name__)
-    V = np.ascontiguousarray(np.asarray(mesh, dtype=np.float64))
-    if V.ndim != 2 or V.shape[1] != 3:
-        raise ValueError(f"vertices must be #V×3, got shape {V.shape}")
-    return V, _faces_array(np.asarray(F) if not isinstance(F, list) else F)
+    V = mesh if isinstance(mesh, np.ndarray) else np.asarray(mesh, dtype=np.float64)  # arrays: checked natively
+    if not isinstance(F, (list, tuple, np.ndarray)):
+        F = np.asarray(F)  # e.g. open3d's Vector3iVector
+    return V, _faces_array(F)
 
 
 def _density_and_progress(function, kwargs, progress, faces):
     """Adds faces= (or its older name quads=) and progress= to kwargs as the extension takes them."""
     if faces is not None:
-        if "quads" in kwargs and kwargs["quads"] not in (0, faces):
-            raise ValueError("give faces= or quads= (the same target quad count), not both")
-        kwargs.pop("quads", None)
-        kwargs["faces" if accepts(function, "faces") else "quads"] = int(faces)
+        if accepts(function, "faces"):  # the extension checks faces= against quads= itself
+            kwargs["faces"] = faces
+        else:
+            if "quads" in kwargs and kwargs["quads"] not in (0, faces):
+                raise ValueError("give the target quad count once (faces= or its alias quads=), not both")
+            kwargs["quads"] = int(faces)
     native_progress = progress is not None and accepts(function, "progress")
     if native_progress:
         kwargs["progress"] = progress

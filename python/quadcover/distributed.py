@@ -42,6 +42,7 @@ METRIC_PATHS = {
     "E_D": [("parameterization", "energy_curl"), ("E_D",)],
     "E_H": [("parameterization", "energy_harmonic"), ("E_H",)],
     "distance_max": [("surface_distance", "max")],
+    "warnings": [("warnings",)],  # the report's list of degraded-result warnings: how many
 }
 COLUMNS = RUN_COLUMNS + list(METRIC_PATHS)
 
