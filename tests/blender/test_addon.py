@@ -316,12 +316,26 @@ def _():
     objects, meshes = sorted(bpy.data.objects.keys()), sorted(bpy.data.meshes.keys())
     co = np.array([v.co[:] for v in bunny.data.vertices])
     op = FakeOperator(quadcover_remesh.Session(bpy.context, [bunny], bpy.context.scene.quadcover))
-    op._session.job.start()
+    job = op._session.job
+    job.start()
     modal = quadcover_remesh.QUADCOVER_OT_remesh.modal
     assert modal(op, bpy.context, FakeEvent("TIMER")) == {"RUNNING_MODAL"}
+    # Esc once the remesher reports a stage of its own (the part is being remeshed, not yet started or done).
+    native_progress = quadcover_remesh.job_module.supported(job.qc, ("progress",)) is not None
+    t0 = time.time()
+    def before_the_remesher_reports(text):
+        return text == "starting" or "checking" in text or (native_progress and "remeshing" in text)
+
+    while before_the_remesher_reports(job.status()[1]):
+        assert not job.done and time.time() - t0 < 60, job.status()
+        time.sleep(0.005)
+    stage_at_esc = job.status()[1]
     assert modal(op, bpy.context, FakeEvent("ESC")) == {"CANCELLED"}
-    op._session.job.wait(60)
-    assert op._session.job.done and op._session.job.cancelled
+    job.wait(60)
+    assert job.done and job.cancelled, stage_at_esc
+    if native_progress:  # the remesh itself stopped: the part has no result
+        assert not job.results["bunny_3k"].vertices, stage_at_esc
+        print(f"  Esc at '{stage_at_esc}': stopped inside the remesh")
     assert sorted(bpy.data.objects.keys()) == objects and sorted(bpy.data.meshes.keys()) == meshes
     np.testing.assert_array_equal(np.array([v.co[:] for v in bunny.data.vertices]), co)
     assert any("cancelled" in t for _, t in op.reports)
