@@ -304,7 +304,7 @@ class QUADCOVER_OT_remesh(bpy.types.Operator):
             return {"PASS_THROUGH"}
         fraction, text = job.status()
         context.window_manager.progress_update(int(100 * fraction))
-        context.workspace.status_text_set(f"Quad Remesh (quadcover) {100 * fraction:3.0f}%  {text}   Esc: cancel")
+        context.workspace.status_text_set(f"Quad Remesh (quadcover): {text}   Esc: cancel")
         if not job.done:
             return {"RUNNING_MODAL"}
         self._cleanup(context)

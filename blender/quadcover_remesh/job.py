@@ -130,13 +130,12 @@ class RemeshJob:
             if self._cancel.is_set():
                 raise self.qc.Cancelled("cancelled")
             label = f"{name} part {k + 1}/{len(jobs)}"
-            weight = len(part.triangles) / total
             base = done_tris / total
 
-            def progress(stage, fraction, message, base=base, weight=weight, label=label):
-                # fraction -1: a stage of unknown length; the bar stays where it is.
-                done = self.status()[0] if fraction < 0 else base + weight * min(1.0, fraction)
-                self._set(done, f"{label}: {stage} {message}".strip())
+            def progress(stage, fraction, message, base=base, label=label):
+                # fraction is the stage's own (-1: unknown): it goes in the text; the bar counts finished parts.
+                pct = f" {100 * min(1.0, fraction):.0f}%" if fraction >= 0 else ""
+                self._set(base, f"{label}: {stage}{pct} {message}".strip())
                 return self._cancel.is_set()
 
             self._set(base, f"{label}: remeshing {len(part.triangles)} triangles")
