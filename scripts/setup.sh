@@ -53,7 +53,8 @@ if [ "$MODE" = main ]; then
   # A first configure of build/ leaves out tests, benchmarks and the module (their packages may be missing);
   # an existing build/ keeps its options. Only the CLI is built.
   OPTIONS=()
-  [ -f build/CMakeCache.txt ] || OPTIONS=(-DQUADCOVER_BUILD_TESTS=OFF -DQUADCOVER_BUILD_BENCH=OFF -DQUADCOVER_BUILD_PYTHON=OFF)
+  [ -f build/CMakeCache.txt ] ||
+    OPTIONS=(-DQUADCOVER_BUILD_TESTS=OFF -DQUADCOVER_BUILD_BENCH=OFF -DQUADCOVER_BUILD_PYTHON=OFF)
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${OPTIONS[@]}" ${QUADCOVER_CMAKE_ARGS:-} >/dev/null
   cmake --build build --target quadcover -j"$JOBS"
   exit 0

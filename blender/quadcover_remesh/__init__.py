@@ -10,7 +10,6 @@ import bpy
 import numpy as np
 
 from . import job as job_module
-from . import prep
 
 bl_info = {
     "name": "Quad Remesh (quadcover)",
@@ -50,8 +49,9 @@ def load_quadcover(preferred=""):
         import quadcover
     except ImportError as e:
         where = ", ".join(tried + ["sys.path"])
-        raise ImportError(f"the quadcover Python module was not found (looked in {where}: {e}); build it (-DQUADCOVER_BUILD_PYTHON=ON) or pip install it, and set "
-                          "its folder in the add-on preferences") from e
+        raise ImportError(f"the quadcover Python module was not found (looked in {where}: {e}); build it "
+                          "(-DQUADCOVER_BUILD_PYTHON=ON) or pip install it, and set its folder in the add-on "
+                          "preferences") from e
     if not hasattr(quadcover, "remesh") or not hasattr(quadcover, "Cancelled"):
         raise ImportError(f"{getattr(quadcover, '__file__', quadcover)} is not the quadcover package (no remesh)")
     return quadcover

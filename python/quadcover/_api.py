@@ -58,8 +58,9 @@ def _faces_array(faces):
 
 
 def as_arrays(mesh, F=None):
-    """(V #V×3, F #F×3) for the extension from V, F arrays or from one mesh-like object: anything with ``vertices`` and
-    ``faces`` (trimesh, :class:`Mesh`) or ``triangles`` (open3d) attributes, a meshio.Mesh, or :func:`load`'s dict."""
+    """(V #V×3, F #F×3) for the extension from V, F arrays or from one mesh-like object: anything with
+    ``vertices`` and ``faces`` (trimesh, :class:`Mesh`) or ``triangles`` (open3d) attributes, a meshio.Mesh, or
+    :func:`load`'s dict."""
     if F is None:
         if isinstance(mesh, dict) and "V" in mesh:
             mesh, F = mesh["V"], mesh["F"]

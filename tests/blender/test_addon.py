@@ -6,7 +6,6 @@ A UV sphere, a torus and tests/data/bunny_3k.obj become all-quad objects with th
 materials; loose parts and n-gons are handled; Suzanne with a fin (1 non-manifold edge, 2 non-manifold vertices)
 gives a clear report and its manifold parts are remeshed; Esc / cancel leaves the scene unchanged. Prints
 "N passed, N failed" and exits non-zero on a failure."""
-import math
 import os
 import sys
 import time

@@ -1,7 +1,8 @@
 """Headless test of installing the add-on as a user does (Preferences > Add-ons > Install from a zip), run with
 BLENDER_USER_SCRIPTS set to an empty temporary folder (scripts/tests.d/36_blender.sh does):
 
-    BLENDER_USER_SCRIPTS=$(mktemp -d) blender -b --factory-startup --python tests/blender/test_install.py -- BUILD/python
+    BLENDER_USER_SCRIPTS=$(mktemp -d) blender -b --factory-startup --python tests/blender/test_install.py -- \
+        BUILD/python
 
 Outside the repository the add-on cannot guess the module's folder: the operator must fail with a clear error, not a
 traceback; with the folder set in the add-on preferences it remeshes. Prints "N passed, N failed"."""
