@@ -27,12 +27,19 @@ class CMakeBuild(build_ext):
     def build_extension(self, ext):
         build = os.environ.get("QUADCOVER_BUILD_DIR") or os.path.join(ROOT, "build", "pip")
         build = os.path.abspath(build)
-        if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
+        cache = os.path.join(build, "CMakeCache.txt")
+        if not os.path.isfile(cache):
             generator = ["-G", "Ninja"] if shutil.which("ninja") else []
             subprocess.check_call(["cmake", "-S", ROOT, "-B", build, *generator, "-DCMAKE_BUILD_TYPE=Release",
                                    "-DQUADCOVER_BUILD_PYTHON=ON", "-DQUADCOVER_BUILD_TESTS=OFF",
                                    "-DQUADCOVER_BUILD_BENCH=OFF", f"-DPython_EXECUTABLE={sys.executable}",
                                    *shlex.split(os.environ.get("CMAKE_ARGS", ""))])
+        else:
+            with open(cache) as f:
+                has_module = "QUADCOVER_BUILD_PYTHON:BOOL=ON" in f.read()
+            if not has_module:  # e.g. the build of scripts/setup.sh --main: add the module to it
+                subprocess.check_call(["cmake", "-S", ROOT, "-B", build, "-DQUADCOVER_BUILD_PYTHON=ON",
+                                       f"-DPython_EXECUTABLE={sys.executable}"])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         subprocess.check_call(["cmake", "--build", build, "--target", "quadcover", "quadcover_python", "-j", jobs])
         package = os.path.join(build, "python", "quadcover")
