@@ -170,6 +170,22 @@ def _():
     assert np.mean(sizes == 4) > 0.97, np.unique(sizes, return_counts=True)
 
 
+@check("two selected objects: one result each, named after its original")
+def _():
+    clear_scene()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, location=(-3, 0, 0))
+    a = bpy.context.active_object
+    bpy.ops.mesh.primitive_torus_add(location=(3, 0, 0))
+    b = bpy.context.active_object
+    select_only(a, b)
+    assert bpy.ops.object.quadcover_remesh(target_faces=400) == {"FINISHED"}
+    assert sorted(bpy.data.objects.keys()) == sorted([a.name, b.name, a.name + "_quadcover", b.name + "_quadcover"])
+    for o in (a, b):
+        result = bpy.data.objects[o.name + "_quadcover"]
+        assert_all_quads_like(result, o)
+        assert result.select_get()
+
+
 def suzanne_with_fin():
     """Suzanne plus one triangle on an existing edge: 1 non-manifold edge, 2 non-manifold vertices."""
     bpy.ops.mesh.primitive_monkey_add()
