@@ -293,7 +293,7 @@ py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args,
 
 }  // namespace
 
-PYBIND11_MODULE(quadcover, m) {
+PYBIND11_MODULE(_quadcover, m) {
   m.doc() = "quadcover: seamless quad-aligned parameterization (QuadCover) and quad remeshing";
   m.attr("__version__") = QUADCOVER_PY_VERSION;
   py::register_exception_translator([](std::exception_ptr p) {

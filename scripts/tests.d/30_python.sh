@@ -7,5 +7,5 @@ PY=/usr/bin/python3
 "$PY" -c "import numpy, pytest" 2>/dev/null || { echo "30_python: $PY needs python3-numpy and python3-pytest (scripts/setup.sh)"; exit 1; }
 # scripts/setup.sh builds the module in the main Release build (build/python); build it there if missing.
 BUILD=${QUADCOVER_PY_BUILD:-build}
-cmake --build "$BUILD" --target quadcover_python -j"${JOBS:-$(nproc)}"
-PYTHONPATH="$PWD/$BUILD/python" "$PY" -m pytest -q python/tests
+cmake --build "$BUILD" --target quadcover quadcover_python -j"${JOBS:-$(nproc)}"  # the CLI: python -m quadcover
+PYTHONPATH="$PWD/$BUILD/python" "$PY" -m pytest -q python/tests --ignore=python/tests/dask  # dask: 32_dask.sh
