@@ -167,6 +167,7 @@ nlohmann::json relaxation_to_json(const Parameterization& p) {
 
 nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const QuadSmoothingReport& r) {
   return {{"iterations", r.iterations},           {"rigidity", options.rigidity},
+          {"feature_snap", options.feature_snap},   {"feature_vertices", r.feature_vertices},
           {"edge_length", r.edge_length},         {"fixed_vertices", r.fixed_vertices},
           {"rejected_moves", r.rejected_moves},   {"mean_displacement", r.mean_displacement},
           {"max_displacement", r.max_displacement}};

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "metrics/feature_fidelity.h"
 #include "metrics/param_quality.h"
 #include "metrics/quad_quality.h"
 #include "metrics/report.h"
@@ -106,6 +107,7 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
   r["extraction"] = nullptr;
   r["quad_mesh"] = nullptr;
   r["surface_distance"] = nullptr;
+  r["feature_fidelity"] = nullptr;
   r["quad_smoothing"] = nullptr;
   r["surface_check"] = nullptr;
   r["warnings"] = job.warnings;
@@ -121,6 +123,7 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
   r["extraction"] = to_json(job.extraction.report);
   r["quad_mesh"] = to_json(quad_quality(q));
   r["surface_distance"] = to_json(surface_distance(q.V, q.faces, mesh.V(), mesh.F()));
+  r["feature_fidelity"] = feature_fidelity_to_json(feature_fidelity(mesh, q.V, q.faces));
   r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
   r["surface_check"] = to_json(job.surface);
   r["seconds"]["metrics"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -152,6 +155,7 @@ nlohmann::json report_summary(const nlohmann::json& r) {
     s[key] = q[key];
   s["input_faces"] = r["mesh"]["faces"];
   s["same_topology"] = r["surface_check"]["same_topology"];
+  s["features_covered_percent"] = r["feature_fidelity"]["total"]["covered_percent"];
   s["distance_max"] = r["surface_distance"]["max"];
   s["repairs"] = e["failed_traces"].get<int>() + e["dropped_faces"].get<int>() + e["torn_seams"].get<int>();
   return s;

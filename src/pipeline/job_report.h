@@ -26,7 +26,8 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
                             const std::string& input = "");
 
 /// The report of the remesh job: param_report() of its map (job "remesh") plus extraction, quad_mesh (measured on
-/// the smoothed quad mesh), surface_distance (to the input), quad_smoothing and surface_check
+/// the smoothed quad mesh), surface_distance (to the input), feature_fidelity (metrics/feature_fidelity.h: the
+/// input's boundary and sharp edges against the quad edges, in units of h), quad_smoothing and surface_check
 /// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
 /// metrics' seconds are added.
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
@@ -34,7 +35,8 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
 /// The key numbers of a report, flat (printed by the CLI, tabulated in batches): edge_length, branch_points (of the
 /// map), h_sym, flipped_triangles, seamless, E_D, E_H, arap, optimize (without its log), rounding; for param the
 /// input's vertices, faces, genus, boundary_loops; for remesh the quad mesh's vertices, faces, quads, non_quads,
-/// rsd_edge_length, rsd_corner_angle, irregular_vertices, manifold, closed, and input_faces, distance_max, repairs.
+/// rsd_edge_length, rsd_corner_angle, irregular_vertices, manifold, closed, and input_faces, same_topology,
+/// features_covered_percent, distance_max, repairs.
 nlohmann::json report_summary(const nlohmann::json& report);
 
 }  // namespace quadcover

@@ -25,9 +25,8 @@ struct QuadSmoothingOptions {
   /// (their moves are projected onto the feature polyline) so that quad edges run on the crease; 0 = off (vertices
   /// on a feature do not move). A vertex is not snapped where that would shorten an edge of its quads below h/2
   /// or put more than two corners, or two opposite ones, of a quad on features. Vertices at feature corners (curve
-  /// ends, turns > 40°) do not move. Moving a row by up to this much stretches the quads beside it: on fandisk
-  /// (sharp-edge samples within 0.1 h, RSD edge / angle) 0 gives 46 %, 11.1 / 6.9 %; 0.4 68.7 %, 11.7 / 7.5 %;
-  /// 0.5 74 %, 12.1 / 8.0 %. 0.4 keeps RSD within the regression tolerance of the default.
+  /// ends, turns > 40°) do not move. Moving a row by up to this much stretches the quads beside it (the measured trade
+  /// of coverage against RSD: BENCHMARKS.md, "Feature fidelity").
   double feature_snap = 0.4;
 };
 
