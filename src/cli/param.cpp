@@ -86,7 +86,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
     seconds[stage] = std::chrono::duration<double>(now - t).count();
     t = now;
   };
-  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const Mesh mesh = load_mesh(input, progress);  // warns about dropped unreferenced vertices (issue 18 item 16)
   lap("read");
   nlohmann::json optimize;
   const FrameFieldResult detailed = compute_frame_field_detailed(mesh, field_options(opt.optimize), progress);

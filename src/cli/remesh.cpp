@@ -70,7 +70,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     report.seconds[stage] = std::chrono::duration<double>(now - t).count();
     t = now;
   };
-  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const Mesh mesh = load_mesh(input, progress);  // warns about dropped unreferenced vertices (issue 18 item 16)
   lap("read");
   ParamOptions po;
   po.lattice = parse_lattice(opt.lattice);
