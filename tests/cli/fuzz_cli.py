@@ -161,6 +161,7 @@ def fuzz(work):
         args += options
         shown = " ".join(args) + (f" < {target}" if stdin else "")
         before = set(os.listdir(out_dir))
+        before_inputs = set(os.listdir(inputs_dir))  # outputs without -o go next to the input
         try:
             r = subprocess.run(args, stdin=stdin or subprocess.DEVNULL, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, timeout=RUN_TIMEOUT, cwd=out_dir)
@@ -180,10 +181,14 @@ def fuzz(work):
             left = sorted(set(os.listdir(out_dir)) - before - {"new"})
             left += [os.path.join("new", f) for f in os.listdir(os.path.join(out_dir, "new"))] \
                 if os.path.isdir(os.path.join(out_dir, "new")) else []
+            left += sorted(set(os.listdir(inputs_dir)) - before_inputs)
             if left:
                 problems.append(f"exit {r.returncode} but outputs left: {left}")
             if not r.stderr.strip():
                 problems.append(f"exit {r.returncode} without a message")
+        for name in set(os.listdir(inputs_dir)) - before_inputs:  # keep the input folder as it was
+            if not name.startswith("."):
+                os.remove(os.path.join(inputs_dir, name))
         tmp = temporaries(work)
         if tmp:
             problems.append(f"temporary files left: {tmp}")
