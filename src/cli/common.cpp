@@ -400,6 +400,7 @@ std::string batch_output_path(const std::string& input, const std::string& outpu
   }
   const std::string path = (dir / (stem + suffix)).string();
   if (g_skip_existing.load() && fs::exists(path)) throw SkippedExisting(path);
+  check_output_guard(path);  // an output that is an input fails now, before the work
   return path;
 }
 

@@ -165,7 +165,8 @@ std::vector<std::string> batch_output_stems(const std::vector<std::string>& file
 /// Where a batch writes the output of `input`: output_dir / (name + suffix), e.g. ("a/bunny.obj", "out",
 /// ".quad.obj") -> "out/bunny.quad.obj". With an empty output_dir: next to the input. The name is the input's
 /// stem, or, while process_files runs a batch holding `input`, its batch_output_stems entry (two inputs of one
-/// batch never write the same file).
+/// batch never write the same file). While run_batch runs, a path that is an input file throws InputError (unless
+/// --overwrite-input) and, with --skip-existing, an existing one throws SkippedExisting: call it before the work.
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix);
 
 /// The naming rule of batch_output_stems in one sentence, and what happens to existing files, for --help.

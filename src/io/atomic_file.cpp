@@ -55,15 +55,6 @@ std::mutex g_guard_mutex;
 OutputGuard g_guard;
 std::atomic<bool> g_wrote_stdout{false};
 
-void check_guard(const std::string& path) {
-  OutputGuard guard;
-  {
-    std::lock_guard lock(g_guard_mutex);
-    guard = g_guard;
-  }
-  if (guard) guard(path);
-}
-
 void write_standard_output(const std::function<void(std::ostream&)>& write) {
   std::ostringstream buffer;
   write(buffer);
@@ -80,6 +71,15 @@ void set_output_guard(OutputGuard guard) {
   g_guard = std::move(guard);
 }
 
+void check_output_guard(const std::string& path) {
+  OutputGuard guard;
+  {
+    std::lock_guard lock(g_guard_mutex);
+    guard = g_guard;
+  }
+  if (guard) guard(path);
+}
+
 bool wrote_standard_output() { return g_wrote_stdout.load(); }
 
 void remove_temporary_files() noexcept {
@@ -89,7 +89,7 @@ void remove_temporary_files() noexcept {
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
-  check_guard(path);
+  check_output_guard(path);
   if (path == "-") return write_standard_output(write);
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");

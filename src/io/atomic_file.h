@@ -17,6 +17,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 /// file); it throws to refuse. An empty function (the default) accepts every path.
 using OutputGuard = std::function<void(const std::string& path)>;
 void set_output_guard(OutputGuard guard);
+/// Runs the output guard on `path` now (e.g. when an output name is chosen, before the work). \throw as the guard.
+void check_output_guard(const std::string& path);
 
 /// Removes every temporary file an unfinished write_file_atomically has created. Async-signal-safe (only unlink
 /// on a fixed table): for a signal handler that then exits.
