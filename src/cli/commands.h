@@ -13,6 +13,11 @@ struct GlobalOptions {
   bool verbose = false;   ///< -v: every progress report as its own line, extra detail
   double time_limit = 0;  ///< --time-limit SECONDS: ask long stages to stop after this long (0 = none)
   int jobs = 0;           ///< -j: files processed at once in batch mode (0 = all cores)
+  bool overwrite_input = false;  ///< --overwrite-input: an output may replace an input file
+  bool skip_existing = false;    ///< --skip-existing: an input any of whose outputs exists is skipped
+  std::string format;            ///< --format: mesh format written to "-" (standard output); "" = OBJ
+  /// The subcommand being run (set when CLI11 meets it): run_batch checks its output options before any work.
+  const CLI::App* command = nullptr;
 };
 
 /// --stiffening N of the commands that parameterize (param, remesh): see param/stiffening.h.

@@ -1,6 +1,7 @@
 #include "cli/common.h"
 
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <unistd.h>
@@ -13,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -34,15 +36,32 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global) {
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("-j,--jobs", global.jobs, "Files processed at once in batch mode (default 0: all cores)")
       ->check(CLI::NonNegativeNumber);
+  cmd.add_flag("--overwrite-input", global.overwrite_input,
+               "Allow an output to replace an input file (refused by default, also through a link or another name)");
+  cmd.add_flag("--skip-existing", global.skip_existing,
+               "Skip an input any of whose outputs exists already (default: existing outputs are replaced)");
+  cmd.add_option("--format", global.format,
+                 "Mesh format written to standard output by -o - (default obj); with -o -, the result lines go to "
+                 "stderr. The mesh '-' (standard input) is recognized from its content")
+      ->check(CLI::IsMember({"obj", "off", "ply", "stl"}));
+  cmd.preparse_callback([&global, &cmd](std::size_t) { global.command = &cmd; });
 }
+
+const std::vector<std::string> kOutputOptions = {"--output", "--report", "--param", "--png", "--report-html", "--plot"};
 
 const char* const kBatchNamingHelp =
     "Several files or a folder run as a batch; outputs are named after the input's stem (a/bunny.obj -> "
     "bunny.<suffix>); inputs sharing an output name get their parent folder's name in front (a_bunny) and/or "
-    "their extension appended (bunny_obj, bunny_off), then _2, _3, ... in input order; never overwritten";
+    "their extension appended (bunny_obj, bunny_off), then _2, _3, ... in input order. An existing output file is "
+    "replaced (atomically: never half-written) unless --skip-existing; an input file is never replaced unless "
+    "--overwrite-input; output folders are created";
 
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std::string& description) {
-  cmd.add_option("mesh", inputs, description + ". " + kBatchNamingHelp)->required()->check(CLI::ExistingPath);
+  const CLI::Validator path_or_stdin([](std::string& s) { return s == "-" ? std::string() : CLI::ExistingPath(s); },
+                                     "PATH or -");
+  cmd.add_option("mesh", inputs, description + " ('-': standard input, see --format). " + kBatchNamingHelp)
+      ->required()
+      ->check(path_or_stdin);
 }
 
 // ---- cancellation -------------------------------------------------------------------------------------------
@@ -51,18 +70,50 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT handler needs a lock-free flag");
 
-extern "C" void on_sigint(int) {
-  g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C kills the process
+// Stop now: no temporary file may survive (only async-signal-safe calls here).
+extern "C" void on_terminating_signal(int sig) {
+  remove_temporary_files();
+  ::_exit(128 + sig);
+}
+
+extern "C" void on_sigint(int sig) {
+  if (g_interrupted.exchange(true)) on_terminating_signal(sig);  // a second Ctrl-C stops at once
+}
+
+// A crash: remove the temporary files, then let the signal do what it does by default (core dump, exit status).
+extern "C" void on_crash_signal(int sig) {
+  remove_temporary_files();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+void handle(int sig, void (*fn)(int)) {
+  struct sigaction sa {};
+  sa.sa_handler = fn;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(sig, &sa, nullptr);
 }
 }  // namespace
 
 void install_interrupt_handler() {
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &sa, nullptr);
+  handle(SIGINT, on_sigint);
+  for (int sig : {SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGUSR1, SIGUSR2, SIGALRM, SIGXCPU, SIGXFSZ, SIGVTALRM})
+    handle(sig, on_terminating_signal);
+  if (!kSanitized)  // the sanitizers report crashes through their own handlers
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) handle(sig, on_crash_signal);
 }
 
 bool interrupted() { return g_interrupted.load(); }
@@ -79,11 +130,25 @@ std::mutex& stderr_mutex() {
   return m;
 }
 
+void warn(ProgressSink& progress, const std::string& text) { progress.report("warning", -1, "warning: " + text); }
+
+Mesh load_mesh(const std::string& input, ProgressSink& progress) {
+  MeshBuildResult built = build_mesh(read_mesh(input));
+  const std::size_t dropped = built.report.unreferenced_vertices;
+  if (dropped > 0)
+    warn(progress, (input == "-" ? std::string("<stdin>") : input) + ": " + std::to_string(dropped) +
+                       " unreferenced vertices (used by no face) dropped: the outputs number the " +
+                       std::to_string(built.mesh.num_vertices()) + " others in input order, so vertex numbers " +
+                       "after the first dropped one differ from the input's");
+  return std::move(built.mesh);
+}
+
 // ---- progress -----------------------------------------------------------------------------------------------
 
 ProgressStyle stderr_progress_style(const GlobalOptions& global) {
   ProgressStyle style;
   style.quiet = global.quiet;
+  style.warnings = !global.quiet;
   style.verbose = global.verbose;
   style.live = !global.verbose && ::isatty(STDERR_FILENO) != 0;
   if (style.live) {
@@ -158,6 +223,14 @@ std::string TerminalProgress::format_line(std::string_view stage, double fractio
 }
 
 void TerminalProgress::report(std::string_view stage, double fraction, std::string_view message) {
+  if (message.starts_with("warning: ")) {  // shown at once, on its own line, whatever the mode and the delay
+    if (!style_.warnings) return;
+    std::lock_guard lock(mutex_);
+    std::lock_guard err_lock(stderr_mutex());
+    out_ << (live_dirty_ ? "\r\x1b[K" : "") << style_.prefix << message << '\n' << std::flush;
+    live_dirty_ = false;
+    return;
+  }
   if (style_.quiet) return;
   std::lock_guard lock(mutex_);
   const Clock::time_point now = Clock::now();
@@ -218,6 +291,7 @@ bool is_mesh_file(const std::filesystem::path& p) {
 // The files of the batch being processed (set by process_files), so that batch_output_path can tell which other
 // inputs share an output name. Written before the workers start, read by them.
 std::mutex g_batch_mutex;
+std::atomic<bool> g_skip_existing{false};  // --skip-existing of the command being run (set by run_batch)
 std::vector<std::string> g_batch_files;
 std::map<std::string, std::vector<std::string>> g_batch_stems;  // batch_output_stems per output folder
 
@@ -238,6 +312,11 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
   std::vector<std::string> files;
   for (const std::string& arg : args) {
+    if (arg == "-") {
+      if (args.size() > 1) throw InputError("-", 0, "standard input ('-') is for one mesh only, not in a batch");
+      files.push_back(arg);
+      continue;
+    }
     std::error_code ec;
     const fs::file_status st = fs::status(arg, ec);
     if (ec || !fs::exists(st)) throw InputError(arg, 0, "no such file or folder");
@@ -310,6 +389,7 @@ std::vector<std::string> batch_output_stems(const std::vector<std::string>& file
 
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix) {
   namespace fs = std::filesystem;
+  if (input == "-" && output_dir.empty()) return "-";  // standard input: the output goes to standard output
   const fs::path in(input);
   const fs::path dir = output_dir.empty() ? in.parent_path() : fs::path(output_dir);
   std::string stem = in.stem().string();
@@ -323,7 +403,10 @@ std::string batch_output_path(const std::string& input, const std::string& outpu
       stem = cached->second[static_cast<std::size_t>(it - g_batch_files.begin())];
     }
   }
-  return (dir / (stem + suffix)).string();
+  const std::string path = (dir / (stem + suffix)).string();
+  if (g_skip_existing.load() && fs::exists(path)) throw SkippedExisting(path);
+  check_output_guard(path);  // an output that is an input fails now, before the work
+  return path;
 }
 
 int describe_current_exception(std::string& message) {
@@ -386,6 +469,9 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
     } else {
       try {
         r.result = job(files[i], progress);
+      } catch (const SkippedExisting& e) {
+        r.skipped = true;
+        r.error = e.what();
       } catch (...) {
         r.exit_code = describe_current_exception(r.error);
       }
@@ -395,9 +481,13 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
     if (!global.quiet) {
       std::lock_guard lock(stderr_mutex());
       log << '[' << n << '/' << files.size() << "] " << std::left << std::setw(static_cast<int>(width)) << files[i]
-          << std::right << (r.exit_code == kOk ? "  ok  " : "  FAILED  ") << std::fixed << std::setprecision(2)
-          << r.seconds << " s" << std::defaultfloat << '\n';
+          << std::right
+          << (r.skipped            ? "  skipped  "
+              : r.exit_code == kOk ? "  ok  "
+                                   : "  FAILED  ")
+          << std::fixed << std::setprecision(2) << r.seconds << " s" << std::defaultfloat << '\n';
       if (r.exit_code != kOk) log << "  error: " << r.error << '\n';
+      if (r.skipped) log << "  " << r.error << '\n';
       log << std::flush;
     }
   };
@@ -424,21 +514,28 @@ std::string cell(const nlohmann::json& v) {
 
 void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
                    const GlobalOptions& global, std::ostream& out) {
-  int failed = 0;
-  for (const auto& r : results) failed += r.exit_code != kOk;
+  int failed = 0, skipped = 0;
+  for (const auto& r : results) {
+    failed += r.exit_code != kOk;
+    skipped += r.skipped;
+  }
   if (global.json) {
     nlohmann::json files = nlohmann::json::array();
     for (const auto& r : results) {
       nlohmann::json j{
           {"file", r.input}, {"ok", r.exit_code == kOk}, {"exit_code", r.exit_code}, {"seconds", r.seconds}};
-      if (r.exit_code == kOk)
+      if (r.skipped) {
+        j["skipped"] = r.error;
+      } else if (r.exit_code == kOk) {
         j["result"] = r.result;
-      else
+      } else {
         j["error"] = r.error;
+      }
       files.push_back(std::move(j));
     }
     out << nlohmann::json{{"files", files},
-                          {"succeeded", static_cast<int>(results.size()) - failed},
+                          {"succeeded", static_cast<int>(results.size()) - failed - skipped},
+                          {"skipped", skipped},
                           {"failed", failed}}
                .dump(2)
         << '\n';
@@ -451,8 +548,11 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
   for (const auto& r : results) {
     std::ostringstream secs;
     secs << std::fixed << std::setprecision(2) << r.seconds;
-    std::vector<std::string> row{
-        r.input, r.exit_code == kOk ? "ok" : (r.exit_code == kBadInput ? "bad input" : "failed"), secs.str()};
+    std::vector<std::string> row{r.input,
+                                 r.skipped            ? "skipped"
+                                 : r.exit_code == kOk ? "ok"
+                                                      : (r.exit_code == kBadInput ? "bad input" : "failed"),
+                                 secs.str()};
     for (const auto& c : columns)
       row.push_back(r.exit_code == kOk && r.result.is_object() && r.result.contains(c) ? cell(r.result[c]) : "-");
     rows.push_back(std::move(row));
@@ -477,7 +577,8 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
   for (auto x : w) total += x;
   out << std::string(total, '-') << '\n';
   for (const auto& row : rows) print_row(row);
-  out << results.size() - failed << " of " << results.size() << " files succeeded";
+  out << results.size() - failed - skipped << " of " << results.size() << " files succeeded";
+  if (skipped) out << ", " << skipped << " skipped (--skip-existing)";
   if (failed) out << ", " << failed << " failed";
   out << '\n';
 }
@@ -499,20 +600,129 @@ void print_key_values(const nlohmann::json& j, std::ostream& out) {
   for (const auto& [key, value] : j.items()) out << "  " << key << ": " << cell(value) << '\n';
 }
 
-int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job) {
-  if (!is_batch(spec.inputs)) {
-    nlohmann::json result;
-    {
-      TerminalProgress progress(global);
-      result = job(spec.inputs.at(0), progress);
+namespace {
+// A file's identity: the same (device, inode) is the same file under any name or link.
+struct FileId {
+  dev_t dev;
+  ino_t ino;
+  bool operator==(const FileId&) const = default;
+};
+
+std::optional<FileId> file_id(const std::string& path) {
+  struct stat st {};
+  if (path == "-" || ::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+  return FileId{st.st_dev, st.st_ino};
+}
+
+// The files a run reads: the mesh inputs and every other option's value that names an existing file (--ref, ...).
+std::vector<std::pair<FileId, std::string>> protected_inputs(const std::vector<std::string>& files,
+                                                             const GlobalOptions& global) {
+  std::vector<std::pair<FileId, std::string>> inputs;
+  auto add = [&](const std::string& path) {
+    if (const auto id = file_id(path)) inputs.emplace_back(*id, path);
+  };
+  for (const auto& f : files) add(f);
+  if (global.command)
+    for (const CLI::Option* o : global.command->get_options()) {
+      if (std::find(kOutputOptions.begin(), kOutputOptions.end(), "--" + o->get_single_name()) != kOutputOptions.end())
+        continue;
+      for (const auto& value : o->results()) add(value);
     }
+  return inputs;
+}
+
+void refuse_if_input(const std::string& path, const std::vector<std::pair<FileId, std::string>>& inputs) {
+  const auto id = file_id(path);
+  if (!id) return;
+  for (const auto& [input_id, input] : inputs)
+    if (input_id == *id)
+      throw InputError(path, 0,
+                       "refusing to replace the input file " + input +
+                           (path == input ? std::string() : " (the same file under another name)") +
+                           ": name another output, or pass --overwrite-input");
+}
+
+// The output folder `dir` exists (created if needed) and can be written to.
+void prepare_folder(const std::string& option, const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  const fs::path d = dir.empty() ? fs::path(".") : dir;
+  std::error_code ec;
+  if (fs::exists(d, ec) && !fs::is_directory(d, ec))
+    throw InputError(d.string(), 0, option + ": this is a file, but a folder is needed here");
+  fs::create_directories(d, ec);
+  if (ec) throw InputError(d.string(), 0, option + ": cannot create the output folder: " + ec.message());
+  if (::access(d.c_str(), W_OK | X_OK) != 0)
+    throw InputError(d.string(), 0, option + ": the output folder is not writable");
+}
+
+// The guard every write_file_atomically asks while run_batch runs; removed on every exit.
+struct GuardScope {
+  GuardScope(std::vector<std::pair<FileId, std::string>> inputs, const GlobalOptions& global) {
+    g_skip_existing = global.skip_existing;
+    if (!global.overwrite_input)
+      set_output_guard([inputs = std::move(inputs)](const std::string& path) { refuse_if_input(path, inputs); });
+  }
+  ~GuardScope() {
+    set_output_guard({});
+    g_skip_existing = false;
+  }
+  GuardScope(const GuardScope&) = delete;
+  GuardScope& operator=(const GuardScope&) = delete;
+};
+}  // namespace
+
+void prepare_outputs(const std::vector<std::string>& files, bool batch, const GlobalOptions& global) {
+  namespace fs = std::filesystem;
+  if (!global.command) return;
+  const auto inputs = protected_inputs(files, global);
+  for (const std::string& name : kOutputOptions) {
+    const CLI::Option* o = global.command->get_option_no_throw(name);
+    if (!o || o->count() == 0) continue;
+    for (const std::string& value : o->results()) {
+      if (value.empty()) continue;
+      if (value == "-") {
+        if (batch) throw InputError("-", 0, name + " -: standard output takes the output of one input only");
+        continue;
+      }
+      if (batch) {
+        prepare_folder(name, value);
+        continue;
+      }
+      std::error_code ec;
+      if (fs::is_directory(value, ec))
+        throw InputError(value, 0, name + ": this is a folder; with one input, " + name + " names the output file");
+      if (!global.overwrite_input) refuse_if_input(value, inputs);
+      prepare_folder(name, fs::path(value).parent_path());
+      if (global.skip_existing && fs::exists(value, ec)) throw SkippedExisting(value);
+    }
+  }
+}
+
+int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job) {
+  set_standard_stream_format(global.format);
+  const bool batch = is_batch(spec.inputs);
+  const std::vector<std::string> files = expand_inputs(spec.inputs);
+  const GuardScope guard(protected_inputs(files, global), global);
+  if (!batch) {
+    nlohmann::json result;
+    try {
+      prepare_outputs(files, false, global);
+      TerminalProgress progress(global);
+      result = job(files.at(0), progress);
+    } catch (const SkippedExisting& e) {
+      if (!global.quiet) std::cerr << "skipped: " << e.what() << '\n';
+      return kOk;
+    }
+    // Standard output holds the mesh: the result lines go to stderr then.
+    std::ostream& out = wrote_standard_output() ? std::cerr : std::cout;
     if (global.json)
-      std::cout << result.dump(2) << '\n';
+      out << result.dump(2) << '\n';
     else if (!global.quiet)
-      print_key_values(result, std::cout);
+      print_key_values(result, out);
     return kOk;
   }
-  const std::vector<FileResult> results = process_files(expand_inputs(spec.inputs), global, job, std::cerr);
+  prepare_outputs(files, true, global);
+  const std::vector<FileResult> results = process_files(files, global, job, std::cerr);
   print_summary(results, spec.summary_columns, global, std::cout);
   return batch_exit_code(results);
 }

@@ -12,13 +12,13 @@
 //     CLI::App* cmd = app.add_subcommand("x", "One line saying what x does");
 //     add_input_option(*cmd, opt->inputs);                  // MESH... : files and/or folders
 //     cmd->add_option("-o,--output", opt->output, "Output file (one input) or folder (several inputs)");
-//     add_global_options(*cmd, global);                     // --json -q -v --time-limit -j
+//     add_global_options(*cmd, global);   // --json -q -v --time-limit -j --overwrite-input --skip-existing --format
 //     cmd->callback([opt, &global, &exit_code] {
 //       BatchSpec spec;
 //       spec.inputs = opt->inputs;
 //       spec.summary_columns = {"faces", "E_D"};            // keys of the returned JSON shown in the summary table
 //       exit_code = run_batch(spec, global, [&](const std::string& input, ProgressSink& progress) {
-//         const Mesh mesh = load_mesh(input);                       // throws InputError/TopologyError
+//         const Mesh mesh = load_mesh(input, progress);             // throws InputError/TopologyError; warns
 //         Result r = compute(mesh, options, progress);              // long stages honour progress.cancelled()
 //         write_file_atomically(output_for(input, opt->output, spec, ".x.obj"), ...);  // never a partial file
 //         return nlohmann::json{{"faces", ...}, {"E_D", ...}};      // printed with --json or tabulated
@@ -34,19 +34,28 @@
 // - Several inputs or a folder: files run in parallel (-j, default all cores); a failing file prints its error,
 //   the others continue; a summary table (or a JSON document with --json) follows; the exit code is the worst.
 // - Ctrl-C or --time-limit make progress.cancelled() return true: the stage stops and returns its best result so
-//   far, and the command still writes it. A second Ctrl-C kills the process.
+//   far, and the command still writes it. A second Ctrl-C, SIGTERM, SIGHUP, SIGQUIT or SIGPIPE remove every
+//   temporary file and exit with 128 + the signal at once; a crash signal removes them too before it kills.
+// - Outputs (the options named in kOutputOptions: a file with one input, a folder with several) are checked before
+//   any work: folders are created, an unwritable place fails at once, an output that is an input file (also
+//   through a link) is refused unless --overwrite-input (checked again at every write), and with --skip-existing
+//   an input whose output exists is skipped. "-" as the one input reads standard input, "-" as output writes
+//   standard output (the result lines then go to stderr) in the mesh format --format names.
+// - A line "warning: ..." reported to the progress sink (see warn()) is always shown on stderr unless --quiet.
 // ------------------------------------------------------------------------------------------------------------------
 #include <chrono>
 #include <functional>
 #include <iosfwd>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "cli/commands.h"
 #include "common/progress.h"
+#include "mesh/mesh.h"
 
 namespace quadcover::cli {
 
@@ -55,13 +64,15 @@ namespace quadcover::cli {
 /// Adds --json, -q/--quiet, -v/--verbose, --time-limit SECONDS and -j/--jobs N to a subcommand.
 void add_global_options(CLI::App& cmd, GlobalOptions& global);
 
-/// Adds the positional "mesh" argument: one or more existing files or folders.
+/// Adds the positional "mesh" argument: one or more existing files or folders, or "-" (standard input).
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
                       const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
 // ---- cancellation -------------------------------------------------------------------------------------------
 
-/// Installs the SIGINT handler: the first Ctrl-C sets the interrupt flag, a second one kills the process.
+/// Installs the signal handlers: the first Ctrl-C sets the interrupt flag; a second one, SIGTERM, SIGHUP, SIGQUIT
+/// and SIGPIPE remove the temporary files of unfinished writes and exit with 128 + signal; SIGSEGV, SIGBUS,
+/// SIGFPE, SIGILL and SIGABRT remove them and then take their default action (not under a sanitizer).
 void install_interrupt_handler();
 /// True after Ctrl-C (or request_interrupt()).
 bool interrupted();
@@ -78,6 +89,7 @@ struct ProgressStyle {
   bool live = false;      ///< redraw one line with a bar (\r) instead of printing plain lines
   bool quiet = false;     ///< print nothing (cancellation still works)
   bool verbose = false;   ///< plain mode: print every report
+  bool warnings = true;   ///< show "warning: ..." reports even when quiet (batch mode: false only with --quiet)
   std::string prefix;     ///< put in front of every line (batch mode: the file name)
   double delay = 1.0;     ///< seconds before anything is shown: quick commands stay silent
   double interval = 1.0;  ///< plain mode: at most one line per interval (live mode redraws every 0.1 s)
@@ -122,6 +134,15 @@ class TerminalProgress final : public ProgressSink {
 /// The mutex every writer to stderr from worker threads takes (progress lines, per-file results).
 std::mutex& stderr_mutex();
 
+/// Reports "warning: <text>" to `progress`: TerminalProgress shows it on its own line at once (batch mode too),
+/// unless --quiet.
+void warn(ProgressSink& progress, const std::string& text);
+
+/// Reads and validates a mesh (read_mesh + build_mesh) and warns through `progress` about what the input loses on
+/// the way: unreferenced vertices are dropped, so the vertex numbers of outputs are no longer the input's.
+/// \throw InputError, TopologyError as read_mesh / build_mesh.
+Mesh load_mesh(const std::string& input, ProgressSink& progress);
+
 // ---- batch --------------------------------------------------------------------------------------------------
 
 /// Files named on the command line, with every folder replaced by its mesh files (.obj .off .ply .stl, not
@@ -145,16 +166,33 @@ std::vector<std::string> batch_output_stems(const std::vector<std::string>& file
 /// Where a batch writes the output of `input`: output_dir / (name + suffix), e.g. ("a/bunny.obj", "out",
 /// ".quad.obj") -> "out/bunny.quad.obj". With an empty output_dir: next to the input. The name is the input's
 /// stem, or, while process_files runs a batch holding `input`, its batch_output_stems entry (two inputs of one
-/// batch never write the same file).
+/// batch never write the same file). While run_batch runs, a path that is an input file throws InputError (unless
+/// --overwrite-input) and, with --skip-existing, an existing one throws SkippedExisting: call it before the work.
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix);
 
-/// The naming rule of batch_output_stems in one sentence, for --help.
+/// The naming rule of batch_output_stems in one sentence, and what happens to existing files, for --help.
 extern const char* const kBatchNamingHelp;
+
+/// Thrown by batch_output_path (and the output checks of run_batch) under --skip-existing when an output of the
+/// input exists: the input is skipped, which is not a failure.
+class SkippedExisting : public std::runtime_error {
+ public:
+  explicit SkippedExisting(const std::string& path) : std::runtime_error(path + " exists (--skip-existing)") {}
+};
+
+/// The long names of the options that name outputs (a file for one input, a folder for several).
+extern const std::vector<std::string> kOutputOptions;
+
+/// The checks run_batch makes before any work (see the guide above), on the values of the kOutputOptions of
+/// global.command (none when it is null) and on `files` (the expanded inputs). Creates output folders.
+/// \throw InputError naming the option and the path, SkippedExisting.
+void prepare_outputs(const std::vector<std::string>& files, bool batch, const GlobalOptions& global);
 
 /// What one file of a batch produced.
 struct FileResult {
   std::string input;
   int exit_code = kOk;  ///< 0 ok, 1 internal, 2 bad input
+  bool skipped = false;  ///< --skip-existing found an output of it (exit_code stays 0)
   std::string error;    ///< empty on success; otherwise the message main() would print (several lines allowed)
   double seconds = 0;
   nlohmann::json result;  ///< what the job returned (null on failure)

@@ -147,7 +147,7 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
 nlohmann::json run_field(const std::string& input, const std::string& output, const FieldCmdOptions& opt,
                          ProgressSink& progress) {
   const FieldOptions options = to_field_options(opt);
-  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const Mesh mesh = load_mesh(input, progress);  // warns about dropped unreferenced vertices (issue 18 item 16)
   const FrameFieldResult r = compute_frame_field_detailed(mesh, options, progress);
   write_json_atomically(output, field_document(input, mesh, r, options));
 

@@ -62,8 +62,10 @@ InfoResult inspect(const std::string& input, const InfoOptions& opt) {
   } else {
     j["vertices"] = soup.num_vertices();
     j["faces"] = soup.num_faces();
-    j["manifold"] = manifold;
-    j["orientable"] = orientable;
+    if (!report.has(ProblemKind::Empty)) {  // nothing to say about the topology of no faces
+      j["manifold"] = manifold;
+      j["orientable"] = orientable;
+    }
   }
   return r;
 }
@@ -89,11 +91,14 @@ void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   add_input_option(*cmd, opt->inputs,
                    "Input meshes (.obj, .off, .ply, .stl) or folders of them; several are checked in parallel and "
                    "summarized in a table");
-  cmd->add_flag("--triangulate", opt->triangulate, "Fan-triangulate polygons instead of reporting them as errors");
-  cmd->add_flag("--fix-orientation", opt->fix_orientation, "Reorient an orientable but inconsistently oriented mesh");
+  cmd->add_flag("--triangulate", opt->triangulate,
+                "Check the mesh as if its polygons were fan-triangulated (`quadcover repair` writes that mesh)");
+  cmd->add_flag("--fix-orientation", opt->fix_orientation,
+                "Check the mesh as if it were consistently reoriented (`quadcover repair` writes that mesh)");
   add_global_options(*cmd, global);
   cmd->callback([opt, &global, &exit_code] {
     if (!is_batch(opt->inputs)) {
+      set_standard_stream_format(global.format);
       exit_code = run_single(opt->inputs[0], *opt, global);
       return;
     }

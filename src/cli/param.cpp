@@ -82,7 +82,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
 
   auto t = std::chrono::steady_clock::now();
-  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const Mesh mesh = load_mesh(input, progress);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read_seconds});

@@ -60,11 +60,12 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   validate(po);
   if (!out.plot.empty() && po.optimize == OptimizeMode::None)
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
+  mesh_output_format(out.quads);  // an unknown extension fails before any work
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
-  const Mesh mesh = build_mesh(read_mesh(input)).mesh;
+  const Mesh mesh = load_mesh(input, progress);
   const double read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
   RemeshJob job;
   try {
@@ -78,7 +79,8 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   report["output"] = out.quads;
   t = Clock::now();
   const QuadMesh& quads = job.extraction.mesh;
-  write_polygon_obj(out.quads, quads.V, quads.faces);
+  if (const std::size_t split = write_polygon_mesh(out.quads, quads.V, quads.faces); split > 0)
+    report["warnings"].push_back(std::to_string(split) + " polygons were split into triangles for the STL output");
   if (!out.param.empty()) write_param_obj(out.param, mesh, job.param.map.uv);
   report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
   print_warnings(input, report);

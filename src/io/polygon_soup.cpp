@@ -42,6 +42,7 @@ PolygonSoup triangulate_polygons(const PolygonSoup& soup) {
   out.vertex_lines = soup.vertex_lines;
   out.location_unit = soup.location_unit;
   out.vertex_element = soup.vertex_element;
+  out.index_base = soup.index_base;
   out.uv = soup.uv;
   const bool uv = soup.has_uv();
   for (std::size_t f = 0; f < soup.num_faces(); ++f) {

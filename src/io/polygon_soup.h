@@ -34,6 +34,10 @@ struct PolygonSoup {
   /// vertices are located by the first facet using them).
   std::string vertex_element = "vertex";
 
+  /// How the file numbers vertices in its faces: 1 for OBJ, 0 for OFF, PLY and in-memory data (messages quote
+  /// indices as the file writes them).
+  int index_base = 0;
+
   std::size_t num_vertices() const { return static_cast<std::size_t>(positions.rows()); }
   std::size_t num_faces() const { return face_offsets.size() - 1; }
   std::size_t face_size(std::size_t f) const {

@@ -31,8 +31,19 @@ PolygonSoup read_ply_from_memory(std::string_view bytes, const std::string& name
 PolygonSoup read_stl(const std::string& path);
 PolygonSoup read_stl_from_memory(std::string_view bytes, const std::string& name);
 
-/// Reads by extension (.obj, .off, .ply, .stl; case-insensitive). \throw InputError for unknown extensions.
+/// Reads by extension (.obj, .off, .ply, .stl; case-insensitive). "-" reads standard input (once: later calls
+/// return the same bytes) in the format its content shows (guess_mesh_format); messages name it "<stdin>".
+/// \throw InputError for unknown extensions.
 PolygonSoup read_mesh(const std::string& path);
+
+/// The format written to "-" (standard output) by write_polygon_mesh: "obj", "off", "ply", "stl", or "" (OBJ).
+/// Set once by the CLI's --format before any work.
+void set_standard_stream_format(const std::string& extension);
+std::string standard_stream_format();
+
+/// The format the content looks like: "ply" (starts with `ply`), "off" (starts with an OFF keyword), "stl" ("solid"
+/// or the binary size 84 + 50 n), otherwise "obj".
+std::string guess_mesh_format(std::string_view bytes);
 /// The same on bytes already in memory; `extension` as returned by file_extension().
 PolygonSoup read_mesh_from_memory(std::string_view bytes, const std::string& name, const std::string& extension);
 

@@ -19,11 +19,26 @@ bool parse_obj_index(std::string_view tok, std::int64_t count, std::int64_t& out
   return true;
 }
 
+// Up to 16 bytes of a token for a message, non-printable bytes as \xNN (random bytes stay readable).
+std::string printable(std::string_view tok) {
+  std::string out;
+  for (const unsigned char c : tok.substr(0, 16)) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += std::string("\\x") + hex[c >> 4] + hex[c & 15];
+    }
+  }
+  return tok.size() > 16 ? out + "..." : out;
+}
+
 }  // namespace
 
 PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name) {
   PolygonSoup soup;
   soup.file = name;
+  soup.index_base = 1;
   std::vector<double> xyz;
   xyz.reserve(bytes.size() / 16);
   std::vector<double> uvs;
@@ -31,6 +46,8 @@ PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name
   bool any_uv = false;
   std::vector<std::int64_t> corners, uv_corners;
   TextScanner scan(bytes);
+  long first_other_line = 0;  // first line with a statement we do not read, and its keyword
+  std::string_view first_other;
   while (scan.next_line()) {
     const std::string_view key = scan.token();
     if (key == "v") {
@@ -60,6 +77,11 @@ PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name
         if (!parse_obj_index(tok.substr(0, slash), num_read, v))
           throw InputError(name, scan.line(),
                            "bad face corner '" + std::string(tok) + "' (expected a non-zero vertex index)");
+        if (v < 0)  // a negative (relative) index reaching before the first vertex; positive ones may point ahead
+          throw InputError(name, scan.line(),
+                           "face corner '" + std::string(tok) + "' refers to vertex " +
+                               std::string(tok.substr(0, slash)) + " (counted back from this line) but only " +
+                               std::to_string(num_read) + " vertices were defined before this line");
         corners.push_back(v);
         std::int64_t t = -1;
         if (slash != std::string_view::npos) {
@@ -84,9 +106,18 @@ PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name
                          "face has " + std::to_string(corners.size()) + " corners (at least 3 needed)");
       soup.add_face(corners.data(), corners.size(), scan.line());
       corner_uv.insert(corner_uv.end(), uv_corners.begin(), uv_corners.end());
+    } else if (!key.empty() && first_other_line == 0) {
+      // Every other statement (vn, g, o, s, usemtl, mtllib, l, p) carries nothing we need.
+      first_other_line = scan.line();
+      first_other = key;
     }
-    // Every other statement (vn, g, o, s, usemtl, mtllib, l, p) carries nothing we need.
   }
+  // Text without a single vertex or face but with other content is not an OBJ mesh (e.g. random bytes, another
+  // format under an .obj name): say so instead of reporting an empty mesh.
+  if (xyz.empty() && soup.num_faces() == 0 && first_other_line > 0)
+    throw InputError(name, first_other_line,
+                     "not an OBJ mesh file: no 'v' or 'f' statement anywhere (this line starts with '" +
+                         printable(first_other) + "')");
   soup.positions = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
       xyz.data(), static_cast<Eigen::Index>(xyz.size() / 3), 3);
   if (any_uv) {

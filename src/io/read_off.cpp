@@ -88,17 +88,18 @@ PolygonSoup read_off_from_memory(std::string_view bytes, const std::string& name
       throw InputError(name, scan.line(),
                        "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     std::int64_t n = 0;
-    if (!scan.integer(n)) throw InputError(name, scan.line(), "face " + std::to_string(f) + " must start with its corner count");
+    if (!scan.integer(n))
+      throw InputError(name, scan.line(), "face " + std::to_string(f + 1) + " must start with its corner count");
     if (n < 3)
       throw InputError(name, scan.line(),
-                       "face " + std::to_string(f) + " has " + std::to_string(n) + " corners (at least 3 needed)");
+                       "face " + std::to_string(f + 1) + " has " + std::to_string(n) + " corners (at least 3 needed)");
     corners.clear();
     for (std::int64_t k = 0; k < n; ++k) {
       std::int64_t idx = 0;
       if (!scan.integer(idx))
         throw InputError(name, scan.line(),
-                         "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but corner " +
-                             std::to_string(k) + " is missing or not an integer");
+                         "face " + std::to_string(f + 1) + " declares " + std::to_string(n) + " corners but corner " +
+                             std::to_string(k + 1) + " is missing or not an integer");
       corners.push_back(idx);  // OFF indices are 0-based already
     }
     // Anything left on the line is a face colour (ignored).

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
 #include "common/errors.h"
 #include "io/read_mesh.h"
@@ -99,48 +100,57 @@ class BinaryCursor {
     return value;
   }
 
-  double as_double(PlyType t) {
+  /// Reads one value of type t and hands it to f in its own C++ type (the one switch over the PLY types).
+  template <class F>
+  auto read_as(PlyType t, F&& f) {
     need(type_size(t));
     switch (t) {
-      case PlyType::Int8: return raw<std::int8_t>();
-      case PlyType::UInt8: return raw<std::uint8_t>();
-      case PlyType::Int16: return raw<std::int16_t>();
-      case PlyType::UInt16: return raw<std::uint16_t>();
-      case PlyType::Int32: return raw<std::int32_t>();
-      case PlyType::UInt32: return raw<std::uint32_t>();
-      case PlyType::Int64: return static_cast<double>(raw<std::int64_t>());
-      case PlyType::UInt64: return static_cast<double>(raw<std::uint64_t>());
-      case PlyType::Float32: return raw<float>();
-      case PlyType::Float64: return raw<double>();
+      case PlyType::Int8:
+        return f(raw<std::int8_t>());
+      case PlyType::UInt8:
+        return f(raw<std::uint8_t>());
+      case PlyType::Int16:
+        return f(raw<std::int16_t>());
+      case PlyType::UInt16:
+        return f(raw<std::uint16_t>());
+      case PlyType::Int32:
+        return f(raw<std::int32_t>());
+      case PlyType::UInt32:
+        return f(raw<std::uint32_t>());
+      case PlyType::Int64:
+        return f(raw<std::int64_t>());
+      case PlyType::UInt64:
+        return f(raw<std::uint64_t>());
+      case PlyType::Float32:
+        return f(raw<float>());
+      case PlyType::Float64:
+        return f(raw<double>());
     }
-    return 0;
+    return f(std::uint8_t{0});  // not reached: every PlyType is listed
+  }
+
+  double as_double(PlyType t) {
+    return read_as(t, [](auto v) { return static_cast<double>(v); });
   }
 
   /// An integer value (list counts and indices); floating-point values must be integral.
   std::int64_t as_int(PlyType t) {
-    if (is_float(t)) {
-      const double d = as_double(t);
-      if (!(std::abs(d) < 9.0e18) || d != std::floor(d)) fail("index value " + std::to_string(d) + " is not an integer");
-      return static_cast<std::int64_t>(d);
-    }
-    need(type_size(t));
-    switch (t) {
-      case PlyType::Int8: return raw<std::int8_t>();
-      case PlyType::UInt8: return raw<std::uint8_t>();
-      case PlyType::Int16: return raw<std::int16_t>();
-      case PlyType::UInt16: return raw<std::uint16_t>();
-      case PlyType::Int32: return raw<std::int32_t>();
-      case PlyType::UInt32: return raw<std::uint32_t>();
-      case PlyType::Int64: return raw<std::int64_t>();
-      case PlyType::UInt64: {
-        const std::uint64_t u = raw<std::uint64_t>();
+    return read_as(t, [this](auto v) -> std::int64_t {
+      using T = decltype(v);
+      if constexpr (std::is_floating_point_v<T>) {
+        const double d = v;
+        if (!(std::abs(d) < 9.0e18) || d != std::floor(d))
+          fail("index value " + std::to_string(d) + " is not an integer");
+        return static_cast<std::int64_t>(d);
+      } else if constexpr (std::is_same_v<T, std::uint64_t>) {
         // Beyond int64: keep it out of range (validation reports the index) without overflowing.
-        return u > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())
+        return v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())
                    ? std::numeric_limits<std::int64_t>::max()
-                   : static_cast<std::int64_t>(u);
+                   : static_cast<std::int64_t>(v);
+      } else {
+        return static_cast<std::int64_t>(v);
       }
-      default: return 0;
-    }
+    });
   }
 
  private:
@@ -335,8 +345,9 @@ void read_ascii(std::string_view bytes, const Header& h, const std::string& name
         if (!prop.is_list) {
           double value = 0;
           if (!scan.number(value))
-            throw InputError(name, line, e.name + " element " + std::to_string(i) + ": property '" + prop.name +
-                                             "' is missing or not a number");
+            throw InputError(name, line,
+                             e.name + " element " + std::to_string(i + 1) + ": property '" + prop.name +
+                                 "' is missing or not a number");
           if (k == roles.x) p[0] = value;
           if (k == roles.y) p[1] = value;
           if (k == roles.z) p[2] = value;
@@ -344,25 +355,28 @@ void read_ascii(std::string_view bytes, const Header& h, const std::string& name
         }
         std::int64_t n = 0;
         if (!ascii_int(scan, n) || n < 0)
-          throw InputError(name, line, e.name + " element " + std::to_string(i) + ": list '" + prop.name +
-                                           "' must start with a non-negative item count");
+          throw InputError(name, line,
+                           e.name + " element " + std::to_string(i + 1) + ": list '" + prop.name +
+                               "' must start with a non-negative item count");
         if (k == roles.list && n < 3)
-          throw InputError(name, line, "face " + std::to_string(i) + " has " + std::to_string(n) +
-                                           " corners (at least 3 needed)");
+          throw InputError(
+              name, line,
+              "face " + std::to_string(i + 1) + " has " + std::to_string(n) + " corners (at least 3 needed)");
         for (std::int64_t c = 0; c < n; ++c) {
           std::int64_t idx = 0;
           double skipped = 0;
           const bool ok = k == roles.list ? ascii_int(scan, idx) : scan.number(skipped);
           if (!ok)
-            throw InputError(name, line, e.name + " element " + std::to_string(i) + ": list '" + prop.name +
-                                             "' declares " + std::to_string(n) + " items but item " +
-                                             std::to_string(c) + " is missing or not a number");
+            throw InputError(name, line,
+                             e.name + " element " + std::to_string(i + 1) + ": list '" + prop.name + "' declares " +
+                                 std::to_string(n) + " items but item " + std::to_string(c) +
+                                 " is missing or not a number");
           if (k == roles.list) corners.push_back(idx);
         }
       }
       if (!scan.at_line_end())
-        throw InputError(name, line, e.name + " element " + std::to_string(i) +
-                                         " has more values than the header declares");
+        throw InputError(name, line,
+                         e.name + " element " + std::to_string(i + 1) + " has more values than the header declares");
       if (e.name == "vertex") {
         xyz.insert(xyz.end(), p, p + 3);
         soup.vertex_lines.push_back(line);

@@ -44,6 +44,17 @@ void put_binary(std::string& buf, T value, bool big_endian) {
   buf.append(reinterpret_cast<const char*>(b), sizeof(T));
 }
 
+// The body OFF and ASCII PLY share: one "x y z" line per vertex, then one "n i0 .. in-1" line per face.
+void put_ascii_body(TextBuffer& b, const PolygonSoup& soup) {
+  for (Eigen::Index v = 0; v < soup.positions.rows(); ++v)
+    b.num(soup.positions(v, 0)).put(' ').num(soup.positions(v, 1)).put(' ').num(soup.positions(v, 2)).put('\n');
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+    b.num(static_cast<std::int64_t>(soup.face_size(f)));
+    for (std::size_t k = 0; k < soup.face_size(f); ++k) b.put(' ').num(soup.face_begin(f)[k]);
+    b.put('\n');
+  }
+}
+
 }  // namespace
 
 void write_off(const std::string& path, const PolygonSoup& soup) {
@@ -52,13 +63,7 @@ void write_off(const std::string& path, const PolygonSoup& soup) {
     TextBuffer b(out);
     b.put("OFF\n").num(static_cast<std::int64_t>(soup.num_vertices())).put(' ');
     b.num(static_cast<std::int64_t>(soup.num_faces())).put(" 0\n");
-    for (Eigen::Index v = 0; v < soup.positions.rows(); ++v)
-      b.num(soup.positions(v, 0)).put(' ').num(soup.positions(v, 1)).put(' ').num(soup.positions(v, 2)).put('\n');
-    for (std::size_t f = 0; f < soup.num_faces(); ++f) {
-      b.num(static_cast<std::int64_t>(soup.face_size(f)));
-      for (std::size_t k = 0; k < soup.face_size(f); ++k) b.put(' ').num(soup.face_begin(f)[k]);
-      b.put('\n');
-    }
+    put_ascii_body(b, soup);
     b.flush();
   });
 }
@@ -80,13 +85,7 @@ void write_ply(const std::string& path, const PolygonSoup& soup, PlyEncoding enc
     b.num(static_cast<std::int64_t>(soup.num_faces()));
     b.put("\nproperty list uchar int vertex_indices\nend_header\n");
     if (encoding == PlyEncoding::Ascii) {
-      for (Eigen::Index v = 0; v < soup.positions.rows(); ++v)
-        b.num(soup.positions(v, 0)).put(' ').num(soup.positions(v, 1)).put(' ').num(soup.positions(v, 2)).put('\n');
-      for (std::size_t f = 0; f < soup.num_faces(); ++f) {
-        b.num(static_cast<std::int64_t>(soup.face_size(f)));
-        for (std::size_t k = 0; k < soup.face_size(f); ++k) b.put(' ').num(soup.face_begin(f)[k]);
-        b.put('\n');
-      }
+      put_ascii_body(b, soup);
       b.flush();
       return;
     }

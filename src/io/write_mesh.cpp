@@ -2,8 +2,13 @@
 
 #include <stdexcept>
 
+#include "common/errors.h"
 #include "io/atomic_file.h"
+#include "io/read_mesh.h"
 #include "io/text_format.h"
+#include "io/write_off.h"
+#include "io/write_ply.h"
+#include "io/write_stl.h"
 
 namespace quadcover {
 
@@ -106,6 +111,48 @@ void write_soup_obj(const std::string& path, const PolygonSoup& soup) {
     }
     b.flush();
   });
+}
+
+std::string mesh_output_format(const std::string& path) {
+  const std::string ext = path == "-" ? standard_stream_format() : file_extension(path);
+  if (path == "-" && ext.empty()) return "obj";
+  if (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") return ext;
+  throw InputError(path, 0,
+                   (ext.empty() ? std::string("output has no extension") : "unsupported output format '." + ext + "'") +
+                       " (supported: .obj, .off, .ply, .stl)");
+}
+
+std::size_t write_polygon_mesh(const std::string& path, const Eigen::MatrixX3d& V,
+                               const std::vector<std::vector<int>>& faces) {
+  const std::string format = mesh_output_format(path);
+  if (format == "obj") {
+    write_polygon_obj(path, V, faces);
+    return 0;
+  }
+  PolygonSoup soup;
+  soup.positions = V;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].size() < 3)
+      throw std::invalid_argument(path + ": face " + std::to_string(f) + " has fewer than 3 corners");
+    const std::vector<std::int64_t> corners(faces[f].begin(), faces[f].end());
+    soup.add_face(corners.data(), corners.size(), static_cast<long>(f));
+  }
+  if (format == "off") {
+    write_off(path, soup);
+    return 0;
+  }
+  if (format == "ply") {
+    write_ply(path, soup);
+    return 0;
+  }
+  std::size_t polygons = 0;
+  for (const auto& face : faces) polygons += face.size() > 3;
+  const PolygonSoup triangles = triangulate_polygons(soup);
+  Eigen::MatrixX3i F(static_cast<Eigen::Index>(triangles.num_faces()), 3);
+  for (std::size_t t = 0; t < triangles.num_faces(); ++t)
+    for (int k = 0; k < 3; ++k) F(static_cast<Eigen::Index>(t), k) = static_cast<int>(triangles.face_begin(t)[k]);
+  write_stl(path, V, F);
+  return polygons;
 }
 
 }  // namespace quadcover

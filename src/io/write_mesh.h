@@ -22,6 +22,19 @@ void write_obj_with_uv(const std::string& path, const Eigen::MatrixX3d& V, const
 /// OBJ with polygon faces of any size (quad meshes). faces: 0-based vertex indices per face.
 void write_polygon_obj(const std::string& path, const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
 
+/// A polygon mesh (quad meshes) in the format the extension of `path` names: .obj, .off, .ply (binary little
+/// endian), .stl (binary; it holds only triangles, so polygons are fan-triangulated); "-" writes standard output in
+/// standard_stream_format() (default OBJ). Atomic. Returns the number of polygons split into triangles (STL only;
+/// the caller says so), 0 otherwise.
+/// \throw InputError for an unknown extension, std::invalid_argument for an index out of range or a face with
+/// fewer than 3 corners (no file is left).
+std::size_t write_polygon_mesh(const std::string& path, const Eigen::MatrixX3d& V,
+                               const std::vector<std::vector<int>>& faces);
+
+/// The format write_polygon_mesh writes to `path`: "obj", "off", "ply" or "stl". Call it before the work so that a
+/// bad output name fails at once. \throw InputError naming the path and the supported extensions otherwise.
+std::string mesh_output_format(const std::string& path);
+
 /// OBJ of a polygon soup as read: positions, `vt` lines and `f v/vt` corners where soup.face_uv has them.
 /// Soup indices must be in range (validate first); -1 in face_uv writes the corner without texture index.
 void write_soup_obj(const std::string& path, const PolygonSoup& soup);

@@ -28,9 +28,11 @@ namespace {
   for (const auto& p : report.problems)
     if (p.fatal) lines.push_back(p.message);
   const std::string file = soup.file.empty() ? std::string("<input>") : soup.file;
-  throw TopologyError(file + ": not a valid manifold triangle mesh (" + std::to_string(lines.size()) +
-                          " kind" + (lines.size() == 1 ? "" : "s") + " of problem)",
-                      std::move(lines));
+  // The count is taken before `lines` is moved into the exception (argument evaluation order is unspecified).
+  const std::size_t kinds = lines.size();
+  std::string what = file + ": not a valid manifold triangle mesh (" + std::to_string(kinds) + " kind" +
+                     (kinds == 1 ? "" : "s") + " of problem)";
+  throw TopologyError(std::move(what), std::move(lines));
 }
 
 }  // namespace

@@ -33,6 +33,12 @@ const char* to_string(ProblemKind kind) {
 
 namespace {
 
+// Numbers in messages are the file's: faces count from 1 (the n-th face of the file), vertex indices are written
+// as the file writes them (1-based in OBJ, 0-based in OFF and PLY); the resolved 0-based index follows in
+// parentheses where it differs. MeshProblem::faces / vertices stay 0-based.
+std::string face_number(long f) { return std::to_string(f + 1); }
+std::string vertex_number(const PolygonSoup& soup, std::int64_t v) { return std::to_string(v + soup.index_base); }
+
 // Collects the located elements of one kind of problem into a single message.
 struct ProblemCollector {
   const PolygonSoup& soup;
@@ -50,11 +56,14 @@ struct ProblemCollector {
   }
   void face(long f, const std::string& detail = "") {
     problem.faces.push_back(f);
-    add("face " + std::to_string(f) + " (" + soup.face_location(static_cast<std::size_t>(f)) + ")" + detail);
+    add("face " + face_number(f) + " (0-based " + std::to_string(f) + ", " +
+        soup.face_location(static_cast<std::size_t>(f)) + ")" + detail);
   }
   void vertex(long v, const std::string& detail = "") {
     problem.vertices.push_back(v);
-    add("vertex " + std::to_string(v) + " (" + soup.vertex_location(static_cast<std::size_t>(v)) + ")" + detail);
+    const std::string resolved = soup.index_base != 0 ? "0-based " + std::to_string(v) + ", " : std::string();
+    add("vertex " + vertex_number(soup, v) + " (" + resolved + soup.vertex_location(static_cast<std::size_t>(v)) + ")" +
+        detail);
   }
   void add(const std::string& item) {
     if (count < options.max_listed) listing += (count ? "; " : "") + item;
@@ -95,7 +104,7 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
   // below only look at those (the others are already reported).
   ProblemCollector range(soup, options, ProblemKind::IndexOutOfRange, "face with a vertex index out of range", "faces with a vertex index out of range");
   ProblemCollector polygon(soup, options, ProblemKind::NotTriangle, "non-triangle face", "non-triangle faces");
-  polygon.hint = " (--triangulate splits polygons into triangles)";
+  polygon.hint = " (`quadcover repair MESH -o FIXED.obj` splits polygons into triangles)";
   ProblemCollector repeated(soup, options, ProblemKind::RepeatedVertex, "face with a repeated vertex", "faces with a repeated vertex");
   ProblemCollector degenerate(soup, options, ProblemKind::DegenerateFace, "zero-area (degenerate) face", "zero-area (degenerate) faces");
   std::vector<char> usable(static_cast<std::size_t>(nf), 0);
@@ -105,7 +114,8 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     bool ok = true;
     for (std::size_t k = 0; k < n; ++k) {
       if (c[k] < 0 || c[k] >= nv) {
-        range.face(f, ": index " + std::to_string(c[k] >= 0 ? c[k] + 1 : c[k]) + " of " + std::to_string(nv) + " vertices");
+        range.face(f, ": vertex index " + vertex_number(soup, c[k]) + " but the file has " + std::to_string(nv) +
+                          " vertices (valid: " + vertex_number(soup, 0) + " to " + vertex_number(soup, nv - 1) + ")");
         ok = false;
         break;
       }
@@ -150,7 +160,7 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
   std::vector<char> is_duplicate(static_cast<std::size_t>(nf), 0);
   for (std::size_t i = 1; i < keys.size(); ++i) {
     if (keys[i].first == keys[i - 1].first) {
-      duplicate.face(keys[i].second, " repeats face " + std::to_string(keys[i - 1].second));
+      duplicate.face(keys[i].second, " repeats face " + face_number(keys[i - 1].second));
       is_duplicate[static_cast<std::size_t>(keys[i].second)] = 1;
     }
   }
@@ -174,9 +184,10 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     if (inc.size() <= 2) continue;
     bad_edge[e] = 1;
     std::string faces;
-    for (const auto& h : inc) faces += (faces.empty() ? "" : ", ") + std::to_string(tri_face[h.tri]);
-    nm_edge.add("edge (" + std::to_string(edges.endpoints(e)[0]) + ", " + std::to_string(edges.endpoints(e)[1]) + ") in " +
-                std::to_string(inc.size()) + " faces {" + faces + "} (" + soup.face_location(static_cast<std::size_t>(tri_face[inc[0].tri])) + ")");
+    for (const auto& h : inc) faces += (faces.empty() ? "" : ", ") + face_number(tri_face[h.tri]);
+    nm_edge.add("edge (" + vertex_number(soup, edges.endpoints(e)[0]) + ", " +
+                vertex_number(soup, edges.endpoints(e)[1]) + ") in " + std::to_string(inc.size()) + " faces {" + faces +
+                "} (" + soup.face_location(static_cast<std::size_t>(tri_face[inc[0].tri])) + ")");
     for (const auto& h : inc) nm_edge.problem.faces.push_back(tri_face[h.tri]);
   }
   nm_edge.flush(report);
@@ -237,9 +248,10 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
       const auto inc = edges.incidences(e);
       if (inc.size() != 2 || bad_edge[e]) continue;
       if (inc[0].forward == inc[1].forward) {
-        inconsistent.add("edge (" + std::to_string(edges.endpoints(e)[0]) + ", " + std::to_string(edges.endpoints(e)[1]) +
-                         ") between faces " + std::to_string(tri_face[inc[0].tri]) + " and " + std::to_string(tri_face[inc[1].tri]) +
-                         " (" + soup.face_location(static_cast<std::size_t>(tri_face[inc[1].tri])) + ")");
+        inconsistent.add("edge (" + vertex_number(soup, edges.endpoints(e)[0]) + ", " +
+                         vertex_number(soup, edges.endpoints(e)[1]) + ") between faces " +
+                         face_number(tri_face[inc[0].tri]) + " and " + face_number(tri_face[inc[1].tri]) + " (" +
+                         soup.face_location(static_cast<std::size_t>(tri_face[inc[1].tri])) + ")");
         inconsistent.problem.faces.push_back(tri_face[inc[1].tri]);
       }
     }
@@ -248,17 +260,20 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     const long witness = orientable ? -1 : tri_face[orientation.witness];
     const std::size_t flips = orientation.flips;
     if (!orientable) {
-      MeshProblem p{ProblemKind::NonOrientable, true,
+      MeshProblem p{ProblemKind::NonOrientable,
+                    true,
                     "surface is not orientable (e.g. a Möbius band or Klein bottle): no consistent face orientation "
-                    "exists; contradiction found at face " + std::to_string(witness) + " (" +
+                    "exists; contradiction found at face " +
+                        face_number(witness) + " (0-based " + std::to_string(witness) + ", " +
                         soup.face_location(static_cast<std::size_t>(witness)) + ")",
-                    {witness}, {}};
+                    {witness},
+                    {}};
       report.problems.push_back(std::move(p));
     } else if (inconsistent.count > 0) {
       if (options.fix_orientation) {
         report.flipped_faces = flips;
       } else {
-        inconsistent.hint = " (the surface is orientable: --fix-orientation reorients it)";
+        inconsistent.hint = " (the surface is orientable: `quadcover repair MESH -o FIXED.obj` reorients it)";
         inconsistent.flush(report);
       }
     }

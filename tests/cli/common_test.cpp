@@ -3,6 +3,8 @@
 #include "cli/common.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include <thread>
 
 #include "common/errors.h"
+#include "io/atomic_file.h"
 #include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
@@ -247,11 +250,55 @@ TEST(Cancellation, SigintSetsTheFlagAndTheNextOneIsFatal) {
   ProgressStyle style;
   TerminalProgress p(out, style);
   EXPECT_TRUE(p.cancelled());
-  // The handler re-armed the default action so a second Ctrl-C kills a stuck process.
-  struct sigaction current {};
-  sigaction(SIGINT, nullptr, &current);
-  EXPECT_EQ(current.sa_handler, SIG_DFL);
   clear_interrupt();
+  std::signal(SIGINT, SIG_DFL);
+}
+
+// In a child process: starts an atomic write of `target` and, half-way through, sends itself `signals` (in order).
+// Returns the child's wait status.
+int write_interrupted_by(const std::string& target, std::vector<int> signals) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    clear_interrupt();
+    install_interrupt_handler();
+    write_file_atomically(target, [&](std::ostream& out) {
+      out << std::string(1 << 16, 'x') << std::flush;  // the temporary exists and holds data
+      for (int sig : signals) std::raise(sig);
+      out << "end";
+    });
+    ::_exit(0);  // not reached when a signal ends the process
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+// Issue 18 item 3: SIGTERM, SIGHUP, SIGQUIT, SIGPIPE and a second Ctrl-C during a write exit with 128 + signal and
+// leave neither the output nor its temporary; a crash signal (SIGABRT) also leaves no temporary.
+TEST(Cancellation, TerminatingSignalsRemoveTemporaryFilesAndExitWith128PlusSignal) {
+  const fs::path dir = fresh_dir("signals");
+  for (const int sig : {SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGUSR1}) {
+    const int status = write_interrupted_by((dir / "out.txt").string(), {sig});
+    ASSERT_TRUE(WIFEXITED(status)) << "signal " << sig << " killed the process without cleaning up";
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_TRUE(fs::is_empty(dir)) << "signal " << sig << " left a file";
+  }
+  const int twice = write_interrupted_by((dir / "out.txt").string(), {SIGINT, SIGINT});
+  ASSERT_TRUE(WIFEXITED(twice));
+  EXPECT_EQ(WEXITSTATUS(twice), 128 + SIGINT);
+  EXPECT_TRUE(fs::is_empty(dir));
+  // One Ctrl-C only asks the work to stop: the write itself completes.
+  const int once = write_interrupted_by((dir / "out.txt").string(), {SIGINT});
+  ASSERT_TRUE(WIFEXITED(once));
+  EXPECT_EQ(WEXITSTATUS(once), 0);
+  EXPECT_TRUE(fs::exists(dir / "out.txt"));
+  fs::remove(dir / "out.txt");
+#if !defined(__SANITIZE_ADDRESS__)
+  const int crash = write_interrupted_by((dir / "out.txt").string(), {SIGABRT});
+  EXPECT_TRUE(WIFSIGNALED(crash) && WTERMSIG(crash) == SIGABRT) << "a crash keeps its signal";
+  EXPECT_TRUE(fs::is_empty(dir));
+#endif
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -123,7 +123,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFile{"fertility_zero_area_face", "degenerate_face", "zero-area"},
                       BadFile{"spot_degenerate_face", "repeated_vertex", "repeated vertex"},
                       BadFile{"spot_duplicate_face", "duplicate_face", "1 duplicate face"},
-                      BadFile{"spot_quads_nontriangle", "not_triangle", "--triangulate"},
+                      BadFile{"spot_quads_nontriangle", "not_triangle", "quadcover repair"},
                       BadFile{"torus_klein_nonorientable", "non_orientable", "not orientable"}),
     [](const auto& info) { return std::string(info.param.name); });
 

@@ -102,10 +102,22 @@ INSTANTIATE_TEST_SUITE_P(
                       BadObj{"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n", 4, "bad face corner"}));
 
 TEST(ReadObj, OutOfRangeVertexIndexIsLeftToValidation) {
-  // The reader keeps what the file says; validation reports the index with its line.
-  const PolygonSoup soup = read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\nf -9 1 2\n", "r.obj");
+  // A positive index may point ahead (vertices may follow): the reader keeps it, validation reports it with its line.
+  const PolygonSoup soup = read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "r.obj");
   EXPECT_EQ(soup.face_vertices[2], 6);
-  EXPECT_EQ(soup.face_vertices[3], -6);
+  // A negative one counts back from its line: reaching before the first vertex is an error here, quoted as written.
+  const InputError e =
+      expect_input_error([] { read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -9 1 2\n", "r.obj"); });
+  EXPECT_NE(std::string(e.what()).find("r.obj:4: face corner '-9' refers to vertex -9"), std::string::npos) << e.what();
+}
+
+TEST(ReadObj, TextWithoutAnyVertexOrFaceIsNotAnObjMesh) {
+  const InputError e =
+      expect_input_error([] { read_obj_from_memory("# comment\n\x01\x02garbage 1 2\nmore\n", "g.obj"); });
+  EXPECT_NE(std::string(e.what()).find("g.obj:2: not an OBJ mesh file"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("\\x01\\x02garbage"), std::string::npos) << e.what();
+  // A file with nothing but comments and blank lines stays an empty mesh (validation says so).
+  EXPECT_EQ(read_obj_from_memory("# nothing\n\n", "e.obj").num_faces(), 0u);
 }
 
 TEST(ReadMesh, DispatchByExtension) {

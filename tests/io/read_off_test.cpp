@@ -94,15 +94,14 @@ TEST_P(MalformedOff, ThrowsWithLine) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, MalformedOff,
     ::testing::Values(BadOff{"", 0, "empty OFF"}, BadOff{"OFF\n", 1, "ends before"},
-                      BadOff{"OFF\nthree 1 0\n", 2, "expected the counts"},
-                      BadOff{"OFF\n3 -1 0\n", 2, "negative"},
+                      BadOff{"OFF\nthree 1 0\n", 2, "expected the counts"}, BadOff{"OFF\n3 -1 0\n", 2, "negative"},
                       // Huge counts are not trusted: the file simply ends early (no allocation from the header).
                       BadOff{"OFF\n999999999999 1 0\n0 0 0\n", 3, "file ends after 1 of 999999999999 vertices"},
                       BadOff{"OFF\n3 5 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 6, "file ends after 1 of 5 faces"},
                       BadOff{"OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n", 4, "vertex 1 needs three"},
                       BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", 6, "2 corners"},
-                      BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", 6, "corner 3 is missing"},
-                      BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 x 2\n", 6, "corner 1"},
+                      BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", 6, "corner 4 is missing"},
+                      BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 x 2\n", 6, "corner 2"},
                       BadOff{"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\nthree 0 1 2\n", 6, "corner count"},
                       BadOff{"4OFF\n3 1 0\n", 1, "not supported"}, BadOff{"OFF BINARY\n", 1, "binary OFF"}));
 

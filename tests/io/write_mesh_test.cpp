@@ -1,5 +1,7 @@
 // Writers: exact round trips (shortest round-trip number formatting) and atomicity (a failing writer leaves
 // neither a partial file nor a temporary behind, and never clobbers an existing file).
+#include "io/write_mesh.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,9 +9,9 @@
 #include <limits>
 #include <random>
 
+#include "common/errors.h"
 #include "io/atomic_file.h"
 #include "io/read_mesh.h"
-#include "io/write_mesh.h"
 #include "io_test_util.h"
 #include "support/test_meshes.h"
 
@@ -138,6 +140,97 @@ TEST(WriteObjWithUv, MismatchedSizesThrow) {
   FUV = Eigen::MatrixX3i::Constant(mesh.num_faces(), 3, 3);  // uv index 3 of 3
   EXPECT_THROW(write_obj_with_uv(dir.file("m.obj"), mesh.V(), mesh.F(), UV, FUV), std::invalid_argument);
   EXPECT_EQ(files_in(dir.path()), 0u);
+}
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// A 2 x 1 strip of quads (6 vertices) for the polygon writers.
+struct QuadStrip {
+  Eigen::MatrixX3d V{6, 3};
+  std::vector<std::vector<int>> faces{{0, 1, 4, 3}, {1, 2, 5, 4}};
+  QuadStrip() { V << 0, 0, 0, 1, 0, 0, 2, 0, 0.5, 0, 1, 0, 1, 1, 0, 2, 1, 0.25; }
+};
+
+// Issue 18 item 4: write_polygon_mesh writes the format the extension names; every format reads back to the same
+// positions and (for OBJ, OFF, PLY) the same polygons; STL triangulates and says how many polygons it split.
+TEST(WritePolygonMesh, FormatFollowsTheExtensionAndReadsBack) {
+  TempDir dir;
+  const QuadStrip q;
+  for (const char* ext : {"obj", "off", "ply", "OFF"}) {
+    const std::string path = dir.file(std::string("q.") + ext);
+    EXPECT_EQ(write_polygon_mesh(path, q.V, q.faces), 0u);
+    const PolygonSoup soup = read_mesh(path);
+    EXPECT_EQ(guess_mesh_format(read_file_bytes(path)), file_extension(path)) << ext;
+    EXPECT_EQ(soup.positions, q.V) << ext;
+    EXPECT_EQ(soup.face_vertices, (std::vector<std::int64_t>{0, 1, 4, 3, 1, 2, 5, 4})) << ext;
+  }
+  const std::string stl = dir.file("q.stl");
+  EXPECT_EQ(write_polygon_mesh(stl, q.V, q.faces), 2u);
+  const PolygonSoup tri = read_mesh(stl);
+  EXPECT_EQ(tri.num_faces(), 4u);
+  EXPECT_EQ(tri.num_vertices(), 6u);  // welded back: the same six corners
+  // The same fan triangles (corner 0 with each consecutive pair), positions rounded to float32 by binary STL.
+  auto area = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return 0.5 * (b - a).cross(c - a).norm();
+  };
+  double written = 0, expected = 0;
+  for (std::size_t f = 0; f < tri.num_faces(); ++f)
+    written += area(tri.positions.row(tri.face_begin(f)[0]), tri.positions.row(tri.face_begin(f)[1]),
+                    tri.positions.row(tri.face_begin(f)[2]));
+  for (const auto& face : q.faces)
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+      expected += area(q.V.row(face[0]), q.V.row(face[k]), q.V.row(face[k + 1]));
+  EXPECT_NEAR(written, expected, 1e-6);
+}
+
+TEST(WritePolygonMesh, UnknownExtensionIsRefusedWithoutAFile) {
+  TempDir dir;
+  const QuadStrip q;
+  for (const char* name : {"q.xyz", "q", "q.obj.bak"}) {
+    EXPECT_THROW(mesh_output_format(dir.file(name)), InputError) << name;
+    EXPECT_THROW(write_polygon_mesh(dir.file(name), q.V, q.faces), InputError) << name;
+  }
+  EXPECT_EQ(files_in(dir.path()), 0u);
+  EXPECT_EQ(mesh_output_format("a/b.Ply"), "ply");
+}
+
+// Issue 18 item 3: remove_temporary_files (what the CLI's signal handlers call) removes the temporary of a write in
+// progress, and a write's temporary is registered before the file exists.
+TEST(AtomicFile, TemporaryOfAnUnfinishedWriteIsRemovedOnRequest) {
+  TempDir dir;
+  std::size_t during = 0, after_cleanup = 0;
+  EXPECT_THROW(write_file_atomically(dir.file("out.txt"),
+                                     [&](std::ostream& out) {
+                                       out << "partial" << std::flush;
+                                       during = files_in(dir.path());
+                                       remove_temporary_files();
+                                       after_cleanup = files_in(dir.path());
+                                       throw std::runtime_error("stop");
+                                     }),
+               std::runtime_error);
+  EXPECT_EQ(during, 1u);
+  EXPECT_EQ(after_cleanup, 0u);
+  EXPECT_EQ(files_in(dir.path()), 0u);
+  remove_temporary_files();  // nothing registered any more: a no-op
+  write_file_atomically(dir.file("ok.txt"), [](std::ostream& out) { out << "ok"; });
+  remove_temporary_files();
+  EXPECT_TRUE(fs::exists(dir.file("ok.txt")));
+}
+
+TEST(AtomicFile, OutputGuardRefusesBeforeAnythingIsCreated) {
+  TempDir dir;
+  set_output_guard([](const std::string& path) {
+    if (path.ends_with("no.txt")) throw InputError(path, 0, "refused");
+  });
+  EXPECT_THROW(write_file_atomically(dir.file("no.txt"), [](std::ostream& out) { out << "x"; }), InputError);
+  write_file_atomically(dir.file("yes.txt"), [](std::ostream& out) { out << "x"; });
+  set_output_guard({});
+  EXPECT_EQ(files_in(dir.path()), 1u);
+  EXPECT_TRUE(fs::exists(dir.file("yes.txt")));
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 // Mesh connectivity and geometry on real and generated meshes: topological invariants that break if the
 // connectivity is wrong (χ, genus, boundary loops), and discrete Gauss–Bonnet for the angle defect.
+#include "mesh/mesh.h"
+
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <numbers>
 
+#include "common/errors.h"
 #include "io/read_mesh.h"
-#include "mesh/mesh.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -121,6 +124,32 @@ TEST(GeneratedMesh, BoundaryLoopKeepsSurfaceOnTheLeft) {
     signed_area += p.x() * q.y() - q.x() * p.y();
   }
   EXPECT_GT(signed_area, 0);
+}
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// Issue 18 item 11: the error's headline counts the kinds of problem it lists (the count was read after the list
+// had been moved into the exception, so it always said 0).
+TEST(BuildMesh, ErrorCountsTheKindsOfProblemItLists) {
+  PolygonSoup soup;
+  soup.file = "two_problems.obj";
+  soup.positions.resize(4, 3);
+  soup.positions << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, std::numeric_limits<double>::quiet_NaN();
+  const std::int64_t a[3] = {0, 1, 2}, b[3] = {0, 1, 7};  // a NaN vertex (3 is unused) and an index out of range
+  soup.add_face(a, 3, 1);
+  soup.add_face(b, 3, 2);
+  soup.positions(0, 0) = std::numeric_limits<double>::infinity();
+  try {
+    (void)build_mesh(soup);
+    FAIL() << "invalid mesh accepted";
+  } catch (const TopologyError& e) {
+    ASSERT_EQ(e.problems().size(), 2u);
+    EXPECT_NE(std::string(e.what()).find("(2 kinds of problem)"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

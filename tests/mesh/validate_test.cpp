@@ -89,7 +89,8 @@ TEST(Validate, IndexOutOfRangeDerivedFromSpot) {
   const ValidationReport r = validate(soup);
   const MeshProblem& p = problem(r, ProblemKind::IndexOutOfRange);
   EXPECT_EQ(p.faces, (std::vector<long>{7, 9}));
-  EXPECT_TRUE(contains(p.message, "index " + std::to_string(nv + 1) + " of " + std::to_string(nv) + " vertices"))
+  EXPECT_TRUE(contains(
+      p.message, "vertex index " + std::to_string(nv + 1) + " but the file has " + std::to_string(nv) + " vertices"))
       << p.message;
   EXPECT_TRUE(contains(p.message, "spot.obj:" + std::to_string(soup.face_lines[7]))) << p.message;
 }
@@ -99,7 +100,7 @@ TEST(Validate, NotTriangleOnRealQuadMesh) {
   const ValidationReport r = validate(soup);
   ASSERT_EQ(kinds(r), std::vector<ProblemKind>{ProblemKind::NotTriangle});
   EXPECT_EQ(problem(r, ProblemKind::NotTriangle).faces.size(), 2928u);
-  EXPECT_TRUE(contains(r.problems[0].message, "--triangulate"));
+  EXPECT_TRUE(contains(r.problems[0].message, "quadcover repair"));
   // With triangulation every quad becomes two triangles and the closed genus-0 surface builds.
   ValidationOptions opt;
   opt.triangulate = true;
@@ -141,7 +142,7 @@ TEST(Validate, DuplicateFaceOnRealFiles) {
   const ValidationReport spot = validate(bad("spot_duplicate_face"));
   ASSERT_EQ(kinds(spot), std::vector<ProblemKind>{ProblemKind::DuplicateFace});
   EXPECT_EQ(spot.problems[0].faces, std::vector<long>{5856});
-  EXPECT_TRUE(contains(spot.problems[0].message, "repeats face 0")) << spot.problems[0].message;
+  EXPECT_TRUE(contains(spot.problems[0].message, "repeats face 1")) << spot.problems[0].message;
 
   // Stanford's dragon_vrip_res4: 502 duplicate faces and 2 isolated vertices (MANIFEST). Its non-manifold edges
   // are counted among distinct faces (494); the MANIFEST's 803 also counts the edges of the duplicated copies.
@@ -166,7 +167,7 @@ TEST(Validate, NonManifoldEdgesOnRealFiles) {
   const ValidationReport fin = validate(bad("fandisk_nonmanifold_edge_fin"));
   ASSERT_EQ(kinds(fin), (std::vector<ProblemKind>{ProblemKind::NonManifoldEdge, ProblemKind::NonManifoldVertex}));
   EXPECT_EQ(problem(fin, ProblemKind::NonManifoldEdge).faces, (std::vector<long>{100, 103, 12946}));
-  EXPECT_TRUE(contains(problem(fin, ProblemKind::NonManifoldEdge).message, "edge (207, 208) in 3 faces"));
+  EXPECT_TRUE(contains(problem(fin, ProblemKind::NonManifoldEdge).message, "edge (208, 209) in 3 faces"));
   EXPECT_EQ(problem(fin, ProblemKind::NonManifoldVertex).vertices, (std::vector<long>{207, 208}));
 }
 
@@ -181,7 +182,7 @@ TEST(Validate, NonManifoldVertexOnRealFile) {
     FAIL() << "expected TopologyError";
   } catch (const TopologyError& e) {
     ASSERT_EQ(e.problems().size(), 1u);
-    EXPECT_TRUE(contains(e.problems()[0], "vertex 253"));
+    EXPECT_TRUE(contains(e.problems()[0], "vertex 254 (0-based 253, ")) << e.problems()[0];
   }
 }
 
@@ -231,7 +232,7 @@ TEST(Validate, InconsistentOrientationOnRealFileAndFix) {
   const ValidationReport r = validate(blobby);
   ASSERT_EQ(kinds(r), std::vector<ProblemKind>{ProblemKind::InconsistentOrientation});
   EXPECT_TRUE(contains(r.problems[0].message, "3069 edges whose two faces disagree")) << r.problems[0].message;
-  EXPECT_TRUE(contains(r.problems[0].message, "--fix-orientation"));
+  EXPECT_TRUE(contains(r.problems[0].message, "quadcover repair"));
 
   ValidationOptions fix;
   fix.fix_orientation = true;
@@ -331,6 +332,49 @@ TEST(Validate, ListingIsCappedButCountsAreExact) {
   const std::string& msg = problem(r, ProblemKind::NonManifoldEdge).message;
   EXPECT_TRUE(contains(msg, "; ... and 44 more")) << msg;
   EXPECT_EQ(problem(r, ProblemKind::NonManifoldEdge).faces.size(), 141u);  // all 47 edges' faces are kept
+}
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// Issue 18 item 12: messages quote vertex indices as the file writes them (1-based in OBJ, 0-based in OFF), count
+// faces from 1 and give the resolved 0-based index in parentheses; MeshProblem keeps the 0-based indices.
+TEST(ValidateMessages, NumbersAreTheFilesWithTheResolvedIndexInParentheses) {
+  const PolygonSoup obj =
+      read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 nan\nf 1 2 3\nf 2 4 3\nf 1 3 12\n", "m.obj");
+  const ValidationReport r = validate(obj);
+  const MeshProblem& range = problem(r, ProblemKind::IndexOutOfRange);
+  EXPECT_EQ(range.faces, std::vector<long>{2});
+  EXPECT_TRUE(contains(range.message,
+                       "face 3 (0-based 2, m.obj:7): vertex index 12 but the file has 4 vertices (valid: 1 to 4)"))
+      << range.message;
+  const MeshProblem& nan = problem(r, ProblemKind::NonFiniteCoordinate);
+  EXPECT_EQ(nan.vertices, std::vector<long>{3});
+  EXPECT_TRUE(contains(nan.message, "vertex 4 (0-based 3, m.obj:4)")) << nan.message;
+
+  const PolygonSoup off = read_off_from_memory("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 7\n", "m.off");
+  const ValidationReport off_report = validate(off);
+  const MeshProblem& off_range = problem(off_report, ProblemKind::IndexOutOfRange);
+  EXPECT_TRUE(contains(off_range.message,
+                       "face 2 (0-based 1, m.off:7): vertex index 7 but the file has 3 vertices (valid: 0 to 2)"))
+      << off_range.message;
+}
+
+TEST(ValidateMessages, NegativeObjIndexIsQuotedAsWritten) {
+  try {
+    (void)read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -5\n", "neg.obj");
+    FAIL() << "an index before the first vertex was accepted";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "neg.obj:4")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "refers to vertex -5")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "only 3 vertices")) << e.what();
+  }
+  // A negative index in range resolves relative to the vertices read so far.
+  const PolygonSoup ok = read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", "rel.obj");
+  EXPECT_EQ(ok.face_vertices, (std::vector<std::int64_t>{0, 1, 2}));
 }
 
 }  // namespace
