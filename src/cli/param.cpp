@@ -109,7 +109,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   for (int f = 0; f < mesh.num_faces(); ++f)
     for (int c = 0; c < 3; ++c) written(f, c) = Complex(UV(FUV(f, c), 0), UV(FUV(f, c), 1));
   const SeamReport seams = measure_seams(mesh, written, 1e-9);
-  const FlipReport flips = flipped_triangles(written);
+  const FlipReport flips = flipped_triangles(mesh, written);
 
   nlohmann::json bps = nlohmann::json::array();
   int b_even = 0, b_odd = 0;
@@ -151,7 +151,9 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                            {"stiffening", stiffening_to_json(P)},
                            {"flipped_triangles", flips.flipped},
                            {"flipped_faces", flips.flipped_faces},
-                           {"degenerate_triangles", flips.degenerate},
+                           {"degenerate_triangles", flips.collapsed},
+                           {"collapsed_triangles", flips.collapsed},
+                           {"non_positive_triangles", flips.non_positive},
                            {"seamless", seams.seamless},
                            {"max_transition_error", seams.max_transition_error},
                            {"parameter_extent", seams.parameter_extent},

@@ -88,7 +88,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   lap("param");
   // The signed parameter area is the number of quads the map can hold; below a few there is nothing to extract
   // (too coarse a density, or a map folded onto itself by a field without branch points, e.g. a flat fan).
-  const double area = flipped_triangles(P.uv).parameter_area;
+  const double area = flipped_triangles(mesh, P.uv).parameter_area;
   if (area < 4)
     throw InputError(input, 0,
                      "the map holds about " + std::to_string(static_cast<int>(std::lround(std::max(0.0, area)))) +

@@ -21,7 +21,9 @@ nlohmann::json to_json(const ParamQuality& q) {
           {"arap_p95", q.arap_p95},
           {"arap_histogram", {{"upper_bounds", q.arap_bins}, {"counts", q.arap_histogram}}},
           {"flipped_triangles", q.flipped_triangles},
-          {"degenerate_triangles", q.degenerate_triangles},
+          {"degenerate_triangles", q.collapsed_triangles},
+          {"collapsed_triangles", q.collapsed_triangles},
+          {"non_positive_triangles", q.non_positive_triangles},
           {"uv_area", q.uv_area},
           {"energy_curl", q.energy_curl},
           {"energy_harmonic", q.energy_harmonic},
@@ -108,7 +110,7 @@ std::string to_text(const Report& r) {
     const auto& p = *r.parameterization;
     os << " parameterization\n";
     line("ARAP (normalized, area-weighted): %.5f  (max %.4f, 95%% below %.4f)", p.arap, p.arap_max, p.arap_p95);
-    line("flipped triangles: %d, degenerate: %d", p.flipped_triangles, p.degenerate_triangles);
+    line("flipped triangles: %d, collapsed: %d", p.flipped_triangles, p.collapsed_triangles);
     line("branch points: %d", p.branch_points);
     line("UV area (quad count of a closed map): %.2f", p.uv_area);
     line("max transition error: %.3g, max translation defect: %.3g", p.max_transition_error, p.max_translation_defect);
