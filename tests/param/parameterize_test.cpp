@@ -90,7 +90,8 @@ TEST_P(OnTestMeshes, SeamlessIntegerGridMap) {
     }
     EXPECT_TRUE(P.unfixed_even_branch_points.empty());
     const double total = testing::map_field_energy(mesh, field, P);
-    EXPECT_NEAR(P.energy_curl + P.energy_harmonic + P.relaxation.energy + P.stiffening.energy, total, 1e-8 * total);
+    EXPECT_NEAR(P.energy_curl + P.energy_harmonic + P.relaxation.energy + P.stiffening.energy + P.untangling.energy,
+                total, 1e-8 * total);
     EXPECT_GT(P.energy_harmonic, 0);
   }
 }
