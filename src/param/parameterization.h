@@ -101,6 +101,8 @@ struct Parameterization {
     /// Other faces left non-positive: no injective map was found in the subspace around them (e.g. a triangle
     /// whose corners are held in the wrong order by branch points and curve constraints).
     std::vector<int> unresolved_faces;
+    /// Vertices whose curve constraint was given up to unstick a face (UntangleOptions::release_curve_corners).
+    std::vector<int> released_vertices;
   } untangling;
   /// Wall-clock seconds per stage, in pipeline order.
   std::vector<std::pair<std::string, double>> stage_seconds;

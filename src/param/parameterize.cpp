@@ -417,7 +417,8 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
         untangle_fixed_components(mesh, correction.layers(), aligned ? std::vector<int>{} : correction.kernel_pins(),
                                   aligned ? aligned->fixed_components() : std::vector<char>{});
     const double price_before = correction_energy(u);
-    u = untangle_map(mesh, correction, known, Z, fixed, u, options.untangle, progress, P.untangling);
+    u = untangle_map(mesh, correction, known, Z, fixed, u, options.untangle, progress, P.untangling,
+                     aligned ? aligned->fixed_components() : std::vector<char>{});
     if (P.untangling.iterations > 0) {
       P.untangling.energy = correction_energy(u) - price_before;
       lap("untangling");

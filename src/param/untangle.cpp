@@ -83,39 +83,54 @@ std::vector<FaceMap> face_maps(const Mesh& mesh, const VertexLayers& layers, con
 
 Eigen::Matrix<double, 6, 1> local(const FaceMap& m, const Eigen::VectorXd& X);
 
-/// Faces whose determinant the fixed components hold at ≤ 0 whatever the free ones do: all six fixed, or det ≡ 0 (two
-/// corners pinned to one point, e.g. adjacent branch points on one integer point; three on one fixed iso-line). The
-/// determinant is a quadratic in the free components: it vanishes identically iff it vanishes at the current point
-/// and at a few others (fixed pseudo-random offsets of one grid unit).
-std::vector<char> stuck_faces(const std::vector<FaceMap>& maps, const std::vector<char>& fixed,
-                              const Eigen::VectorXd& X) {
+/// True if the fixed components hold the determinant of the face at ≤ 0 whatever the free ones do: all six fixed, or
+/// det ≡ 0 (two corners pinned to one point, e.g. adjacent branch points on one integer point; three on one fixed
+/// iso-line). The determinant is a quadratic in the free components: it vanishes identically iff it vanishes at the
+/// current point and at a few others (fixed pseudo-random offsets of one grid unit).
+bool stuck_face(const FaceMap& m, const std::vector<char>& fixed, const Eigen::VectorXd& X) {
   static constexpr double offsets[3][6] = {{0.71, -0.33, 0.52, 0.93, -0.61, 0.24},
                                            {-0.45, 0.87, -0.12, 0.38, 0.66, -0.91},
                                            {0.29, 0.55, -0.83, -0.47, 0.18, 0.74}};
-  std::vector<char> stuck(maps.size(), 0);
-  for (std::size_t f = 0; f < maps.size(); ++f) {
-    const FaceMap& m = maps[f];
-    const Eigen::Matrix<double, 6, 1> x = local(m, X);
-    const auto det = [&](const Eigen::Matrix<double, 6, 1>& y) {
-      const Eigen::Vector4d J = m.J0 + m.Dm * y;
-      return J[0] * J[3] - J[1] * J[2];
-    };
-    bool any_free = false;
-    for (int k = 0; k < 6; ++k) any_free = any_free || (!fixed[m.var[k]] && m.Dm.col(k).squaredNorm() > 0);
-    if (!any_free) {
-      stuck[f] = det(x) <= 0;
-      continue;
-    }
-    bool zero = std::abs(det(x)) <= 1e-12 * (1 + (m.J0 + m.Dm * x).squaredNorm());
-    for (int s = 0; s < 3 && zero; ++s) {
-      Eigen::Matrix<double, 6, 1> y = x;
-      for (int k = 0; k < 6; ++k)
-        if (!fixed[m.var[k]]) y[k] += offsets[s][k];
-      zero = std::abs(det(y)) <= 1e-12 * (1 + (m.J0 + m.Dm * y).squaredNorm());
-    }
-    stuck[f] = zero;
+  const Eigen::Matrix<double, 6, 1> x = local(m, X);
+  const auto det = [&](const Eigen::Matrix<double, 6, 1>& y) {
+    const Eigen::Vector4d J = m.J0 + m.Dm * y;
+    return J[0] * J[3] - J[1] * J[2];
+  };
+  bool any_free = false;
+  for (int k = 0; k < 6; ++k) any_free = any_free || (!fixed[m.var[k]] && m.Dm.col(k).squaredNorm() > 0);
+  if (!any_free) return det(x) <= 0;
+  bool zero = std::abs(det(x)) <= 1e-12 * (1 + (m.J0 + m.Dm * x).squaredNorm());
+  for (int s = 0; s < 3 && zero; ++s) {
+    Eigen::Matrix<double, 6, 1> y = x;
+    for (int k = 0; k < 6; ++k)
+      if (!fixed[m.var[k]]) y[k] += offsets[s][k];
+    zero = std::abs(det(y)) <= 1e-12 * (1 + (m.J0 + m.Dm * y).squaredNorm());
   }
-  return stuck;
+  return zero;
+}
+
+/// Releases, per stuck face, the `releasable` components of the first corner whose release unsticks it (a curve
+/// constraint given up at one vertex); returns the released vertices.
+std::vector<int> release_corners(const std::vector<FaceMap>& maps, const std::vector<char>& releasable,
+                                 const Eigen::VectorXd& X, std::vector<char>& fixed) {
+  const int nv = static_cast<int>(fixed.size() / 2);
+  std::vector<int> released;
+  for (const FaceMap& m : maps) {
+    if (!stuck_face(m, fixed, X)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const int p = m.var[2 * c];
+      if (!releasable[p] && !releasable[nv + p]) continue;
+      std::vector<char> trial = fixed;
+      for (const int i : {p, nv + p})
+        if (releasable[i]) trial[i] = 0;
+      if (stuck_face(m, trial, X)) continue;
+      fixed.swap(trial);
+      released.push_back(p);
+      break;
+    }
+  }
+  std::sort(released.begin(), released.end());
+  return released;
 }
 
 Eigen::Matrix<double, 6, 1> local(const FaceMap& m, const Eigen::VectorXd& X) {
@@ -410,12 +425,13 @@ std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers
 }
 
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
-                              const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
+                              const FramePairs& Z, const std::vector<char>& fixed_in, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result) {
+                              Parameterization::Untangling& result, const std::vector<char>& releasable) {
   const auto start = std::chrono::steady_clock::now();
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
-  if (static_cast<int>(fixed.size()) != 2 * nv || u0.size() != nv)
+  if (static_cast<int>(fixed_in.size()) != 2 * nv || u0.size() != nv ||
+      (!releasable.empty() && static_cast<int>(releasable.size()) != 2 * nv))
     throw InputError("", 0, "untangle_map: the fixed components or u0 do not match the mesh");
   result = {};
   Eigen::VectorXd X(2 * nv);
@@ -425,11 +441,14 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
   if (!options.enabled || before == 0) return u0;
 
   std::vector<FaceMap> maps = face_maps(mesh, correction.layers(), base, Z);
+  std::vector<char> fixed = fixed_in;
+  if (options.release_curve_corners && !releasable.empty())
+    result.released_vertices = release_corners(maps, releasable, X, fixed);
   // Faces the subspace holds non-positive are reported and left out of the energy (they would only pull at their
   // free corners); the others must end positive.
-  const std::vector<char> stuck = stuck_faces(maps, fixed, X);
+  std::vector<char> stuck(static_cast<std::size_t>(nf), 0);
   for (int f = 0; f < nf; ++f)
-    if (stuck[f]) {
+    if ((stuck[f] = stuck_face(maps[f], fixed, X))) {
       result.stuck_faces.push_back(f);
       maps[f].area = 0;
     }

@@ -32,6 +32,11 @@ struct UntangleOptions {
   int polish_iterations = 8;  ///< Newton steps of the injective polish at most (0: none)
   double area_weight = 1.0;   ///< λ: weight of the area term (det² + 1) / det against the conformal term
   double tolerance = 1e-4;    ///< the polish stops when F_0 falls by less than this fraction in a step
+  /// A face whose three corners the curve constraints put on one integer iso-line (a boundary ear, a triangle
+  /// spanning a crease) has det ≡ 0 in the subspace. With this on, the `releasable` components of one of its
+  /// corners are freed: the map becomes valid there and that curve leaves its iso-line near the vertex (the curve's
+  /// reported deviation says by how much). Off: such faces stay collapsed and are reported as stuck.
+  bool release_curve_corners = false;
 };
 
 /// f_ε(J) of one 2×2 Jacobian (∞ when ε = 0 and det J ≤ 0), with its gradient and Hessian in the entries
@@ -49,11 +54,12 @@ std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers
 /// held at their u0 values (seams, periods and constraints stay exact). Z: the scaled gauged frame per face (the
 /// Jacobian reference; faces where it is degenerate or mirrored use its RMS length times the identity). Fills
 /// `result` (counts from param/seams.h, iterations, seconds) except its price. Returns u0 when the map has no
-/// non-positive triangle and the new u otherwise (u0 as well if the untangling made the count worse).
+/// non-positive triangle and the new u otherwise (u0 as well if the untangling made the count worse). `releasable`
+/// (2·#V or empty): fixed components that options.release_curve_corners may free (the curve constraints).
 /// \pre fixed has 2·#V entries, u0 has #V. \throw NumericalError if a factorization fails.
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result);
+                              Parameterization::Untangling& result, const std::vector<char>& releasable = {});
 
 }  // namespace quadcover

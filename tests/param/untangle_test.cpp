@@ -216,5 +216,27 @@ TEST(Untangle, GeneratedHardCases) {
   }
 }
 
+// Triangles with three corners on one enforced iso-line (CAD creases, boundary ears) are stuck at det 0; releasing
+// the curve constraint at one of their corners lets the untangler open them, seams and cones staying exact.
+TEST(Untangle, ReleasingCurveCornersOpensStuckCurveTriangles) {
+  for (const char* name : {"couplingdown_genus9", "camelhead_boundary"}) {
+    const Mesh mesh = testing::load_test_mesh(name);
+    const FrameField field = compute_frame_field(mesh);
+    const Parameterization A = parameterize(mesh, field);
+    ParamOptions o;
+    o.untangle.release_curve_corners = true;
+    const Parameterization B = parameterize(mesh, field, o);
+    EXPECT_TRUE(A.untangling.released_vertices.empty());
+    ASSERT_FALSE(B.untangling.released_vertices.empty()) << name;
+    EXPECT_LT(B.untangling.stuck_faces.size(), A.untangling.stuck_faces.size()) << name;
+    EXPECT_LT(flipped_triangles(mesh, B.uv).non_positive, flipped_triangles(mesh, A.uv).non_positive) << name;
+    EXPECT_TRUE(measure_seams(mesh, B.uv, 1e-9).seamless);
+    std::cerr << name << ": " << flipped_triangles(mesh, A.uv).non_positive << " -> "
+              << flipped_triangles(mesh, B.uv).non_positive << " non-positive, "
+              << B.untangling.released_vertices.size() << " curve vertices released, stuck "
+              << A.untangling.stuck_faces.size() << " -> " << B.untangling.stuck_faces.size() << "\n";
+  }
+}
+
 }  // namespace
 }  // namespace quadcover
