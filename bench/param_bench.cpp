@@ -70,7 +70,7 @@ void BM_Parameterize(benchmark::State& state) {
   state.counters["faces"] = bench_mesh().num_faces();
   state.counters["branch_points"] = static_cast<double>(P.branch_points.size());
   state.counters["h_sym"] = P.h_sym;
-  state.counters["flipped"] = flipped_triangles(P.uv).flipped;
+  state.counters["flipped"] = flipped_triangles(bench_mesh(), P.uv).flipped;
 }
 
 }  // namespace

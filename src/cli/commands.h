@@ -24,8 +24,8 @@ struct GlobalOptions {
 inline constexpr const char* kStiffeningHelp =
     "Local stiffening against folds (beyond the thesis, as in MIQ): while triangles are flipped, re-solve the final "
     "harmonic correction at most N times with weights raised on distorted triangles, keeping the map with the "
-    "fewest flips. Periods, branch points, seams and aligned curves are unchanged; the price E_S is reported "
-    "(E_D + E_H + E_R + E_S = 1/2 |X - grad phi|^2). 0 = off";
+    "fewest flips. Periods, branch points, seams and aligned curves are unchanged; the price E_K is reported "
+    "(E_D + E_H + E_R + E_K = 1/2 |X - grad phi|^2). 0 = off";
 
 /// --relaxation N of the commands that parameterize (param, remesh): see param/relaxation.h.
 inline constexpr const char* kRelaxationHelp =
@@ -33,7 +33,7 @@ inline constexpr const char* kRelaxationHelp =
     "the rotations nearest to its own Jacobians (with 10% of the field kept in the target) instead of the field. "
     "Periods, branch points, seams and aligned curves are unchanged; each round reuses the factored system and "
     "lowers the energy. The price E_R and the ARAP distortion before and after are reported "
-    "(E_D + E_H + E_R + E_S = 1/2 |X - grad phi|^2). 0 = off";
+    "(E_D + E_H + E_R + E_K = 1/2 |X - grad phi|^2). 0 = off";
 
 /// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage.
 enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2 };

@@ -37,11 +37,12 @@ ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, cons
     const double det = J[f].determinant();
     q.uv_area += std::abs(det) * A[f];
   }
-  // Signs from the parameter areas with the relative zero threshold of param/seams.h, so that a triangle collapsed
-  // to round-off counts as degenerate, never as a flip.
-  const FlipReport flips = flipped_triangles(param.uv);
+  // Signs from the parameter areas against A_ref (param/seams.h): a triangle collapsed to round-off counts as
+  // collapsed, never as a flip, and never as valid.
+  const FlipReport flips = flipped_triangles(mesh, param.uv);
   q.flipped_triangles = flips.flipped;
-  q.degenerate_triangles = flips.degenerate;
+  q.collapsed_triangles = flips.collapsed;
+  q.non_positive_triangles = flips.non_positive;
   q.scale = q.uv_area > 0 ? std::sqrt(mesh.total_area() / q.uv_area) : 1.0;
   q.arap_per_face.resize(nf);
   double weighted = 0;

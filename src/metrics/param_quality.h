@@ -23,8 +23,10 @@ struct ParamQuality {
   std::vector<double> arap_per_face;   ///< #F: ½ min_R ‖s·J_t − R‖²_F
   std::vector<int> arap_histogram;     ///< counts per bin of ParamQualityOptions::arap_bins (+1 overflow bin)
   std::vector<double> arap_bins;
-  int flipped_triangles = 0;           ///< det J < 0 (thesis 2.1 requirement 2), see param/seams.h
-  int degenerate_triangles = 0;        ///< |parameter area| ≤ 1e-12 × mean |area| (round-off collapse)
+  /// Orientation (thesis 2.1 requirement 2) as in param/seams.h: A_uv < −τ·A_ref, |A_uv| ≤ τ·A_ref, their sum.
+  int flipped_triangles = 0;
+  int collapsed_triangles = 0;
+  int non_positive_triangles = 0;
   double uv_area = 0;                  ///< Σ |area(φ(t))| before scaling (the quad count of a closed map)
   double energy_curl = 0, energy_harmonic = 0;  ///< E_D and E_H passed through from the Parameterization
   /// Cone points of the map: interior vertices whose signed parameter angle sum Θ ≠ 2π (flipped corners count

@@ -21,7 +21,9 @@ nlohmann::json to_json(const ParamQuality& q) {
           {"arap_p95", q.arap_p95},
           {"arap_histogram", {{"upper_bounds", q.arap_bins}, {"counts", q.arap_histogram}}},
           {"flipped_triangles", q.flipped_triangles},
-          {"degenerate_triangles", q.degenerate_triangles},
+          {"degenerate_triangles", q.collapsed_triangles},
+          {"collapsed_triangles", q.collapsed_triangles},
+          {"non_positive_triangles", q.non_positive_triangles},
           {"uv_area", q.uv_area},
           {"energy_curl", q.energy_curl},
           {"energy_harmonic", q.energy_harmonic},
@@ -108,7 +110,7 @@ std::string to_text(const Report& r) {
     const auto& p = *r.parameterization;
     os << " parameterization\n";
     line("ARAP (normalized, area-weighted): %.5f  (max %.4f, 95%% below %.4f)", p.arap, p.arap_max, p.arap_p95);
-    line("flipped triangles: %d, degenerate: %d", p.flipped_triangles, p.degenerate_triangles);
+    line("flipped triangles: %d, collapsed: %d", p.flipped_triangles, p.collapsed_triangles);
     line("branch points: %d", p.branch_points);
     line("UV area (quad count of a closed map): %.2f", p.uv_area);
     line("max transition error: %.3g, max translation defect: %.3g", p.max_transition_error, p.max_translation_defect);
@@ -173,13 +175,26 @@ nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const
           {"max_displacement", r.max_displacement}};
 }
 
+nlohmann::json untangling_to_json(const Parameterization& p) {
+  const auto& u = p.untangling;
+  return {{"iterations", u.iterations},
+          {"polish_iterations", u.polish_iterations},
+          {"non_positive_before", u.non_positive_before},
+          {"non_positive_after", u.non_positive_after},
+          {"stuck_faces", u.stuck_faces},
+          {"unresolved_faces", u.unresolved_faces},
+          {"released_vertices", u.released_vertices},
+          {"min_det", u.min_det},
+          {"E_U", u.energy}};
+}
+
 nlohmann::json stiffening_to_json(const Parameterization& p) {
   const auto& s = p.stiffening;
   return {{"iterations", s.iterations},
           {"kept_iteration", s.kept_iteration},
           {"flipped_before", s.flipped_before},
           {"flipped_after", s.flipped_after},
-          {"E_S", s.energy}};
+          {"E_K", s.energy}};
 }
 
 }  // namespace quadcover

@@ -40,8 +40,12 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
 /// and its price E_R.
 nlohmann::json relaxation_to_json(const Parameterization& p);
 /// The local stiffening of a map (param/stiffening.h): re-solves, the one kept, flipped triangles before and after,
-/// and its price E_S (E_D + E_H + E_S = ½‖X̃ − ∇φ̃‖²).
+/// and its price E_K (E_D + E_H + E_K = ½‖X̃ − ∇φ̃‖²).
 nlohmann::json stiffening_to_json(const Parameterization& p);
+/// The untangling of a map (param/untangle.h): Newton iterations of the barrier and of the polish, non-positive
+/// triangles before and after, the faces the subspace holds at zero area (stuck) and the others left (unresolved),
+/// the smallest det J, and its price E_U. Its seconds are under the report's "seconds".
+nlohmann::json untangling_to_json(const Parameterization& p);
 /// The tangential smoothing of a quad mesh (quad/smooth_quads.h): the options used and what it did.
 nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const QuadSmoothingReport& r);
 

@@ -57,6 +57,8 @@ class AlignedCorrection {
   std::vector<AlignedCurve> curves(const Eigen::VectorXcd& u) const;
   /// Lines left free because they close on themselves with another integer.
   int conflicts() const { return conflicts_; }
+  /// 2·#V flags (x_p at p, y_p at #V + p) of the components of u that the constraints fix.
+  const std::vector<char>& fixed_components() const { return fixed_; }
 
  private:
   const Mesh* mesh_;

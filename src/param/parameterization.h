@@ -83,12 +83,27 @@ struct Parameterization {
     double energy = 0;
   } relaxation;
   /// Local stiffening of the final solve (param/stiffening.h): re-solves run, the one kept (0: none), flipped
-  /// triangles before and after, and its further price E_S, so that E_D + E_H + E_R + E_S = ½‖X̃ − ∇φ̃‖²
-  /// (E_S = 0 if none kept; after a relaxation E_S can be negative: the stiffened map may be nearer the field).
+  /// triangles before and after, and its further price E_K, so that E_D + E_H + E_R + E_K = ½‖X̃ − ∇φ̃‖²
+  /// (E_K = 0 if none kept; after a relaxation E_K can be negative: the stiffened map may be nearer the field).
   struct Stiffening {
     int iterations = 0, kept_iteration = 0, flipped_before = 0, flipped_after = 0;
     double energy = 0;
   } stiffening;
+  /// Untangling of the final map (param/untangle.h), run when it has a non-positive triangle (param/seams.h): ε
+  /// rounds and polish steps run, non-positive triangles before and after, the smallest det of the Jacobian relative
+  /// to the frame after, seconds, and its price E_U = ½‖X̃ − ∇φ̃‖² − E_D − E_H − E_R − E_K (0 if it did not run).
+  struct Untangling {
+    int iterations = 0, polish_iterations = 0, non_positive_before = 0, non_positive_after = 0;
+    double min_det = 0, seconds = 0, energy = 0;
+    /// Faces the subspace holds at det ≤ 0 (all corners fixed, or two pinned to one point such as adjacent branch
+    /// points rounded to one integer point): no map in it unfolds them; they stay non-positive.
+    std::vector<int> stuck_faces;
+    /// Other faces left non-positive: no injective map was found in the subspace around them (e.g. a triangle
+    /// whose corners are held in the wrong order by branch points and curve constraints).
+    std::vector<int> unresolved_faces;
+    /// Vertices whose curve constraint was given up to unstick a face (UntangleOptions::release_curve_corners).
+    std::vector<int> released_vertices;
+  } untangling;
   /// Wall-clock seconds per stage, in pipeline order.
   std::vector<std::pair<std::string, double>> stage_seconds;
 };

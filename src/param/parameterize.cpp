@@ -19,6 +19,7 @@
 #include "param/period_matrix.h"
 #include "param/alignment.h"
 #include "param/stiffening.h"
+#include "param/untangle.h"
 #include "field/feature_alignment.h"
 
 namespace quadcover {
@@ -409,6 +410,19 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     if (P.stiffening.kept_iteration > 0)
       P.stiffening.energy = correction_energy(u) - P.energy_harmonic - P.relaxation.energy;
     if (P.stiffening.iterations > 0) lap("stiffening");
+  }
+  if (options.untangle.enabled) {
+    // Inside the seamless affine subspace: the kernel pins (or the curve constraints, which include them) fixed.
+    const std::vector<char> fixed =
+        untangle_fixed_components(mesh, correction.layers(), aligned ? std::vector<int>{} : correction.kernel_pins(),
+                                  aligned ? aligned->fixed_components() : std::vector<char>{});
+    const double price_before = correction_energy(u);
+    u = untangle_map(mesh, correction, known, Z, fixed, u, options.untangle, progress, P.untangling,
+                     aligned ? aligned->fixed_components() : std::vector<char>{});
+    if (P.untangling.iterations > 0) {
+      P.untangling.energy = correction_energy(u) - price_before;
+      lap("untangling");
+    }
   }
   if (aligned) {
     P.aligned_curves = aligned->curves(u);

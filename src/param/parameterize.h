@@ -5,7 +5,8 @@
 //  3. integrate X̂ over the cut disk (1.12) and read the complex periods b_j of the symmetric paths,
 //  4. round the periods to the lattice (4.2.2; fix-up of even branch points on the rotated lattice),
 //  5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P with the conforming 𝔏̄ (branch rows removed) ((1.14) on M̃),
-//  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units (then local stiffening while triangles flip).
+//  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units (then relaxation, local stiffening and the
+//     untangling of the remaining flipped or collapsed triangles).
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/lattice.h"
@@ -13,6 +14,7 @@
 #include "param/period_rounding.h"
 #include "param/relaxation.h"
 #include "param/stiffening.h"
+#include "param/untangle.h"
 
 namespace quadcover {
 
@@ -59,6 +61,9 @@ struct ParamOptions {
   /// Local stiffening of the final solve against flipped triangles (beyond the thesis, param/stiffening.h); it
   /// follows the relaxed targets when relaxation ran.
   StiffeningOptions stiffening;
+  /// Untangling and injective polish of the final map when it has a flipped or collapsed triangle (beyond the
+  /// thesis, param/untangle.h): seams, periods, branch points and curve constraints stay fixed.
+  UntangleOptions untangle;
 };
 
 /// The quad edge length h that `options` asks for on `mesh` with a field of `branch_points` branch points (see

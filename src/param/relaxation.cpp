@@ -84,7 +84,7 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
     out.u = u;
     out.gradient_target = G;
     const double next = targets_of(uv, G);
-    const FlipReport flips = flipped_triangles(uv);
+    const FlipReport flips = flipped_triangles(mesh, uv);
     // Refactor only when a triangle flips that has no extra weight yet (then every flipped one gets more).
     weights_changed = false;
     for (int f : flips.flipped_faces) weights_changed = weights_changed || w[f] == 1;

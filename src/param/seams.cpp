@@ -48,25 +48,29 @@ SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double r
   return r;
 }
 
-FlipReport flipped_triangles(const Eigen::MatrixX3cd& uv) {
+FlipReport flipped_triangles(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double tolerance) {
   FlipReport r;
   const Eigen::Index nf = uv.rows();
   std::vector<double> area(static_cast<std::size_t>(nf));
-  double mean = 0;
+  double total_uv = 0;
   for (Eigen::Index f = 0; f < nf; ++f) {
     area[f] = 0.5 * std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0)));
-    mean += std::abs(area[f]);
+    total_uv += std::abs(area[f]);
     r.parameter_area += area[f];
   }
-  mean = nf ? mean / nf : 0;
+  const double total_3d = mesh.total_area();
+  const double ratio = total_3d > 0 ? total_uv / total_3d : 0;
   for (Eigen::Index f = 0; f < nf; ++f) {
-    if (std::abs(area[f]) <= 1e-12 * mean) {
-      ++r.degenerate;
-    } else if (area[f] < 0) {
+    const double ref = tolerance * mesh.face_areas()[f] * ratio;
+    if (std::abs(area[f]) <= ref)
+      ++r.collapsed;
+    else if (area[f] < 0)
       ++r.flipped;
-      r.flipped_faces.push_back(static_cast<int>(f));
-    }
+    else
+      continue;
+    r.flipped_faces.push_back(static_cast<int>(f));
   }
+  r.non_positive = r.flipped + r.collapsed;
   return r;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Measuring a parameterization from its per-corner coordinates alone: the transition z ↦ i^k z + c across every
-// interior edge (seamless iff c ∈ Z[i]), and the triangles that flip orientation in parameter space.
+// interior edge (seamless iff c ∈ Z[i]), and the triangles that flip or collapse in parameter space.
 #include <Eigen/Core>
 #include <vector>
 
@@ -21,14 +21,21 @@ struct SeamReport {
 /// uv  #F by 3 per-corner coordinates.
 SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double relative_tolerance = 1e-9);
 
+/// Orientation of the map's triangles, relative to the reference area A_ref(t) = A3D(t) · (Σ|A_uv| / Σ A3D) and
+/// τ = flip_tolerance: *flipped* if A_uv(t) < −τ·A_ref(t), *collapsed* if |A_uv(t)| ≤ τ·A_ref(t). A valid
+/// integer-grid map (thesis 2.1, requirement 2) has neither: non_positive = flipped + collapsed = 0.
 struct FlipReport {
-  int flipped = 0;                 ///< triangles with negative signed area in parameter space
-  int degenerate = 0;              ///< triangles with |area| below 1e-12 × mean |area|
-  std::vector<int> flipped_faces;  ///< their indices
+  int flipped = 0;                 ///< A_uv < −τ·A_ref
+  int collapsed = 0;               ///< |A_uv| ≤ τ·A_ref
+  int non_positive = 0;            ///< flipped + collapsed
+  std::vector<int> flipped_faces;  ///< the non-positive ones (both kinds), ascending
   double parameter_area = 0;       ///< Σ signed areas (≈ number of unit squares covered)
 };
 
-/// Signed parameter areas ½ Im(conj(uv1 - uv0)(uv2 - uv0)) of all faces.
-FlipReport flipped_triangles(const Eigen::MatrixX3cd& uv);
+inline constexpr double flip_tolerance = 1e-8;
+
+/// Signed parameter areas ½ Im(conj(uv1 - uv0)(uv2 - uv0)) of all faces, judged against the 3D areas of `mesh`.
+/// \pre uv is #F by 3.
+FlipReport flipped_triangles(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double tolerance = flip_tolerance);
 
 }  // namespace quadcover

@@ -36,7 +36,7 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
   const int nf = mesh.num_faces();
   auto map_of = [&](const Eigen::VectorXcd& u) { return Eigen::MatrixX3cd(base - correction.corner_values(u)); };
   Eigen::MatrixX3cd uv = map_of(u0);
-  int best_flips = flipped_triangles(uv).flipped;
+  int best_flips = flipped_triangles(mesh, uv).non_positive;
   result = {};
   result.flipped_before = result.flipped_after = best_flips;
   Eigen::VectorXcd best = u0;
@@ -50,7 +50,7 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
     for (int f = 0; f < nf; ++f) weighted.row(f) *= w[f];
     const Eigen::VectorXcd u = solve(complex_conforming_stiffness(mesh, matching, w), correction.rhs(weighted), true);
     uv = map_of(u);
-    const int flips = flipped_triangles(uv).flipped;
+    const int flips = flipped_triangles(mesh, uv).non_positive;
     ++result.iterations;
     progress.report("param", -1, "stiffening: " + std::to_string(flips) + " flipped triangles");
     if (flips < best_flips) {

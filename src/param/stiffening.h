@@ -3,7 +3,7 @@
 // With the rounded periods and the branch points fixed, φ = φ̂ + σ − u and ∇φ − Z = T − ∇u with T = Σ̃_d − X̃_C, so
 // the harmonic correction u minimizes Σ_t w_t A_t |T_t − ∇u_t|² for w ≡ 1 (giving E_D + E_H, 6.1.1). Raising w_t on
 // distorted and flipped triangles pulls them towards the field (a frame is never flipped) at the price of
-// E_S = ½‖X̃ − ∇φ̃‖² − E_D − E_H ≥ 0. u stays a covering function (0 at branch points): seams stay exact, branch
+// E_K = ½‖X̃ − ∇φ̃‖² − E_D − E_H ≥ 0. u stays a covering function (0 at branch points): seams stay exact, branch
 // points stay on their integer points, curve constraints stay enforced (the caller's solver keeps them).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -17,7 +17,9 @@
 namespace quadcover {
 
 struct StiffeningOptions {
-  int max_iterations = 6;       ///< re-solves at most; 0 turns stiffening off
+  /// Re-solves at most; 0 (default) turns stiffening off: the untangler (param/untangle.h) makes the final map
+  /// injective where the subspace allows, and with it stiffening changed no count on the shipped meshes.
+  int max_iterations = 0;
   double strength = 1.0;        ///< c in w_t ← w_t + c · min(d_t, max_distortion)
   double max_distortion = 5.0;  ///< cap of d_t per iteration
   int patience = 3;             ///< stop after this many re-solves without fewer flipped triangles
@@ -31,7 +33,7 @@ Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, 
 /// returns the u with the fewest flipped triangles (u0 unless a re-solve strictly improves on it; re-solve k is the
 /// k-th call of `solve`, reported as result.kept_iteration). `base` holds the
 /// corner values of φ̂ + σ (φ = base − u), `target` = T = Σ̃_d − X̃_C, Z the scaled gauged field. Fills `result`
-/// except its price E_S (the caller knows E_H).
+/// except its price E_K (the caller knows E_H).
 Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                     const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                                     const FramePairs& Z, const FramePairs& target,

@@ -65,7 +65,7 @@ nlohmann::json map_json(const Mesh& mesh, const Parameterization& map, const Eig
   written.uv = uv;
   nlohmann::json j = to_json(param_quality(mesh, written));
   const SeamReport seams = measure_seams(mesh, uv, 1e-9);
-  const FlipReport flips = flipped_triangles(uv);
+  const FlipReport flips = flipped_triangles(mesh, uv);
   j["seamless"] = seams.seamless;
   j["parameter_extent"] = seams.parameter_extent;
   j["cut_edges"] = seams.cut_edges;
@@ -103,6 +103,7 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
   r["rounding"] = rounding_to_json(job.options.param, map);
   r["relaxation"] = relaxation_to_json(map);
   r["stiffening"] = stiffening_to_json(map);
+  r["untangling"] = untangling_to_json(map);
   r["aligned_curves"] = curves_json(map);
   r["extraction"] = nullptr;
   r["quad_mesh"] = nullptr;
@@ -138,6 +139,7 @@ nlohmann::json report_summary(const nlohmann::json& r) {
                       {"branch_points", p["branch_points"]},
                       {"h_sym", p["h_sym"]},
                       {"flipped_triangles", p["flipped_triangles"]},
+                      {"non_positive_triangles", p["non_positive_triangles"]},
                       {"seamless", p["seamless"]},
                       {"E_D", p["energy_curl"]},
                       {"E_H", p["energy_harmonic"]},

@@ -16,12 +16,17 @@ namespace quadcover {
 inline constexpr int kReportSchemaVersion = 1;
 
 /// The report of the parameterization job. `uv` is the map as written (#F by 3 per-corner coordinates); `input`
-/// names the source ("" from Python). Keys: schema_version, job ("param"), input, mesh {vertices, faces, genus,
-/// boundary_loops, components}, options, edge_length, density {target_quads, first_quads, quads, resolves}, field
-/// {branch_points_initial, branch_points [{vertex, quarter_index, index}], b_odd, b_even, unfixed_even_branch_points},
-/// parameterization (metrics/report.h to_json(ParamQuality) plus seamless, parameter_extent, cut_edges, flipped_faces),
-/// optimize, rounding, relaxation, stiffening, aligned_curves {curves, max_deviation, conflicts}, extraction,
-/// quad_mesh, surface_distance, quad_smoothing (null for param), warnings, seconds. \pre uv is #F by 3.
+/// names the source ("" from Python). Keys:
+///   schema_version, job ("param"), input, mesh {vertices, faces, genus, boundary_loops, components}, options,
+///   edge_length, density {target_quads, first_quads, quads, resolves},
+///   field {branch_points_initial, branch_points [{vertex, quarter_index, index}], b_odd, b_even,
+///          unfixed_even_branch_points},
+///   parameterization (metrics/report.h to_json(ParamQuality): flipped, collapsed and non-positive triangles, ARAP,
+///          cones, seams; plus seamless, parameter_extent, cut_edges, parameter_area, flipped_faces, h_sym),
+///   optimize, rounding, relaxation, stiffening, untangling, aligned_curves {curves, max_deviation, conflicts},
+///   extraction, quad_mesh, surface_distance, feature_fidelity, quad_smoothing, surface_check (null for param),
+///   warnings (sentences), seconds (per stage; the only values that differ between two runs).
+/// \pre uv is #F by 3.
 nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
                             const std::string& input = "");
 

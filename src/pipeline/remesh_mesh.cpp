@@ -14,7 +14,7 @@ namespace {
 /// The signed parameter area is the number of quads the map can hold; below a few there is nothing to extract
 /// (too coarse a density, or a map folded onto itself by a field without branch points, e.g. a flat fan).
 void check_extractable(const Mesh& mesh, const Parameterization& map) {
-  const double area = flipped_triangles(map.uv).parameter_area;
+  const double area = flipped_triangles(mesh, map.uv).parameter_area;
   if (area >= 4) return;
   const long quads = std::lround(std::max(0.0, area));
   throw InputError("density", 0,

@@ -151,22 +151,26 @@ def check_param(binary, mesh_path, name, out, info, src):
           f"{seams.max_translation_defect:.3g} at edge {seams.worst_edge} (tolerance {tol:.3g})")
     if info["genus"] > 0 or info["boundary_loops"] > 0 or rep["branch_points"] > 0:
         check(seams.cut_edges > 0, f"{name}: a map with cones or topology but no cut edge")
+    # Flipped / collapsed, recomputed from the file: A_ref = 3D area x (total |UV area| / total 3D area), tau = 1e-8;
+    # flipped if A_uv < -tau A_ref, collapsed if |A_uv| <= tau A_ref. The report must count exactly these.
     areas = objcheck.uv_signed_areas(obj)
-    # Flipped = negative parameter area (grid units: one quad = area 1); |area| < 1e-9 may count either way.
-    surely = sum(1 for a in areas if a < -1e-9)
-    maybe = sum(1 for a in areas if a < 1e-9)
-    check(surely <= rep["flipped_triangles"] <= maybe and
-          rep["flipped_triangles"] + rep["degenerate_triangles"] >= maybe,
-          f"{name}: report flips {rep['flipped_triangles']} (+{rep['degenerate_triangles']} degenerate), "
-          f"re-measured: {surely} negative areas, {maybe - surely} near zero")
+    areas3d = objcheck.face_areas(obj)
+    ratio = sum(abs(a) for a in areas) / sum(areas3d)
+    flipped = sum(1 for a, r in zip(areas, areas3d) if a < -1e-8 * r * ratio)
+    collapsed = sum(1 for a, r in zip(areas, areas3d) if abs(a) <= 1e-8 * r * ratio)
+    check(rep["flipped_triangles"] == flipped and rep["collapsed_triangles"] == collapsed and
+          rep["non_positive_triangles"] == flipped + collapsed == len(rep["flipped_faces"]),
+          f"{name}: report flips {rep['flipped_triangles']} + collapsed {rep['collapsed_triangles']}, "
+          f"re-measured from the file: {flipped} + {collapsed}")
     check(rep["energy_curl"] >= 0 and rep["energy_harmonic"] >= 0,
           f"{name}: negative energy E_D={rep['energy_curl']} E_H={rep['energy_harmonic']}")
     check(isinstance(report["field"]["branch_points"], list), f"{name}: report field.branch_points is not a list")
     # Metrics re-read the written file: same flips, still seamless.
     p, _ = run(binary, ["metrics", obj_path, "--json"])
     met = json.loads(p.stdout)["parameterization"]
-    check(surely <= met["flipped_triangles"] <= maybe, f"{name}: metrics flips {met['flipped_triangles']}, but the "
-          f"file has {surely} negative parameter areas and {maybe - surely} near zero")
+    check(met["flipped_triangles"] == flipped and met["collapsed_triangles"] == collapsed,
+          f"{name}: metrics counts {met['flipped_triangles']} + {met['collapsed_triangles']}, the file has "
+          f"{flipped} flipped and {collapsed} collapsed")
     check(met["max_transition_error"] <= tol, f"{name}: metrics finds seams off by {met['max_transition_error']:.3g}")
     return report, dt
 
@@ -246,10 +250,10 @@ def key_metrics(param_rep, remesh_rep, topo):
     ex = remesh_rep["extraction"]
     return {
         "branch_points": len(param_rep["field"]["branch_points"]),
-        "param_flipped_triangles": param_rep["parameterization"]["flipped_triangles"],
+        "param_non_positive_triangles": param_rep["parameterization"]["non_positive_triangles"],
         "E_D_plus_E_H": param_rep["parameterization"]["energy_curl"] + param_rep["parameterization"]["energy_harmonic"],
         "arap": pq["arap"],
-        "remesh_flipped_triangles": pq["flipped_triangles"],
+        "remesh_non_positive_triangles": pq["non_positive_triangles"],
         "rsd_edge_length": q["rsd_edge_length"],
         "rsd_corner_angle": q["rsd_corner_angle"],
         "irregular_vertices": q["irregular_vertices"],

@@ -205,6 +205,21 @@ def uv_signed_areas(obj):
     return areas
 
 
+def face_areas(obj):
+    """3D area of each face (fan triangulation)."""
+    out = []
+    for face in obj.faces:
+        p0, total = obj.v[face[0]], 0.0
+        for j in range(1, len(face) - 1):
+            p1, p2 = obj.v[face[j]], obj.v[face[j + 1]]
+            a = [p1[i] - p0[i] for i in range(3)]
+            b = [p2[i] - p0[i] for i in range(3)]
+            c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+            total += 0.5 * math.sqrt(sum(x * x for x in c))
+        out.append(total)
+    return out
+
+
 def mesh_area(obj):
     total = 0.0
     for face in obj.faces:

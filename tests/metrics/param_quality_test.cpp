@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "param/seams.h"
 #include "quad/quad_test_maps.h"
 #include "quad/transitions.h"
 #include "support/test_meshes.h"
@@ -101,6 +102,68 @@ TEST(ParamQuality, FoldedVertexWindsZeroTimes) {
   EXPECT_EQ(q.flipped_triangles, 1);
   EXPECT_EQ(q.branch_points, 1);
   EXPECT_EQ(q.branch_points_by_index, (std::map<int, int>{{4, 1}}));
+}
+
+// A_ref(t) = A3D(t) · Σ|A_uv| / Σ A3D, τ = 1e-8: one triangle collapsed exactly onto a line, one mirrored, one shrunk
+// to 1e-9 · A_ref (collapsed) and one to 1e-6 · A_ref (valid), the rest the identity of the planar grid.
+TEST(ParamQuality, CountsFlippedAndCollapsedSeparately) {
+  const Mesh mesh = testing::make_grid(4);
+  Parameterization P = planar_map(mesh, [](Complex z) { return z; });
+  P.uv.row(3) << Complex(0, 0), Complex(1, 1), Complex(2, 2);  // exactly collapsed
+  P.uv.row(7) = P.uv.row(7).conjugate().eval();                // flipped
+  const auto shrink = [&](int f, double factor) {
+    const Complex c = P.uv.row(f).mean();
+    for (int k = 0; k < 3; ++k) P.uv(f, k) = c + std::sqrt(factor) * (P.uv(f, k) - c);
+  };
+  shrink(11, 1e-9);
+  shrink(12, 1e-6);
+  const ParamQuality q = param_quality(mesh, P);
+  EXPECT_EQ(q.flipped_triangles, 1);
+  EXPECT_EQ(q.collapsed_triangles, 2);
+  EXPECT_EQ(q.non_positive_triangles, 3);
+  const FlipReport r = flipped_triangles(mesh, P.uv);
+  EXPECT_EQ(r.flipped, 1);
+  EXPECT_EQ(r.collapsed, 2);
+  EXPECT_EQ(r.non_positive, 3);
+  EXPECT_EQ(r.flipped_faces, (std::vector<int>{3, 7, 11}));
+}
+
+// Direct recomputation on a real mesh: a noisy projection of bunny_3k to its xy-plane folds in many places; the
+// counts follow from the Jacobian determinants (an independent formula for the parameter areas).
+TEST(ParamQuality, CountsMatchDirectRecomputationOnARealMesh) {
+  const Mesh mesh = testing::load_test_mesh("bunny_3k");
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0, 0.2 * mesh.mean_edge_length());
+  Eigen::VectorXcd z(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    z[v] = Complex(mesh.V()(v, 0) + noise(rng), mesh.V()(v, 1) + noise(rng));
+  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) uv(f, c) = z[mesh.F()(f, c)];
+  uv.row(0) << uv(0, 0), uv(0, 0), uv(0, 1);  // one exact collapse
+  const Parameterization P = parameterization_from_uv(mesh, uv);
+  double uv_total = 0;
+  std::vector<double> a(mesh.num_faces());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    a[f] = map_jacobian(mesh, uv, f).determinant() * mesh.face_areas()[f];
+    uv_total += std::abs(a[f]);
+  }
+  int flipped = 0, collapsed = 0;
+  std::vector<int> faces;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const double ref = 1e-8 * mesh.face_areas()[f] * uv_total / mesh.total_area();
+    if (std::abs(a[f]) <= ref)
+      ++collapsed, faces.push_back(f);
+    else if (a[f] < 0)
+      ++flipped, faces.push_back(f);
+  }
+  ASSERT_GT(flipped, 10);
+  EXPECT_EQ(collapsed, 1);
+  const ParamQuality q = param_quality(mesh, P);
+  EXPECT_EQ(q.flipped_triangles, flipped);
+  EXPECT_EQ(q.collapsed_triangles, collapsed);
+  EXPECT_EQ(q.non_positive_triangles, flipped + collapsed);
+  EXPECT_EQ(flipped_triangles(mesh, uv).flipped_faces, faces);
 }
 
 TEST(ParamQuality, SeamlessTorusAndCubeBranchPoints) {

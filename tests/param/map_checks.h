@@ -8,7 +8,7 @@
 #include "param/seams.h"
 
 // ½‖X̃ − ∇φ̃‖² on the covering (= Σ_t A_t |·|² of both frame vectors on M), X̃ the scaled, gauged frames: the
-// total that E_D + E_H (+ the prices E_R, E_S of relaxation and stiffening) must add up to (6.1.1).
+// total that E_D + E_H (+ the prices E_R, E_K of relaxation and stiffening) must add up to (6.1.1).
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
 #include "param/disk_functions.h"

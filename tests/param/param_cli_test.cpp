@@ -81,10 +81,11 @@ TEST(ParamCli, WritesSeamlessObjAndReport) {
     // Fields with branch points on these meshes: no degenerate-holonomy or half-integer warnings.
     ASSERT_TRUE(report["warnings"].is_array());
     EXPECT_TRUE(report["warnings"].empty()) << report["warnings"].dump();
-    EXPECT_EQ(map["flipped_triangles"].get<int>(), static_cast<int>(map["flipped_faces"].size()));
-    EXPECT_EQ(map["flipped_triangles"].get<int>(), flipped_triangles(uv).flipped);
+    EXPECT_EQ(map["non_positive_triangles"].get<int>(), static_cast<int>(map["flipped_faces"].size()));
+    EXPECT_EQ(map["flipped_triangles"].get<int>(), flipped_triangles(mesh, uv).flipped);
+    EXPECT_EQ(map["collapsed_triangles"].get<int>(), flipped_triangles(mesh, uv).collapsed);
     // --quads 400: about 400 unit squares of parameter area.
-    EXPECT_NEAR(flipped_triangles(uv).parameter_area, 400, 200);
+    EXPECT_NEAR(flipped_triangles(mesh, uv).parameter_area, 400, 200);
   }
   // Bad input and reserved options: exit status 2, no output file left behind.
   const std::string out = (dir / "bad.obj").string();
