@@ -285,6 +285,68 @@ Eigen::Index SparseCholesky<Scalar>::rows() const {
   return impl_->n < 0 ? 0 : impl_->n;
 }
 
+bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::span<const int> perm, ColumnFactor& out) {
+  out = ColumnFactor{};
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  const int n = static_cast<int>(A_full.rows());
+  if (A_full.cols() != n || static_cast<int>(perm.size()) != n) return false;
+  single_threaded_blas();
+  Eigen::SparseMatrix<Complex> lower = A_full.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  cholmod_common c{};
+  cholmod_start(&c);
+  c.print = 0;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  c.nmethods = 1;  // the given permutation only, not postordered: the factor of exactly P A Pᵀ
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 0;
+  cholmod_sparse S{};
+  S.nrow = S.ncol = static_cast<size_t>(n);
+  S.nzmax = static_cast<size_t>(lower.nonZeros());
+  S.p = lower.outerIndexPtr();
+  S.i = lower.innerIndexPtr();
+  S.x = lower.valuePtr();
+  S.stype = -1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = CHOLMOD_COMPLEX;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = S.packed = 1;
+  std::vector<int> user(perm.begin(), perm.end());
+  cholmod_factor* L = cholmod_analyze_p(&S, user.data(), nullptr, 0, &c);
+  bool ok = L && c.status == CHOLMOD_OK && cholmod_factorize(&S, L, &c) && L->minor == L->n && c.status == CHOLMOD_OK;
+  // Simplicial LLᴴ with packed, monotonic columns, then the supernodal padding pruned (exact symbolic pattern).
+  ok = ok && cholmod_change_factor(CHOLMOD_COMPLEX, 1, 0, 1, 1, L, &c) && cholmod_resymbol(&S, nullptr, 0, 1, L, &c);
+  ok = ok && std::equal(perm.begin(), perm.end(), static_cast<const int*>(L->Perm));
+  if (ok) {
+    const int* Lp = static_cast<const int*>(L->p);
+    const int* Li = static_cast<const int*>(L->i);
+    const auto* Lx = static_cast<const Complex*>(L->x);
+    out.p.resize(n + 1);
+    out.p[0] = 0;
+    for (int j = 0; j < n; ++j) out.p[j + 1] = out.p[j] + (Lp[j + 1] - Lp[j]);
+    out.i.resize(out.p[n]);
+    out.x.resize(out.p[n]);
+    std::vector<std::pair<int, Complex>> col;
+    for (int j = 0; j < n && ok; ++j) {
+      col.clear();
+      for (int q = Lp[j]; q < Lp[j + 1]; ++q) col.emplace_back(Li[q], Lx[q]);
+      std::sort(col.begin(), col.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      ok = !col.empty() && col[0].first == j;  // diagonal first
+      for (std::size_t q = 0; q < col.size(); ++q)
+        out.i[out.p[j] + q] = col[q].first, out.x[out.p[j] + q] = col[q].second;
+    }
+  }
+  if (L) cholmod_free_factor(&L, &c);
+  cholmod_finish(&c);
+  if (!ok) out = ColumnFactor{};
+  return ok;
+#else
+  (void)A_full;
+  (void)perm;
+  return false;
+#endif
+}
+
 template class SparseCholesky<double>;
 template class SparseCholesky<Complex>;
 

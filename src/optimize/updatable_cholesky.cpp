@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 
 namespace quadcover {
@@ -55,11 +57,24 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   view.nz = -1;
   impl_->S = cs_ci_schol(1, &view);  // AMD ordering of A + Aᵀ
   if (!impl_->S) throw NumericalError("cholesky", "symbolic analysis failed (n = " + std::to_string(n) + ")");
-  impl_->N = cs_ci_chol(&view, impl_->S);
-  if (!impl_->N) throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
   perm_.resize(n);
   for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
+  // The numbers: CHOLMOD's supernodal factorization on the same permutation and exact pattern (BLAS-3), else
+  // CXSparse's up-looking one. Both compute the unique Cholesky factor of P A Pᵀ (equal up to round-off).
+  ColumnFactor cf;
+  if (factor_with_permutation(A, perm_, cf) && std::equal(cf.p.begin(), cf.p.end(), impl_->S->cp)) {
+    impl_->N = static_cast<cs_cin*>(cs_ci_calloc(1, sizeof(cs_cin)));
+    cs_ci* L = impl_->N ? cs_ci_spalloc(n, n, std::max(1, cf.p[n]), 1, 0) : nullptr;
+    if (!L) throw std::bad_alloc();
+    impl_->N->L = L;
+    std::copy(cf.p.begin(), cf.p.end(), L->p);
+    std::copy(cf.i.begin(), cf.i.end(), L->i);
+    std::copy(cf.x.begin(), cf.x.end(), L->x);
+  } else {
+    impl_->N = cs_ci_chol(&view, impl_->S);
+  }
+  if (!impl_->N) throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);

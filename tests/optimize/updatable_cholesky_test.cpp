@@ -3,12 +3,15 @@
 // The matrices have exactly the structure of 𝔏̄* (3.8): Σ_f D_f K_f D_fᴴ with the Crouzeix–Raviart face stiffness
 // K_f and a layer phase i^l per (face, edge), so a matching change at edge e_k in face t multiplies the entries
 // (k, l), (k, m) of t by i^{±1} — the four-entry change of 6.2.1.
+#include "optimize/updatable_cholesky.h"
+
+#include <cs.h>
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
-#include "optimize/updatable_cholesky.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -177,6 +180,37 @@ TEST_P(OnMeshes, CxsparseUpdownsMatchFreshFactorization) {
   std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1), slot(0, 2);
   for (int it = 0; it < 200; ++it) F.apply_star_change_cxsparse(cover.turn(face(rng), slot(rng), it % 2 ? 1 : -1));
   expect_matches_fresh(F, cover, b);
+}
+
+// The factor UpdatableCholesky starts from (CHOLMOD supernodal on CXSparse's AMD permutation, padding pruned) has
+// exactly CXSparse's pattern (column pointers and rows) and its values up to round-off.
+TEST_P(OnMeshes, SupernodalFactorHasTheUpLookingPatternAndValues) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  std::mt19937 rng(11);
+  SyntheticCover cover(mesh, rng);
+  Eigen::SparseMatrix<Complex> A = cover.matrix();
+  A.makeCompressed();
+  const int n = static_cast<int>(A.rows());
+  cs_ci view{static_cast<int>(A.nonZeros()), n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), -1};
+  cs_cis* S = cs_ci_schol(1, &view);
+  cs_cin* N = cs_ci_chol(&view, S);
+  ASSERT_TRUE(S && N);
+  std::vector<int> perm(n);
+  for (int i = 0; i < n; ++i) perm[S->pinv[i]] = i;
+  ColumnFactor cf;
+  if (!SparseCholesky<Complex>::cholmod_available()) {
+    EXPECT_FALSE(factor_with_permutation(A, perm, cf));
+  } else {
+    ASSERT_TRUE(factor_with_permutation(A, perm, cf));
+    const cs_ci* L = N->L;
+    ASSERT_EQ(cf.p, std::vector<int>(L->p, L->p + n + 1));
+    ASSERT_EQ(cf.i, std::vector<int>(L->i, L->i + L->p[n]));
+    double diff = 0, norm = 0;
+    for (int q = 0; q < L->p[n]; ++q) diff += std::norm(cf.x[q] - L->x[q]), norm += std::norm(L->x[q]);
+    EXPECT_LT(std::sqrt(diff), 1e-12 * std::sqrt(norm));
+  }
+  cs_ci_nfree(N);
+  cs_ci_sfree(S);
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, OnMeshes, ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "lilium_disk"));
