@@ -328,12 +328,18 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
     out.x.resize(out.p[n]);
     std::vector<std::pair<int, Complex>> col;
     for (int j = 0; j < n && ok; ++j) {
-      col.clear();
-      for (int q = Lp[j]; q < Lp[j + 1]; ++q) col.emplace_back(Li[q], Lx[q]);
-      std::sort(col.begin(), col.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      ok = !col.empty() && col[0].first == j;  // diagonal first
-      for (std::size_t q = 0; q < col.size(); ++q)
-        out.i[out.p[j] + q] = col[q].first, out.x[out.p[j] + q] = col[q].second;
+      int* rows = out.i.data() + out.p[j];
+      Complex* vals = out.x.data() + out.p[j];
+      std::copy(Li + Lp[j], Li + Lp[j + 1], rows);
+      std::copy(Lx + Lp[j], Lx + Lp[j + 1], vals);
+      const int len = Lp[j + 1] - Lp[j];
+      if (!std::is_sorted(rows, rows + len)) {  // CHOLMOD's conversion keeps them sorted; sort if it did not
+        col.clear();
+        for (int q = 0; q < len; ++q) col.emplace_back(rows[q], vals[q]);
+        std::sort(col.begin(), col.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (int q = 0; q < len; ++q) rows[q] = col[q].first, vals[q] = col[q].second;
+      }
+      ok = len > 0 && rows[0] == j;  // diagonal first
     }
   }
   if (L) cholmod_free_factor(&L, &c);

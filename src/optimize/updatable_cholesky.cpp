@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <new>
 #include <string>
 
 #include "calculus/sparse_cholesky.h"
@@ -29,12 +28,15 @@ std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const S
 
 struct UpdatableCholesky::Impl {
   cs_cis* S = nullptr;
-  cs_cin* N = nullptr;
+  cs_cin* N = nullptr;  // CXSparse's factor (fallback), or null when `own` holds it
+  ColumnFactor own;     // the factor from factor_with_permutation()
+  cs_ci view{};         // CXSparse's view of `own`
   ~Impl() {
     cs_ci_nfree(N);
     cs_ci_sfree(S);
   }
-  cs_ci* L() const { return N->L; }
+  cs_ci* L() { return N ? N->L : &view; }
+  const cs_ci* L() const { return N ? N->L : &view; }
 };
 
 UpdatableCholesky::UpdatableCholesky() = default;
@@ -62,19 +64,15 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
   // The numbers: CHOLMOD's supernodal factorization on the same permutation and exact pattern (BLAS-3), else
   // CXSparse's up-looking one. Both compute the unique Cholesky factor of P A Pᵀ (equal up to round-off).
-  ColumnFactor cf;
+  ColumnFactor& cf = impl_->own;
   if (factor_with_permutation(A, perm_, cf) && std::equal(cf.p.begin(), cf.p.end(), impl_->S->cp)) {
-    impl_->N = static_cast<cs_cin*>(cs_ci_calloc(1, sizeof(cs_cin)));
-    cs_ci* L = impl_->N ? cs_ci_spalloc(n, n, std::max(1, cf.p[n]), 1, 0) : nullptr;
-    if (!L) throw std::bad_alloc();
-    impl_->N->L = L;
-    std::copy(cf.p.begin(), cf.p.end(), L->p);
-    std::copy(cf.i.begin(), cf.i.end(), L->i);
-    std::copy(cf.x.begin(), cf.x.end(), L->x);
+    impl_->view = cs_ci{static_cast<int>(cf.x.size()), n, n, cf.p.data(), cf.i.data(), cf.x.data(), -1};
   } else {
+    cf = ColumnFactor{};
     impl_->N = cs_ci_chol(&view, impl_->S);
+    if (!impl_->N)
+      throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   }
-  if (!impl_->N) throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);
