@@ -26,6 +26,12 @@ std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const S
   return {std::move(w1), std::move(w2)};
 }
 
+namespace {
+// Σ c_j² / nnz(L) above which the supernodal route is faster (bunny_20k 51 and armadillo_86k 61: CXSparse 1.5-2×
+// faster; a 100k-face torus 223: CHOLMOD 2.5× faster).
+constexpr double kSupernodalFlopsPerEntry = 128;
+}  // namespace
+
 struct UpdatableCholesky::Impl {
   cs_cis* S = nullptr;
   cs_cin* N = nullptr;  // CXSparse's factor (fallback), or null when `own` holds it
@@ -62,10 +68,15 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
   perm_.resize(n);
   for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
-  // The numbers: CHOLMOD's supernodal factorization on the same permutation and exact pattern (BLAS-3), else
-  // CXSparse's up-looking one. Both compute the unique Cholesky factor of P A Pᵀ (equal up to round-off).
+  // The numbers: CXSparse's up-looking factorization costs Σ_j c_j² (c_j = column counts of L); when that is large
+  // per entry of L (big fronts, e.g. long thin meshes), CHOLMOD's supernodal one (BLAS-3) on the same permutation
+  // and exact pattern pays for its conversions (BENCHMARKS.md, "Stage profile"). Both compute the unique Cholesky
+  // factor of P A Pᵀ (equal up to round-off); the choice depends only on the pattern.
+  double flops = 0;
+  for (int j = 0; j < n; ++j) flops += std::pow(static_cast<double>(impl_->S->cp[j + 1] - impl_->S->cp[j]), 2.0);
+  const bool supernodal = flops >= kSupernodalFlopsPerEntry * std::max(1, impl_->S->cp[n]);
   ColumnFactor& cf = impl_->own;
-  if (factor_with_permutation(A, perm_, cf) && std::equal(cf.p.begin(), cf.p.end(), impl_->S->cp)) {
+  if (supernodal && factor_with_permutation(A, perm_, cf) && std::equal(cf.p.begin(), cf.p.end(), impl_->S->cp)) {
     impl_->view = cs_ci{static_cast<int>(cf.x.size()), n, n, cf.p.data(), cf.i.data(), cf.x.data(), -1};
   } else {
     cf = ColumnFactor{};

@@ -43,7 +43,8 @@ class UpdatableCholesky {
   UpdatableCholesky(UpdatableCholesky&&) noexcept;
   UpdatableCholesky& operator=(UpdatableCholesky&&) noexcept;
 
-  /// Symbolic analysis (AMD on A) and numeric factorization with CXSparse; sets b = 0.
+  /// Symbolic analysis (AMD on A) with CXSparse, numeric factorization with CXSparse or, when the factor has large
+  /// fronts, CHOLMOD's supernodal one on the same ordering and pattern; sets b = 0.
   /// \throw NumericalError("cholesky") if A is not positive definite or not square.
   explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A);
 
