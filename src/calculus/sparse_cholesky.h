@@ -61,8 +61,12 @@ class SparseCholesky {
 /// A lower triangular factor in compressed columns: column j holds rows i[p[j]] .. i[p[j+1]-1], increasing, the
 /// diagonal first (CXSparse's layout).
 struct ColumnFactor {
-  std::vector<int> p, i;
-  std::vector<Complex> x;
+  int n = 0;
+  int* p = nullptr;  ///< n + 1 column pointers
+  int* i = nullptr;  ///< p[n] row indices
+  Complex* x = nullptr;  ///< p[n] values
+  std::shared_ptr<void> storage;  ///< owns the arrays (CHOLMOD's own, no copy)
+  long nonzeros() const { return p ? p[n] : 0; }
 };
 
 /// The Cholesky factor L of P A Pᵀ = L Lᴴ for the given fill-reducing permutation (perm[new] = old) with the exact

@@ -35,7 +35,7 @@ constexpr double kSupernodalFlopsPerEntry = 128;
 struct UpdatableCholesky::Impl {
   cs_cis* S = nullptr;
   cs_cin* N = nullptr;  // CXSparse's factor (fallback), or null when `own` holds it
-  ColumnFactor own;     // the factor from factor_with_permutation()
+  ColumnFactor own;     // the factor from factor_with_permutation() (CHOLMOD's arrays)
   cs_ci view{};         // CXSparse's view of `own`
   ~Impl() {
     cs_ci_nfree(N);
@@ -50,7 +50,8 @@ UpdatableCholesky::~UpdatableCholesky() = default;
 UpdatableCholesky::UpdatableCholesky(UpdatableCholesky&&) noexcept = default;
 UpdatableCholesky& UpdatableCholesky::operator=(UpdatableCholesky&&) noexcept = default;
 
-UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) : impl_(std::make_unique<Impl>()) {
+UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in, Route route)
+    : impl_(std::make_unique<Impl>()) {
   if (A_in.rows() != A_in.cols()) throw NumericalError("cholesky", "matrix is not square");
   Eigen::SparseMatrix<Complex> A = A_in;
   A.makeCompressed();
@@ -74,10 +75,11 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   // factor of P A Pᵀ (equal up to round-off); the choice depends only on the pattern.
   double flops = 0;
   for (int j = 0; j < n; ++j) flops += std::pow(static_cast<double>(impl_->S->cp[j + 1] - impl_->S->cp[j]), 2.0);
-  const bool supernodal = flops >= kSupernodalFlopsPerEntry * std::max(1, impl_->S->cp[n]);
+  const bool supernodal = route == Route::Supernodal ||
+                          (route == Route::Automatic && flops >= kSupernodalFlopsPerEntry * std::max(1, impl_->S->cp[n]));
   ColumnFactor& cf = impl_->own;
-  if (supernodal && factor_with_permutation(A, perm_, cf) && std::equal(cf.p.begin(), cf.p.end(), impl_->S->cp)) {
-    impl_->view = cs_ci{static_cast<int>(cf.x.size()), n, n, cf.p.data(), cf.i.data(), cf.x.data(), -1};
+  if (supernodal && factor_with_permutation(A, perm_, cf) && std::equal(cf.p, cf.p + n + 1, impl_->S->cp)) {
+    impl_->view = cs_ci{static_cast<int>(cf.nonzeros()), n, n, cf.p, cf.i, cf.x, -1};
   } else {
     cf = ColumnFactor{};
     impl_->N = cs_ci_chol(&view, impl_->S);
@@ -90,6 +92,7 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   x_norm2_ = 0;
 }
 
+bool UpdatableCholesky::supernodal() const { return impl_ && !impl_->N; }
 int UpdatableCholesky::size() const { return static_cast<int>(perm_.size()); }
 long UpdatableCholesky::factor_nonzeros() const { return impl_ ? impl_->L()->p[impl_->L()->n] : 0; }
 const int* UpdatableCholesky::col_ptr() const { return impl_->L()->p; }
