@@ -285,6 +285,83 @@ Eigen::Index SparseCholesky<Scalar>::rows() const {
   return impl_->n < 0 ? 0 : impl_->n;
 }
 
+#ifdef QUADCOVER_HAVE_CHOLMOD
+namespace {
+struct CholmodFactorStorage {
+  cholmod_common c{};
+  cholmod_factor* L = nullptr;
+  CholmodFactorStorage() { cholmod_start(&c); }
+  ~CholmodFactorStorage() {
+    if (L) cholmod_free_factor(&L, &c);
+    cholmod_finish(&c);
+  }
+};
+}  // namespace
+#endif
+
+bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::span<const int> perm, ColumnFactor& out) {
+  out = ColumnFactor{};
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  const int n = static_cast<int>(A_full.rows());
+  if (A_full.cols() != n || static_cast<int>(perm.size()) != n) return false;
+  single_threaded_blas();
+  Eigen::SparseMatrix<Complex> lower = A_full.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  auto st = std::make_shared<CholmodFactorStorage>();
+  cholmod_common& c = st->c;
+  c.print = 0;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  c.nmethods = 1;  // the given permutation only, not postordered: the factor of exactly P A Pᵀ
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 0;
+  cholmod_sparse S{};
+  S.nrow = S.ncol = static_cast<size_t>(n);
+  S.nzmax = static_cast<size_t>(lower.nonZeros());
+  S.p = lower.outerIndexPtr();
+  S.i = lower.innerIndexPtr();
+  S.x = lower.valuePtr();
+  S.stype = -1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = CHOLMOD_COMPLEX;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = S.packed = 1;
+  std::vector<int> user(perm.begin(), perm.end());
+  cholmod_factor*& L = st->L;
+  L = cholmod_analyze_p(&S, user.data(), nullptr, 0, &c);
+  bool ok = L && c.status == CHOLMOD_OK && cholmod_factorize(&S, L, &c) && L->minor == L->n && c.status == CHOLMOD_OK;
+  // Simplicial LLᴴ with packed, monotonic columns, then the supernodal padding pruned (exact symbolic pattern).
+  ok = ok && cholmod_change_factor(CHOLMOD_COMPLEX, 1, 0, 1, 1, L, &c) && cholmod_resymbol(&S, nullptr, 0, 1, L, &c);
+  ok = ok && std::equal(perm.begin(), perm.end(), static_cast<const int*>(L->Perm));
+  if (!ok) return false;
+  int* Lp = static_cast<int*>(L->p);
+  int* Li = static_cast<int*>(L->i);
+  auto* Lx = static_cast<Complex*>(L->x);
+  std::vector<std::pair<int, Complex>> col;
+  for (int j = 0; j < n; ++j) {
+    int* rows = Li + Lp[j];
+    Complex* vals = Lx + Lp[j];
+    const int len = Lp[j + 1] - Lp[j];
+    if (!std::is_sorted(rows, rows + len)) {  // CHOLMOD's conversion keeps them sorted; sort if it did not
+      col.clear();
+      for (int q = 0; q < len; ++q) col.emplace_back(rows[q], vals[q]);
+      std::sort(col.begin(), col.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (int q = 0; q < len; ++q) rows[q] = col[q].first, vals[q] = col[q].second;
+    }
+    if (len == 0 || rows[0] != j) return false;  // diagonal first
+  }
+  out.n = n;
+  out.p = Lp;
+  out.i = Li;
+  out.x = Lx;
+  out.storage = std::move(st);
+  return true;
+#else
+  (void)A_full;
+  (void)perm;
+  return false;
+#endif
+}
+
 template class SparseCholesky<double>;
 template class SparseCholesky<Complex>;
 

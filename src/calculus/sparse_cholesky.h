@@ -5,6 +5,8 @@
 // never silently here: no diagonal shift is ever added.
 #include <Eigen/SparseCore>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "mesh/mesh.h"
 
@@ -55,6 +57,23 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// A lower triangular factor in compressed columns: column j holds rows i[p[j]] .. i[p[j+1]-1], increasing, the
+/// diagonal first (CXSparse's layout).
+struct ColumnFactor {
+  int n = 0;
+  int* p = nullptr;  ///< n + 1 column pointers
+  int* i = nullptr;  ///< p[n] row indices
+  Complex* x = nullptr;  ///< p[n] values
+  std::shared_ptr<void> storage;  ///< owns the arrays (CHOLMOD's own, no copy)
+  long nonzeros() const { return p ? p[n] : 0; }
+};
+
+/// The Cholesky factor L of P A Pᵀ = L Lᴴ for the given fill-reducing permutation (perm[new] = old) with the exact
+/// symbolic pattern of P A Pᵀ (no supernodal padding): CHOLMOD's supernodal factorization (BLAS-3) converted to
+/// simplicial form. A is Hermitian positive definite in full storage (the lower triangle is read).
+/// \return false if quadcover was built without CHOLMOD or A is not positive definite (`out` is then empty).
+bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A, std::span<const int> perm, ColumnFactor& out);
 
 extern template class SparseCholesky<double>;
 extern template class SparseCholesky<Complex>;

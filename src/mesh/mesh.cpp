@@ -256,6 +256,7 @@ void Mesh::build_geometry() {
       corner_local_(f, k) = Complex(d.dot(b1), d.dot(b2));
     }
   }
+  total_area_ = face_area_.sum();
   edge_length_.resize(ne);
   for (int e = 0; e < ne; ++e) edge_length_[e] = (V_.row(E_(e, 1)) - V_.row(E_(e, 0))).norm();
   mean_edge_length_ = ne > 0 ? edge_length_.mean() : 0.0;

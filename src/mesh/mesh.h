@@ -117,7 +117,7 @@ class Mesh {
   const Eigen::VectorXcd& edge_transport() const { return edge_transport_; }
   double mean_edge_length() const { return mean_edge_length_; }
   double bounding_box_diagonal() const;
-  double total_area() const { return face_area_.sum(); }
+  double total_area() const { return total_area_; }  ///< Σ face_areas(), cached
 
   /// Converts a 3D vector (projected to the tangent plane) into face f's complex coordinates and back.
   Complex to_local(int f, const Eigen::Vector3d& w) const {
@@ -149,6 +149,7 @@ class Mesh {
   Eigen::MatrixX3cd corner_local_;
   Eigen::VectorXcd edge_transport_;
   double mean_edge_length_ = 0;
+  double total_area_ = 0;
 };
 
 /// The result of building a mesh from a file's soup.

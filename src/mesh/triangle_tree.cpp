@@ -1,6 +1,7 @@
 #include "mesh/triangle_tree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -29,21 +30,26 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
-TriangleTree::TriangleTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) : V_(V), F_(F) {
+TriangleTree::TriangleTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F) {
   const int n = static_cast<int>(F.rows());
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), 0);
   centroid_.resize(n);
   for (int f = 0; f < n; ++f) centroid_[f] = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3.0;
-  if (n > 0) build(0, n);
+  if (n > 0) build(V, F, 0, n);
+  // Corners in leaf order, contiguous: a leaf's triangles are read from one block instead of 3 strided rows each.
+  tri_.resize(n);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) tri_[i][c] = V.row(F(order_[i], c)).transpose();
+  centroid_ = {};
 }
 
-int TriangleTree::build(int begin, int end) {
+int TriangleTree::build(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int begin, int end) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
   Eigen::AlignedBox3d box, cbox;
   for (int i = begin; i < end; ++i) {
-    for (int c = 0; c < 3; ++c) box.extend(V_.row(F_(order_[i], c)).transpose());
+    for (int c = 0; c < 3; ++c) box.extend(V.row(F(order_[i], c)).transpose());
     cbox.extend(centroid_[order_[i]]);
   }
   nodes_[id].box = box;
@@ -57,8 +63,8 @@ int TriangleTree::build(int begin, int end) {
   const int mid = (begin + end) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](int x, int y) { return centroid_[x][axis] < centroid_[y][axis]; });
-  const int l = build(begin, mid);
-  const int r = build(mid, end);
+  const int l = build(V, F, begin, mid);
+  const int r = build(V, F, mid, end);
   nodes_[id].left = l;
   nodes_[id].right = r;
   return id;
@@ -84,29 +90,37 @@ double TriangleTree::nearest(const Eigen::Vector3d& p, int& best_face, Eigen::Ve
   double best = std::numeric_limits<double>::infinity();
   best_face = -1;
   if (nodes_.empty()) return best;
-  std::vector<int> stack = {0};
-  while (!stack.empty()) {
-    const Node& nd = nodes_[stack.back()];
-    stack.pop_back();
-    if (nd.box.squaredExteriorDistance(p) >= best) continue;
+  // Depth-first, nearer child first: at most one pending sibling per level, and median splits give a depth of at
+  // most log2(#F) + 1 < 64 levels.
+  struct Pending {
+    int node;
+    double bound;  // squared distance from p to the node's box
+  };
+  std::array<Pending, 64> stack;
+  int top = 0;
+  stack[top++] = {0, nodes_[0].box.squaredExteriorDistance(p)};
+  while (top > 0) {
+    const Pending pending = stack[--top];
+    if (pending.bound >= best) continue;
+    const Node& nd = nodes_[pending.node];
     if (nd.left < 0) {
       for (int i = nd.begin; i < nd.end; ++i) {
-        const int f = order_[i];
-        const Eigen::Vector3d q = closest_point_on_triangle(p, V_.row(F_(f, 0)), V_.row(F_(f, 1)), V_.row(F_(f, 2)));
+        const Triangle& t = tri_[i];
+        const Eigen::Vector3d q = closest_point_on_triangle(p, t[0], t[1], t[2]);
         const double d = (q - p).squaredNorm();
-        if (d < best) best = d, best_face = f, point = q;
+        if (d < best) best = d, best_face = order_[i], point = q;
       }
       continue;
     }
     // visit the nearer child first
-    const double dl = nodes_[nd.left].box.squaredExteriorDistance(p),
-                 dr = nodes_[nd.right].box.squaredExteriorDistance(p);
-    if (dl < dr) {
-      stack.push_back(nd.right);
-      stack.push_back(nd.left);
+    const Pending l{nd.left, nodes_[nd.left].box.squaredExteriorDistance(p)},
+        r{nd.right, nodes_[nd.right].box.squaredExteriorDistance(p)};
+    if (l.bound < r.bound) {
+      stack[top++] = r;
+      stack[top++] = l;
     } else {
-      stack.push_back(nd.left);
-      stack.push_back(nd.right);
+      stack[top++] = l;
+      stack[top++] = r;
     }
   }
   return best;

@@ -2,6 +2,7 @@
 // Closest points on a triangle set through a bounding volume hierarchy (surface distances, projection onto the input).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <vector>
 
 namespace quadcover {
@@ -22,14 +23,14 @@ class TriangleTree {
     int left = -1, right = -1;  ///< children, or -1 for a leaf
     int begin = 0, end = 0;     ///< leaf range in order_
   };
-  int build(int begin, int end);
+  int build(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int begin, int end);
   /// Squared distance to the nearest triangle, its index (-1 if none) and the closest point on it.
   double nearest(const Eigen::Vector3d& p, int& face, Eigen::Vector3d& point) const;
-  Eigen::MatrixX3d V_;
-  Eigen::MatrixX3i F_;
-  std::vector<int> order_;
+  using Triangle = std::array<Eigen::Vector3d, 3>;
+  std::vector<int> order_;  // leaf order -> face
   std::vector<Node> nodes_;
-  std::vector<Eigen::Vector3d> centroid_;
+  std::vector<Eigen::Vector3d> centroid_;  // during build() only
+  std::vector<Triangle> tri_;              // corners of face order_[i]
 };
 
 /// Closest point to p on triangle (a, b, c) (region test on the barycentric coordinates).

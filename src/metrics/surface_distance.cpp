@@ -1,11 +1,29 @@
 #include "metrics/surface_distance.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "mesh/triangle_tree.h"
 
 namespace quadcover {
+
+namespace {
+// Distances from point(0..n-1) to the tree, queried in parallel; the caller reduces them in index order, so sums
+// do not depend on the thread count.
+template <class Point>
+std::vector<double> distances(const TriangleTree& tree, int n, const Point& point) {
+  std::vector<double> out(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 256), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i != r.end(); ++i) out[i] = std::sqrt(tree.squared_distance(point(i)));
+  });
+  return out;
+}
+}  // namespace
 
 SurfaceDistance surface_distance(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces,
                                  const Eigen::MatrixX3d& ref_V, const Eigen::MatrixX3i& ref_F) {
@@ -20,7 +38,9 @@ SurfaceDistance surface_distance(const Eigen::MatrixX3d& V, const std::vector<st
     for (std::size_t i = 1; i + 1 < f.size(); ++i) tris.push_back({f[0], f[i], f[i + 1]});
   Eigen::MatrixX3i T(tris.size(), 3);
   for (std::size_t i = 0; i < tris.size(); ++i) T.row(i) = tris[i].transpose();
-  const TriangleTree to_ref(ref_V, ref_F), to_remesh(V, T);
+  std::optional<TriangleTree> to_ref_tree, to_remesh_tree;  // the two builds are independent
+  tbb::parallel_invoke([&] { to_ref_tree.emplace(ref_V, ref_F); }, [&] { to_remesh_tree.emplace(V, T); });
+  const TriangleTree &to_ref = *to_ref_tree, &to_remesh = *to_remesh_tree;
   // Samples of the remesh.
   std::vector<Eigen::Vector3d> samples;
   std::vector<char> used(V.rows(), 0);
@@ -37,16 +57,15 @@ SurfaceDistance surface_distance(const Eigen::MatrixX3d& V, const std::vector<st
   for (int v = 0; v < V.rows(); ++v)
     if (used[v]) samples.push_back(V.row(v).transpose());
   double sum = 0;
-  for (const auto& p : samples) {
-    const double dist = std::sqrt(to_ref.squared_distance(p));
+  for (double dist : distances(to_ref, static_cast<int>(samples.size()), [&](int i) { return samples[i]; })) {
     sum += dist;
     d.max_to_reference = std::max(d.max_to_reference, dist);
   }
   d.mean_to_reference = sum / static_cast<double>(samples.size()) / d.bbox_diagonal;
   d.max_to_reference /= d.bbox_diagonal;
   sum = 0;
-  for (int v = 0; v < ref_V.rows(); ++v) {
-    const double dist = std::sqrt(to_remesh.squared_distance(ref_V.row(v).transpose()));
+  const auto ref_point = [&](int v) -> Eigen::Vector3d { return ref_V.row(v).transpose(); };
+  for (double dist : distances(to_remesh, static_cast<int>(ref_V.rows()), ref_point)) {
     sum += dist;
     d.max_from_reference = std::max(d.max_from_reference, dist);
   }

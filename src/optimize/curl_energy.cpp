@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
@@ -35,8 +36,10 @@ CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEner
 
 CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
                        const CurlEnergyOptions& options)
-    : CurlEnergy(mesh, smoother, options) {
-  system_ = std::make_unique<SmoothingSystem>(mesh, smoother, weights);
+    : workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother), options_(options) {
+  // The state (smoothing solve, 𝔏̄* factorization) and the estimates' system (5.4) are independent.
+  tbb::parallel_invoke([&] { recompute_from_scratch(); },
+                       [&] { system_ = std::make_unique<SmoothingSystem>(mesh, smoother, weights); });
 }
 
 CurlEnergy::~CurlEnergy() = default;
@@ -58,9 +61,9 @@ double CurlEnergy::recompute_from_scratch() {
   edge_vec_.resize(mesh_->num_faces(), 3);
   for (int f = 0; f < mesh_->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) edge_vec_(f, k) = mesh_->edge_vector_local(f, k);
-  alpha_ = smoother_->solve();
+  // The smoothing solve (5.3) and the factorization of 𝔏̄* are independent: one per core.
+  tbb::parallel_invoke([&] { alpha_ = smoother_->solve(); }, [&] { factor_ = UpdatableCholesky(shifted_stiffness()); });
   field_ = smoother_->rotated(alpha_);
-  factor_ = UpdatableCholesky(shifted_stiffness());
   factor_.set_rhs(rhs(alpha_));  // 𝔏̄* v = -curl* X (6.1)
   trial_ = FactorTrial(factor_.size());
   pending_valid_ = false;

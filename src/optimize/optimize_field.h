@@ -52,6 +52,7 @@ struct OptimizeResult {
   double delta_eh = 0;                  ///< `full`: Δ_EH = E_H / (2 h_sym), in the unscaled field's units (÷ scale²)
   double evaluations_per_second = 0;
   double seconds = 0;
+  double setup_seconds = 0;            ///< smoother, 𝔏̄* factorization and E_D before the first evaluation
   long max_evaluations = 0;            ///< the budget used (auto resolved; 0 = unlimited)
   double time_limit_seconds = 0;       ///< the time limit used (auto resolved; 0 = none)
   CurlEnergyTimings exact_timings;     ///< exact evaluations, commits, prepare_estimates, shares (wall seconds)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 
 namespace quadcover {
@@ -25,14 +26,23 @@ std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const S
   return {std::move(w1), std::move(w2)};
 }
 
+namespace {
+// Σ c_j² / nnz(L) above which the supernodal route is faster (bunny_20k 51 and armadillo_86k 61: CXSparse 1.5-2×
+// faster; a 100k-face torus 223: CHOLMOD 2.5× faster).
+constexpr double kSupernodalFlopsPerEntry = 128;
+}  // namespace
+
 struct UpdatableCholesky::Impl {
   cs_cis* S = nullptr;
-  cs_cin* N = nullptr;
+  cs_cin* N = nullptr;  // CXSparse's factor (fallback), or null when `own` holds it
+  ColumnFactor own;     // the factor from factor_with_permutation() (CHOLMOD's arrays)
+  cs_ci view{};         // CXSparse's view of `own`
   ~Impl() {
     cs_ci_nfree(N);
     cs_ci_sfree(S);
   }
-  cs_ci* L() const { return N->L; }
+  cs_ci* L() { return N ? N->L : &view; }
+  const cs_ci* L() const { return N ? N->L : &view; }
 };
 
 UpdatableCholesky::UpdatableCholesky() = default;
@@ -40,7 +50,8 @@ UpdatableCholesky::~UpdatableCholesky() = default;
 UpdatableCholesky::UpdatableCholesky(UpdatableCholesky&&) noexcept = default;
 UpdatableCholesky& UpdatableCholesky::operator=(UpdatableCholesky&&) noexcept = default;
 
-UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) : impl_(std::make_unique<Impl>()) {
+UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in, Route route)
+    : impl_(std::make_unique<Impl>()) {
   if (A_in.rows() != A_in.cols()) throw NumericalError("cholesky", "matrix is not square");
   Eigen::SparseMatrix<Complex> A = A_in;
   A.makeCompressed();
@@ -55,17 +66,33 @@ UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in) :
   view.nz = -1;
   impl_->S = cs_ci_schol(1, &view);  // AMD ordering of A + Aᵀ
   if (!impl_->S) throw NumericalError("cholesky", "symbolic analysis failed (n = " + std::to_string(n) + ")");
-  impl_->N = cs_ci_chol(&view, impl_->S);
-  if (!impl_->N) throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
   perm_.resize(n);
   for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
+  // The numbers: CXSparse's up-looking factorization costs Σ_j c_j² (c_j = column counts of L); when that is large
+  // per entry of L (big fronts, e.g. long thin meshes), CHOLMOD's supernodal one (BLAS-3) on the same permutation
+  // and exact pattern pays for its conversions (BENCHMARKS.md, "Stage profile"). Both compute the unique Cholesky
+  // factor of P A Pᵀ (equal up to round-off); the choice depends only on the pattern.
+  double flops = 0;
+  for (int j = 0; j < n; ++j) flops += std::pow(static_cast<double>(impl_->S->cp[j + 1] - impl_->S->cp[j]), 2.0);
+  const bool supernodal = route == Route::Supernodal ||
+                          (route == Route::Automatic && flops >= kSupernodalFlopsPerEntry * std::max(1, impl_->S->cp[n]));
+  ColumnFactor& cf = impl_->own;
+  if (supernodal && factor_with_permutation(A, perm_, cf) && std::equal(cf.p, cf.p + n + 1, impl_->S->cp)) {
+    impl_->view = cs_ci{static_cast<int>(cf.nonzeros()), n, n, cf.p, cf.i, cf.x, -1};
+  } else {
+    cf = ColumnFactor{};
+    impl_->N = cs_ci_chol(&view, impl_->S);
+    if (!impl_->N)
+      throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
+  }
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);
   x_norm2_ = 0;
 }
 
+bool UpdatableCholesky::supernodal() const { return impl_ && !impl_->N; }
 int UpdatableCholesky::size() const { return static_cast<int>(perm_.size()); }
 long UpdatableCholesky::factor_nonzeros() const { return impl_ ? impl_->L()->p[impl_->L()->n] : 0; }
 const int* UpdatableCholesky::col_ptr() const { return impl_->L()->p; }

@@ -43,9 +43,15 @@ class UpdatableCholesky {
   UpdatableCholesky(UpdatableCholesky&&) noexcept;
   UpdatableCholesky& operator=(UpdatableCholesky&&) noexcept;
 
-  /// Symbolic analysis (AMD on A) and numeric factorization with CXSparse; sets b = 0.
+  /// Symbolic analysis (AMD on A) with CXSparse, numeric factorization with CXSparse or, when the factor has large
+  /// fronts, CHOLMOD's supernodal one on the same ordering and pattern; sets b = 0.
   /// \throw NumericalError("cholesky") if A is not positive definite or not square.
-  explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A);
+  /// `route`: Automatic (by the front sizes, as above), UpLooking (always CXSparse) or Supernodal (CHOLMOD when
+  /// compiled in).
+  enum class Route { Automatic, UpLooking, Supernodal };
+  explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A, Route route = Route::Automatic);
+  /// Whether the numbers came from CHOLMOD's supernodal factorization.
+  bool supernodal() const;
 
   int size() const;
   /// Nonzeros of L (including the diagonal).

@@ -97,6 +97,7 @@ TEST(GeneratedMesh, TorusAndGridTopology) {
   EXPECT_EQ(grid.num_boundary_loops(), 1);
   EXPECT_EQ(grid.boundary_loops()[0].size(), 20u);
   EXPECT_NEAR(grid.total_area(), 1.0, 1e-12);
+  EXPECT_EQ(grid.total_area(), grid.face_areas().sum());  // cached, the same sum
   const Mesh cyl = testing::make_cylinder(16, 4);
   EXPECT_EQ(cyl.num_boundary_loops(), 2);
   EXPECT_EQ(cyl.genus(), 0);

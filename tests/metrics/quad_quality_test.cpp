@@ -2,11 +2,12 @@
 #include "metrics/quad_quality.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <random>
 
-#include "metrics/report.h"
 #include "mesh/triangle_tree.h"
+#include "metrics/report.h"
 #include "metrics/surface_distance.h"
 #include "quad/extract_quads.h"
 #include "quad/quad_test_maps.h"
@@ -122,6 +123,26 @@ TEST(SurfaceDistance, TreeMatchesBruteForceOnBunny) {
     EXPECT_EQ(q, closest_point_on_triangle(p, mesh.V().row(mesh.F()(face, 0)), mesh.V().row(mesh.F()(face, 1)),
                                            mesh.V().row(mesh.F()(face, 2))));
   }
+}
+
+// The queries run in parallel; the reduction is in sample order, so one thread and all threads agree bit for bit.
+TEST(SurfaceDistance, SameValuesWithOneThreadAndAllThreads) {
+  const Mesh mesh = testing::load_test_mesh("bunny_3k.obj");
+  // A "remesh" with holes: every other input triangle, so distances from the input are nonzero.
+  std::vector<std::vector<int>> faces;
+  for (int f = 0; f + 1 < mesh.num_faces(); f += 2) faces.push_back({mesh.F()(f, 0), mesh.F()(f, 1), mesh.F()(f, 2)});
+  const SurfaceDistance all = surface_distance(mesh.V(), faces, mesh.V(), mesh.F());
+  SurfaceDistance one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = surface_distance(mesh.V(), faces, mesh.V(), mesh.F());
+  }
+  EXPECT_GT(all.max_from_reference, 0.0);
+  EXPECT_EQ(all.mean_to_reference, one.mean_to_reference);
+  EXPECT_EQ(all.max_to_reference, one.max_to_reference);
+  EXPECT_EQ(all.mean_from_reference, one.mean_from_reference);
+  EXPECT_EQ(all.max_from_reference, one.max_from_reference);
+  EXPECT_LT(all.max_to_reference, 1e-12);  // the remesh's samples lie on input triangles
 }
 
 TEST(SurfaceDistance, OffsetPlaneGivesOffsetOverDiagonal) {

@@ -3,12 +3,15 @@
 // The matrices have exactly the structure of 𝔏̄* (3.8): Σ_f D_f K_f D_fᴴ with the Crouzeix–Raviart face stiffness
 // K_f and a layer phase i^l per (face, edge), so a matching change at edge e_k in face t multiplies the entries
 // (k, l), (k, m) of t by i^{±1} — the four-entry change of 6.2.1.
+#include "optimize/updatable_cholesky.h"
+
+#include <cs.h>
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
-#include "optimize/updatable_cholesky.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -176,6 +179,60 @@ TEST_P(OnMeshes, CxsparseUpdownsMatchFreshFactorization) {
   F.set_rhs(b);
   std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1), slot(0, 2);
   for (int it = 0; it < 200; ++it) F.apply_star_change_cxsparse(cover.turn(face(rng), slot(rng), it % 2 ? 1 : -1));
+  expect_matches_fresh(F, cover, b);
+}
+
+// The factor UpdatableCholesky starts from (CHOLMOD supernodal on CXSparse's AMD permutation, padding pruned) has
+// exactly CXSparse's pattern (column pointers and rows) and its values up to round-off.
+TEST_P(OnMeshes, SupernodalFactorHasTheUpLookingPatternAndValues) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  std::mt19937 rng(11);
+  SyntheticCover cover(mesh, rng);
+  Eigen::SparseMatrix<Complex> A = cover.matrix();
+  A.makeCompressed();
+  const int n = static_cast<int>(A.rows());
+  cs_ci view{static_cast<int>(A.nonZeros()), n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), -1};
+  cs_cis* S = cs_ci_schol(1, &view);
+  cs_cin* N = cs_ci_chol(&view, S);
+  ASSERT_TRUE(S && N);
+  std::vector<int> perm(n);
+  for (int i = 0; i < n; ++i) perm[S->pinv[i]] = i;
+  ColumnFactor cf;
+  if (!SparseCholesky<Complex>::cholmod_available()) {
+    EXPECT_FALSE(factor_with_permutation(A, perm, cf));
+  } else {
+    ASSERT_TRUE(factor_with_permutation(A, perm, cf));
+    const cs_ci* L = N->L;
+    ASSERT_EQ(std::vector<int>(cf.p, cf.p + n + 1), std::vector<int>(L->p, L->p + n + 1));
+    ASSERT_EQ(std::vector<int>(cf.i, cf.i + cf.nonzeros()), std::vector<int>(L->i, L->i + L->p[n]));
+    double diff = 0, norm = 0;
+    for (int q = 0; q < L->p[n]; ++q) diff += std::norm(cf.x[q] - L->x[q]), norm += std::norm(L->x[q]);
+    EXPECT_LT(std::sqrt(diff), 1e-12 * std::sqrt(norm));
+  }
+  cs_ci_nfree(N);
+  cs_ci_sfree(S);
+}
+
+// The same updates on the supernodal route's factor (CHOLMOD's arrays, updated in place) agree with a fresh one.
+TEST_P(OnMeshes, PathLocalUpdatesOnTheSupernodalFactorMatchFreshFactorization) {
+  const Mesh mesh = testing::load_test_mesh(GetParam());
+  std::mt19937 rng(5);
+  SyntheticCover cover(mesh, rng);
+  UpdatableCholesky F(cover.matrix(), UpdatableCholesky::Route::Supernodal);
+  EXPECT_EQ(F.supernodal(), SparseCholesky<Complex>::cholmod_available());
+  EXPECT_FALSE(UpdatableCholesky(cover.matrix(), UpdatableCholesky::Route::UpLooking).supernodal());
+  Eigen::VectorXcd b = random_vector(mesh.num_edges(), rng);
+  F.set_rhs(b);
+  FactorTrial trial(F.size());
+  std::uniform_int_distribution<int> face(0, mesh.num_faces() - 1), slot(0, 2), sign(0, 1);
+  for (int it = 0; it < 200; ++it) {
+    trial.reset();
+    ASSERT_TRUE(trial.add_star_change(F, cover.turn(face(rng), slot(rng), sign(rng) ? 1 : -1))) << "step " << it;
+    const double predicted = trial.evaluate(F);
+    trial.commit(F);
+    EXPECT_NEAR(F.rhs_energy(), predicted, 1e-10 * predicted);
+  }
+  for (int it = 0; it < 50; ++it) F.apply_star_change_cxsparse(cover.turn(face(rng), slot(rng), it % 2 ? 1 : -1));
   expect_matches_fresh(F, cover, b);
 }
 
