@@ -472,7 +472,7 @@ def main():
                 print(f"FAIL {name}: {error}\n     ({took})")
             else:
                 metrics[name] = km
-                print(f"ok   {name:22s} bp {km['branch_points']:3d}  flips {km['remesh_flipped_triangles']:3d}  "
+                print(f"ok   {name:22s} bp {km['branch_points']:3d}  non-positive {km['remesh_non_positive_triangles']:3d}  "
                       f"RSD {km['rsd_edge_length']:5.1f}%/{km['rsd_corner_angle']:5.1f}%  ARAP {km['arap']:.4f}  "
                       f"irregular {km['irregular_vertices']:3d}  non-quads {km['non_quads']:3d}  ({took})")
         print(f"meshes: {time.monotonic() - t_start:.1f} s")
