@@ -90,6 +90,8 @@ def test_python_applies_the_cli_checks():
         quadcover.remesh(V, F, quads=3)
     with pytest.raises(ValueError, match="too few to extract"):
         quadcover.remesh(V, F, edge_length=1e6)
+    with pytest.raises(ValueError, match="largest that fits"):
+        quadcover.parameterize(V, F, quads=10**9)  # before any allocation, not a MemoryError minutes later
     with pytest.raises(ValueError, match="smooth_rigidity"):
         quadcover.remesh(V, F, smooth_rigidity=2.0)
     with pytest.raises(ValueError, match="either"):

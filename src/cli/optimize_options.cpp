@@ -47,6 +47,11 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--relaxation", options.relaxation, kRelaxationHelp)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd.add_option("--max-memory", options.max_memory_gb,
+                 "Memory the job may use in GB (0 = what the machine has available); a density whose estimated peak "
+                 "is larger is refused before any work, with the largest quad count that fits")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd.add_option("--stiffening", options.stiffening, kStiffeningHelp)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
@@ -67,6 +72,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.keep_better = cli.keep_better;
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
+  options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

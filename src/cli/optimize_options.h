@@ -23,6 +23,7 @@ struct OptimizeCliOptions {
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
+  double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
 };
 
 /// Adds --field, --optimize, --rounding, --max-iterations, --keep-better, --relaxation and --stiffening to `cmd`

@@ -72,7 +72,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     job = remesh_mesh(mesh, po, progress);
   } catch (const InputError& e) {
     if (e.file() != "density") throw;
-    throw InputError(input, 0, std::string(e.what()).substr(9) + " (--vertices N or --edge-length h)");
+    throw InputError(input, 0, std::string(e.what()).substr(9) + " (--faces N or --edge-length h)");
   }
   job.param.seconds.insert(job.param.seconds.begin(), {"read", read_seconds});
   nlohmann::json report = remesh_report(mesh, job, input);

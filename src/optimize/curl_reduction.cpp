@@ -63,8 +63,19 @@ class Reducer {
   using Path = std::vector<MatchingChange>;
 
   double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  /// The share of the budget used (evaluations or time, whichever is nearer its end; -1 without a budget).
+  double budget_used() const {
+    double f = -1;
+    if (opt_.max_evaluations > 0) f = static_cast<double>(res_.evaluations) / static_cast<double>(opt_.max_evaluations);
+    if (opt_.time_limit_seconds > 0) f = std::max(f, elapsed() / opt_.time_limit_seconds);
+    return std::min(f, 1.0);
+  }
   bool stop() {
     if (res_.stopped_early) return true;
+    const std::string budget = opt_.max_evaluations > 0 ? " / " + std::to_string(opt_.max_evaluations) : "";
+    progress_.report("optimize", budget_used(),
+                     "evaluations " + std::to_string(res_.evaluations) + budget + ", E_D " +
+                         std::to_string(ed_.energy()) + ", branch points " + std::to_string(bp_));
     const char* why = opt_.max_evaluations > 0 && res_.evaluations >= opt_.max_evaluations  ? "evaluations"
                       : opt_.time_limit_seconds > 0 && elapsed() >= opt_.time_limit_seconds ? "time"
                       : progress_.cancelled()                                               ? "cancelled"
@@ -226,7 +237,6 @@ class Reducer {
         if (!mesh_.is_boundary_edge(e)) order.push_back(e);
       std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return share[a] > share[b]; });
       long changed = 0;
-      progress_.report("curl reduction", -1, "E_D " + std::to_string(ed_.energy()));
       // Candidates in sorted order, screened in batches (batch size doubles while nothing is accepted, back to
       // the minimum after an acceptance: a fixed rule, so the result does not depend on the thread count).
       std::size_t next = 0, batch = kMinBatch;

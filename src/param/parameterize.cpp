@@ -183,6 +183,9 @@ void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions
   options.edge_length = target_edge_length(mesh, options, static_cast<int>(branch_points(mesh, field).size()));
 }
 
+/// The steps of parameterize() that report progress (its calls of lap()).
+constexpr double kParamSteps = 11;
+
 Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
                               ProgressSink& progress) {
   const int nf = mesh.num_faces(), ne = mesh.num_edges(), nv = mesh.num_vertices();
@@ -194,7 +197,8 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     const auto now = Clock::now();
     P.stage_seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
     t = now;
-    progress.report("param", -1, stage);
+    // One bar for the whole stage, in the order of its steps (kParamSteps of them, numbered by the laps).
+    progress.report("param", std::min(1.0, static_cast<double>(P.stage_seconds.size()) / kParamSteps), stage);
   };
 
   // ---- 1. cut through B and gauge (4.2)

@@ -6,6 +6,7 @@
 
 #include "field/compute_frame_field.h"
 #include "optimize/optimize_field.h"
+#include "pipeline/memory_budget.h"
 
 namespace quadcover {
 
@@ -113,6 +114,7 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
 
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
   validate(options);
+  check_memory_budget(mesh, options.param, available_bytes(options.max_memory_bytes));
   ParamJob job;
   job.options = options;
   ParamOptions& param = job.options.param;

@@ -43,7 +43,8 @@ struct ParamJob {
 
 /// Runs the parameterization job on `mesh`.
 /// \pre mesh is a valid triangle mesh (build_mesh).
-/// \throw InputError for invalid options (validate()), NumericalError if a factorization fails.
+/// \throw InputError for invalid options (validate()) or a density the memory cannot hold (check_memory_budget),
+/// NumericalError if a factorization fails.
 /// Honours progress.cancelled(): Algorithm 6.1 stops with its best field; the map is still completed.
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
 

@@ -1,6 +1,7 @@
 #pragma once
 // Options of the whole jobs (parameterize a mesh, remesh it): one struct per stage, gathered once, so that the CLI,
 // the Python module and the benches run the same pipeline with the same defaults and the same checks.
+#include <cstdint>
 #include <string>
 
 #include "field/compute_frame_field.h"
@@ -25,6 +26,9 @@ struct PipelineOptions {
   /// Remesh only: extraction and tangential smoothing of the quad mesh.
   ExtractOptions extraction;
   QuadSmoothingOptions smoothing;
+  /// Memory the job may use, in bytes (0 = the machine's available memory): a density whose estimated peak exceeds
+  /// it is refused before any work (pipeline/memory_budget.h).
+  std::int64_t max_memory_bytes = 0;
 };
 
 /// Checks every option a user can set, naming it as the Python keyword (the CLI validates its flags first).

@@ -128,7 +128,7 @@ TEST_F(AdversarialCli, TooCoarseDensityIsAnInputError) {
   const std::string in = write("coarse", V, F), out = path("coarse.quads.obj");
   const CliRun r = run("remesh " + in + " -o " + out);
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--vertices"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--faces"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

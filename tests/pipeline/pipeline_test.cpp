@@ -6,6 +6,7 @@
 #include "metrics/quad_quality.h"
 #include "param/seams.h"
 #include "pipeline/job_report.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/remesh_mesh.h"
 #include "support/test_meshes.h"
@@ -109,6 +110,24 @@ TEST(RemeshMesh, TooCoarseADensityIsAnInputErrorNotATinyMesh) {
   PipelineOptions options;
   options.param.edge_length = 100;  // the torus is 5.4 across
   EXPECT_THROW(remesh_mesh(mesh, options), InputError);
+}
+
+// A density the memory cannot hold is refused before any work, naming the largest count that fits (which then runs).
+TEST(ParameterizeMesh, RefusesADensityBeyondTheMemoryWithTheLargestThatFits) {
+  const Mesh mesh = testing::load_test_mesh("bunny_3k");
+  PipelineOptions options;
+  options.param.target_quads = 100000000;
+  options.max_memory_bytes = 200000000;  // 0.2 GB
+  try {
+    parameterize_mesh(mesh, options);
+    ADD_FAILURE() << "10^8 quads accepted in 0.2 GB";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "density");
+    EXPECT_NE(std::string(e.what()).find("largest that fits is about"), std::string::npos) << e.what();
+  }
+  options.param.target_quads = 2000;
+  EXPECT_NO_THROW(parameterize_mesh(mesh, options));
+  EXPECT_NEAR(requested_quads(mesh, options.param), 2000, 1e-9);
 }
 
 }  // namespace
