@@ -82,11 +82,22 @@ def face_sizes(obj):
 
 
 def loose_parts(obj):
+    """Blender's loose parts: the pieces connected through edges (union-find over the polygons' vertices)."""
     me = obj.data
-    me.calc_loop_triangles()
-    V = np.array([v.co[:] for v in me.vertices])
-    T = np.array([t.vertices[:] for t in me.loop_triangles])
-    return len(prep.prepare(V, T, min_triangles=1).parts)
+    parent = list(range(len(me.vertices)))
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for p in me.polygons:
+        vs = list(p.vertices)
+        for a, b in zip(vs, vs[1:]):
+            parent[find(a)] = find(b)
+    used = {v for p in me.polygons for v in p.vertices}
+    return len({find(v) for v in used})
 
 
 def assert_all_quads_like(result, original, suffix="_quadcover"):
