@@ -31,6 +31,13 @@
 
 namespace quadcover {
 
+/// A change of the matching m_e of one edge by `delta` quarter turns (with the edge's orientation): the unit that
+/// branch point relocation (field/relocation.h) and Algorithm 6.1 (optimize/) apply.
+struct MatchingChange {
+  int edge;
+  int delta;
+};
+
 struct FrameField {
   Eigen::VectorXcd X;        ///< #F: first frame vector, face basis
   Eigen::VectorXcd Y;        ///< #F: second frame vector (= i·X for a cross field)

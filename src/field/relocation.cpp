@@ -83,7 +83,7 @@ std::vector<MatchingChange> relocate_branch_point(const Mesh& mesh, Eigen::Vecto
   const std::vector<int> path = relocation_path(mesh, p, q);
   const int quarters = matching_quarter_index(mesh, matching)[p];
   const std::vector<MatchingChange> changes = relocation_changes(mesh, path, quarters);
-  for (const auto& c : changes) matching[c.edge] += c.k;
+  for (const auto& c : changes) matching[c.edge] += c.delta;
   return changes;
 }
 

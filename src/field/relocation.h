@@ -3,15 +3,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "field/frame_field.h"
 #include "mesh/mesh.h"
 
 namespace quadcover {
-
-/// One matching change m_e += k.
-struct MatchingChange {
-  int edge;
-  int k;
-};
 
 /// Shortest edge path (by length, Dijkstra; ties broken by vertex index) from interior vertex p to vertex q,
 /// as a vertex sequence p, ..., q. Only interior edges are used and only the endpoints may be boundary

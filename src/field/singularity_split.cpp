@@ -151,7 +151,7 @@ int apply_quarter_moves(const Mesh& mesh, const std::vector<QuarterMove>& moves,
   for (const QuarterMove& m : moves) {
     // (5.2.2): the matching changes along the path move the quarter; intermediate vertices are unchanged.
     for (const MatchingChange& c : relocation_changes(mesh, relocation_path(mesh, m.from, m.to), m.quarters)) {
-      matching[c.edge] += c.k;
+      matching[c.edge] += c.delta;
       ++changed;
     }
   }

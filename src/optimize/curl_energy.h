@@ -42,12 +42,6 @@ struct CurlEnergyOptions {
   int confirm_rings = 0;
 };
 
-/// A matching change m_e += delta on an interior edge.
-struct MatchingChange {
-  int edge;
-  int delta;
-};
-
 /// Seconds spent per stage of evaluate() (accumulated), the columns of Table 6.1.
 struct CurlEnergyTimings {
   double smoothing = 0, curl = 0, update = 0, solve = 0, other = 0;

@@ -54,7 +54,7 @@ TEST(Relocation, MovesExactlyOneBranchPoint) {
   ASSERT_EQ(changes.size(), path.size() - 1);
   std::set<int> path_edges;
   for (const auto& c : changes) {
-    EXPECT_EQ(std::abs(c.k), std::abs(match_before[p]));
+    EXPECT_EQ(std::abs(c.delta), std::abs(match_before[p]));
     path_edges.insert(c.edge);
   }
   for (int e = 0; e < mesh.num_edges(); ++e)
@@ -70,7 +70,7 @@ TEST(Relocation, MovesExactlyOneBranchPoint) {
       ASSERT_EQ(match_after[v], match_before[v]) << "vertex " << v;
     }
 
-  for (const auto& c : changes) smoother.change_matching(c.edge, c.k);
+  for (const auto& c : changes) smoother.change_matching(c.edge, c.delta);
   ASSERT_EQ(smoother.matching(), matching);
   const FrameField moved = smoother.rotated(smoother.solve());
   const std::vector<BranchPoint> after = branch_points(mesh, moved);
