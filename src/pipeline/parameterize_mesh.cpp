@@ -7,6 +7,7 @@
 #include "field/compute_frame_field.h"
 #include "optimize/optimize_field.h"
 #include "pipeline/memory_budget.h"
+#include "quad/extract_quads.h"
 
 namespace quadcover {
 
@@ -34,16 +35,6 @@ std::string optimize_summary(const nlohmann::json& r, double evaluations_per_sec
   return line;
 }
 
-/// Σ_t |area(φ(t))|: the number of quads the map holds (exact for a closed seamless map).
-double quad_count(const Parameterization& map) {
-  double area = 0;
-  for (Eigen::Index f = 0; f < map.uv.rows(); ++f) {
-    const Complex a = map.uv(f, 1) - map.uv(f, 0), b = map.uv(f, 2) - map.uv(f, 0);
-    area += 0.5 * std::abs(std::imag(std::conj(a) * b));
-  }
-  return area;
-}
-
 /// With a time limit (progress.seconds_left() finite), Algorithm 6.1, the only stage that can stop with a usable
 /// result at any moment, stops early enough to leave the stages after it their time, estimated from the field stage
 /// (they take about kLaterStagesPerFieldSecond times as long on the shipped meshes, BENCHMARKS.md).
@@ -65,7 +56,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
   ParamOptions& param = job.options.param;
   DensityReport d;
   d.target_quads = param.target_quads;
-  d.quads = d.first_quads = quad_count(job.map);
+  d.quads = d.first_quads = parameter_area(mesh, job.map.uv);
   if (param.target_quads <= 0 || d.first_quads <= 0) return d;
   const double target = param.target_quads;
   const auto t = Clock::now();
@@ -86,7 +77,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
     param.edge_length = h;
     param.target_quads = 0;
     Parameterization map = parameterize(mesh, job.field, param, progress);
-    count = quad_count(map);
+    count = parameter_area(mesh, map.uv);
     note(h, count);
     ++d.resolves;
     if (std::abs(count / target - 1) < std::abs(d.quads / target - 1)) {
