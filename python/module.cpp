@@ -249,15 +249,19 @@ py::tuple parameterize_py(const py::array& V, const py::array& F, const JobArgs&
   PythonProgress progress(std::move(progress_callback));
   nlohmann::json report;
   Eigen::MatrixX3cd uv;
+  RowMatrixX3d map_V;  // the triangulation of uv: the input's, or its refinement for the curve constraints
+  RowMatrixX3i map_F;
   {
     py::gil_scoped_release release;
     const ParamJob job = parameterize_mesh(mesh, options, progress);
     report = param_report(mesh, job, job.map.uv);
     uv = job.map.uv;
+    map_V = job.mesh(mesh).V();
+    map_F = job.mesh(mesh).F();
   }
   progress.raise_if_stopped();
   warn(report);
-  return py::make_tuple(corner_uv_array(uv), to_python(report));
+  return py::make_tuple(corner_uv_array(uv), to_python(report), map_V, map_F);
 }
 
 /// Faces as a #faces×4 int array when every face is a quad, else a list of polygons.

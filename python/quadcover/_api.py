@@ -123,12 +123,32 @@ def field(mesh, F=None, **kwargs):
     return _quadcover.field(*as_arrays(mesh, F), **kwargs)
 
 
+class ParamResult(tuple):
+    """``(uv, report)`` of :func:`parameterize`, with ``.V`` and ``.F``: the triangulation ``uv`` lives on. That is
+    the input's, or, when the curve constraints needed it, a refinement of it: the input's vertices first (same
+    numbers), then the midpoints of ``report["refinement"]["split"]``; ``report["refinement"]`` says how many."""
+
+    def __new__(cls, uv, report, V, F):
+        result = super().__new__(cls, (uv, report))
+        result.V, result.F = V, F
+        return result
+
+    @property
+    def uv(self):
+        return self[0]
+
+    @property
+    def report(self):
+        return self[1]
+
+
 def parameterize(mesh, F=None, *, faces=None, progress=None, **kwargs):
-    """Seamless QuadCover parameterization: returns (uv #F×3×2, report). ``mesh``: V (with F) or a mesh-like
-    object (see :func:`as_arrays`). ``faces``: target quad count (alias ``quads``), or ``edge_length``.
-    ``progress(stage, fraction, message)`` is called as the stages run; returning True cancels
+    """Seamless QuadCover parameterization: returns (uv #F'×3×2, report) as a :class:`ParamResult` whose ``.V``,
+    ``.F`` are the triangulation of uv (the input's unless the report's ``refinement`` split edges). ``mesh``: V
+    (with F) or a mesh-like object (see :func:`as_arrays`). ``faces``: target quad count (alias ``quads``), or
+    ``edge_length``. ``progress(stage, fraction, message)`` is called as the stages run; returning True cancels
     (:class:`Cancelled`). Other keywords as in the extension (``help(quadcover._quadcover.parameterize)``)."""
-    return _call(_quadcover.parameterize, "parameterize", mesh, F, progress, faces, kwargs)
+    return ParamResult(*_call(_quadcover.parameterize, "parameterize", mesh, F, progress, faces, kwargs))
 
 
 def remesh(mesh, F=None, *, faces=None, progress=None, **kwargs):

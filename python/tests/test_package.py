@@ -44,11 +44,18 @@ def test_write_then_read_round_trips_positions_and_polygons(tmp_path, ext):
 
 def test_write_obj_with_per_corner_uv_reads_back(tmp_path):
     V, F = quadcover.read(BUNNY)
-    uv, _ = quadcover.parameterize(V, F, faces=300, optimize="none", stiffening=0, relaxation=0)
+    result = quadcover.parameterize(V, F, faces=300, optimize="none", stiffening=0, relaxation=0)
+    uv, report = result
+    # uv lives on result.V, result.F: the input's vertices first, unchanged, then one midpoint per split edge, each
+    # split adding two triangles (the report's refinement says how many).
+    added = report["refinement"]["added_vertices"]
+    assert result.V.shape == (len(V) + added, 3) and result.F.shape == (len(F) + 2 * added, 3)
+    np.testing.assert_array_equal(result.V[: len(V)], V)
+    assert uv.shape == (len(result.F), 3, 2) and result.uv is uv and result.report is report
     path = tmp_path / "param.obj"
-    quadcover.write(path, V, F, uv=uv)
+    quadcover.write(path, result.V, result.F, uv=uv)
     m = quadcover.read(path)
-    assert m.uv.shape == (3 * len(F), 2)
+    assert m.uv.shape == (3 * len(result.F), 2)
     # Each face's corners point at its own three vt lines, in order.
     np.testing.assert_allclose(m.uv[np.asarray(m.face_uv)], uv, rtol=0, atol=0)
 

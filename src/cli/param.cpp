@@ -86,9 +86,10 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read_seconds});
+  const Mesh& map_mesh = job.mesh(mesh);  // the input, or its refinement for the curve constraints
   Eigen::MatrixX2d UV;
   Eigen::MatrixX3i FUV;
-  corner_uv_table(mesh, job.map.uv, UV, FUV);
+  corner_uv_table(map_mesh, job.map.uv, UV, FUV);
   nlohmann::json report = param_report(mesh, job, corner_values(UV, FUV), input);
   report["output"] = out.obj;
   // Checked before anything is written: a map that is not seamless is an error, not a file.
@@ -97,11 +98,11 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                                       std::to_string(report["parameterization"]["max_transition_error"].get<double>()) +
                                       "); nothing written");
   t = std::chrono::steady_clock::now();
-  write_obj_with_uv(out.obj, mesh.V(), mesh.F(), UV, FUV);
+  write_obj_with_uv(out.obj, map_mesh.V(), map_mesh.F(), UV, FUV);
   report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   print_warnings(input, report);
-  if (!out.png.empty()) write_parameterization_png(out.png, mesh, job.map, views, render_options);
-  write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, mesh, job.map, nullptr, report);
+  if (!out.png.empty()) write_parameterization_png(out.png, map_mesh, job.map, views, render_options);
+  write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, map_mesh, job.map, nullptr, report);
   nlohmann::json summary = report_summary(report);
   summary["output"] = out.obj;
   return summary;

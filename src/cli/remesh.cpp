@@ -81,11 +81,11 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   const QuadMesh& quads = job.extraction.mesh;
   if (const std::size_t split = write_polygon_mesh(out.quads, quads.V, quads.faces); split > 0)
     report["warnings"].push_back(std::to_string(split) + " polygons were split into triangles for the STL output");
-  if (!out.param.empty()) write_param_obj(out.param, mesh, job.param.map.uv);
+  if (!out.param.empty()) write_param_obj(out.param, job.param.mesh(mesh), job.param.map.uv);
   report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
   print_warnings(input, report);
   if (!out.png.empty()) write_quad_mesh_png(out.png, quads, views, render_options);
-  write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, mesh, job.param.map, &quads,
+  write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, job.param.mesh(mesh), job.param.map, &quads,
                    report);
   nlohmann::json summary = report_summary(report);
   summary["output"] = out.quads;

@@ -27,7 +27,8 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"lattice", to_string(o.param.lattice)},       {"rounding", to_string(o.param.rounding.strategy)},
           {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
-          {"smooth_rigidity", o.smoothing.rigidity}};
+          {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
+          {"merge_coincident_cones", o.merge_coincident_cones}};
 }
 
 /// The branch points of the field the map was made from (the map's own cones are parameterization.branch_points).
@@ -74,6 +75,18 @@ nlohmann::json map_json(const Mesh& mesh, const Parameterization& map, const Eig
   return j;
 }
 
+/// What the curve refinement added (pipeline/curve_refinement.h): the map lives on input + these.
+nlohmann::json refinement_json(const Mesh& input, const ParamJob& job) {
+  const CurveRefinement& r = job.refinement;
+  nlohmann::json split = nlohmann::json::array();
+  for (const auto& [a, b] : r.split) split.push_back({a, b});
+  return {{"split_edges", r.split.size()},
+          {"added_vertices", r.split.size()},
+          {"added_faces", r.added_faces},
+          {"faces", job.mesh(input).num_faces()},
+          {"split", split}};
+}
+
 nlohmann::json seconds_json(const StageSeconds& seconds) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [stage, s] : seconds) j[stage] = s;
@@ -82,14 +95,16 @@ nlohmann::json seconds_json(const StageSeconds& seconds) {
 
 }  // namespace
 
-nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
+nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
                             const std::string& input) {
   const Parameterization& map = job.map;
+  const Mesh& mesh = job.mesh(input_mesh);
   nlohmann::json r;
   r["schema_version"] = kReportSchemaVersion;
   r["job"] = "param";
   r["input"] = input;
-  r["mesh"] = mesh_json(mesh);
+  r["mesh"] = mesh_json(input_mesh);
+  r["refinement"] = refinement_json(input_mesh, job);
   r["options"] = options_json(job.options);
   r["edge_length"] = map.edge_length;
   r["density"] = {{"target_quads", job.density.target_quads},
@@ -104,6 +119,8 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
   r["relaxation"] = relaxation_to_json(map);
   r["stiffening"] = stiffening_to_json(map);
   r["untangling"] = untangling_to_json(map);
+  r["untangling"]["merged_cone_pairs"] = job.merged_cone_pairs;
+  r["untangling"]["cone_merge_rounds"] = job.merge_rounds;
   r["aligned_curves"] = curves_json(map);
   r["extraction"] = nullptr;
   r["quad_mesh"] = nullptr;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "field/compute_frame_field.h"
+#include "pipeline/cone_merging.h"
 #include "optimize/optimize_field.h"
 #include "pipeline/memory_budget.h"
 #include "quad/extract_quads.h"
@@ -48,6 +49,24 @@ bool leave_time_for_later_stages(const Mesh& mesh, double field_seconds, double 
                                                          : 0.0;
   oo.time_limit_seconds = own > 0 ? std::min(own, budget) : budget;
   return own <= 0 || budget < own;
+}
+
+/// Merges the branch point pairs the map puts on one point (pipeline/cone_merging.h) and solves the map again, at
+/// most kMergeRounds times and only while that leaves fewer non-positive triangles.
+void merge_coincident_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, ParamJob& job,
+                            ProgressSink& progress) {
+  constexpr int kMergeRounds = 3;
+  for (int round = 0; round < kMergeRounds && !progress.cancelled(); ++round) {
+    const std::vector<ConeMerge> merges = coincident_cone_merges(mesh, job.map);
+    if (merges.empty()) break;
+    FrameField field = merge_cones(mesh, stage, job.field, lambda, merges);
+    Parameterization map = parameterize(mesh, field, job.options.param, progress);
+    ++job.merge_rounds;
+    if (map.untangling.non_positive_after >= job.map.untangling.non_positive_after) break;
+    job.field = std::move(field);
+    job.map = std::move(map);
+    job.merged_cone_pairs += static_cast<int>(merges.size());
+  }
 }
 
 }  // namespace
@@ -103,13 +122,18 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
   return warnings;
 }
 
-ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   validate(options);
-  check_memory_budget(mesh, options.param, available_bytes(options.max_memory_bytes));
+  check_memory_budget(input, options.param, available_bytes(options.max_memory_bytes));
   ParamJob job;
   job.options = options;
   ParamOptions& param = job.options.param;
   auto t = Clock::now();
+  if (options.refine_curve_triangles && param.align_curves) {
+    job.refinement = refine_for_curves(input, param.features);
+    if (job.refinement.mesh) lap(job.seconds, t, "refinement");
+  }
+  const Mesh& mesh = job.mesh(input);
   const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   lap(job.seconds, t, "field");
@@ -135,8 +159,16 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
+  t = Clock::now();
+  if (options.merge_coincident_cones) merge_coincident_cones(mesh, field, oo.lambda, job, finishing);
+  if (job.merge_rounds > 0) lap(job.seconds, t, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
+  if (job.refinement.mesh)
+    job.warnings.push_back("the map is on a refined triangulation: " + std::to_string(job.refinement.split.size()) +
+                           " edges split at their midpoints where a triangle had its three corners on boundary or "
+                           "feature curves (" + std::to_string(job.refinement.added_faces) +
+                           " triangles added; the input's vertices keep their numbers, see the report's refinement)");
   return job;
 }
 

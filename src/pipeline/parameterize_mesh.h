@@ -10,6 +10,7 @@
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
 #include "param/parameterization.h"
+#include "pipeline/curve_refinement.h"
 #include "pipeline/pipeline_options.h"
 
 namespace quadcover {
@@ -32,13 +33,22 @@ inline constexpr int kDensityResolves = 4;
 
 struct ParamJob {
   PipelineOptions options;      ///< as given, with the default density fixed to an explicit edge length
+  /// The triangulation the map lives on: the input's, or a refinement of it (more triangles, the input's vertices
+  /// first) when the curve constraints needed one. Use mesh(input) for it.
+  CurveRefinement refinement;
   FrameField field;             ///< the field the map was made from (optimized or original, see optimize["kept"])
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
   Parameterization map;
   nlohmann::json optimize;            ///< the "optimize" object (optimize/optimize_field.h to_json, plus "kept")
   DensityReport density;              ///< how a requested quad count was met
+  /// Branch point pairs on one lattice point merged into one cone, and the maps solved again for that
+  /// (pipeline/cone_merging.h).
+  int merged_cone_pairs = 0, merge_rounds = 0;
   std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
   StageSeconds seconds;
+
+  /// The mesh of `map`: the refined one, or `input` (the mesh given to parameterize_mesh) when none was needed.
+  const Mesh& mesh(const Mesh& input) const { return refinement.mesh ? *refinement.mesh : input; }
 };
 
 /// Runs the parameterization job on `mesh`.

@@ -21,6 +21,12 @@ struct PipelineOptions {
   long max_evaluations = kAutoBudget;
   /// Also parameterize the original field and keep the map with the lower E_D + E_H (parameterize_keep_better).
   bool keep_better = true;
+  /// Split the edges where the curve constraints would hold a triangle at zero area (pipeline/curve_refinement.h);
+  /// the map then lives on a finer triangulation (ParamJob::mesh).
+  bool refine_curve_triangles = false;
+  /// Merge branch point pairs that the map puts on one lattice point into one cone and solve the map again
+  /// (pipeline/cone_merging.h).
+  bool merge_coincident_cones = true;
   /// Density, lattice, rounding, relaxation, stiffening (param/parameterize.h).
   ParamOptions param;
   /// Remesh only: extraction and tangential smoothing of the quad mesh.

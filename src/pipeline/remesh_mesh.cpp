@@ -27,10 +27,11 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
 
 }  // namespace
 
-RemeshJob remesh_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   using Clock = std::chrono::steady_clock;
   RemeshJob job;
-  job.param = parameterize_mesh(mesh, options, progress);
+  job.param = parameterize_mesh(input, options, progress);
+  const Mesh& mesh = job.param.mesh(input);  // the map's triangulation (refined, or the input)
   const Parameterization& map = job.param.map;
   check_extractable(mesh, map);
   auto t = Clock::now();

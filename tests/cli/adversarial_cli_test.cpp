@@ -76,9 +76,13 @@ class AdversarialCli : public ::testing::Test {
       const PolygonSoup soup = read_mesh(out);
       EXPECT_TRUE(soup.positions.allFinite());
       if (k == 0) {
-        // The parameterization keeps the input mesh and gives every corner a finite vt; the map is seamless.
-        EXPECT_EQ(soup.num_vertices(), static_cast<std::size_t>(V.rows()));
-        EXPECT_EQ(soup.num_faces(), static_cast<std::size_t>(F.rows()));
+        // The parameterization keeps the input's vertices (first, unchanged) and faces, or refines it by midpoint
+        // splits of interior edges (each adds one vertex and two triangles), and gives every corner a finite vt; the
+        // map is seamless.
+        ASSERT_GE(soup.num_vertices(), static_cast<std::size_t>(V.rows()));
+        EXPECT_LT((soup.positions.topRows(V.rows()) - V).cwiseAbs().maxCoeff(), 1e-9);
+        EXPECT_EQ(soup.num_faces() - static_cast<std::size_t>(F.rows()),
+                  2 * (soup.num_vertices() - static_cast<std::size_t>(V.rows())));
         ASSERT_TRUE(soup.has_uv());
         EXPECT_TRUE(soup.uv.allFinite());
         for (std::int64_t t : soup.face_uv) ASSERT_GE(t, 0);

@@ -1,0 +1,33 @@
+#pragma once
+// Branch points that the rounding puts on one lattice point (issue 14 item 3, beyond the thesis). Two adjacent
+// branch points p, q with φ(p) = φ(q) hold every triangle containing both at zero area (param/untangle.h reports
+// them as stuck): no map in the seamless subspace is injective there. Seen from outside the pair acts as one cone
+// whose rotation is the product of theirs, so the field gets that cone: q's matching index modulo 4 moves to p
+// along their edge (thesis 5.2.2), the field is smoothed again with the new matching (5.3) and the map is solved
+// again. The quad mesh keeps the vertex the two cones shared; the map loses the collapsed triangles.
+#include <vector>
+
+#include "field/compute_frame_field.h"
+#include "field/frame_field.h"
+#include "mesh/mesh.h"
+#include "param/parameterization.h"
+
+namespace quadcover {
+
+/// One merge: the branch point `from` gives its index modulo 4 (`quarters` ∈ {1, 2, 3}) to the adjacent `into`.
+struct ConeMerge {
+  int from, into, quarters;
+};
+
+/// The merges that undo the map's stuck faces with two branch corners on one point: per such face (in face order)
+/// the pair, `from` the higher vertex number, skipping pairs that share a vertex with an earlier merge or whose
+/// edge is a boundary edge.
+std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map);
+
+/// `field` with the merges applied to its matching and its frames smoothed again for that matching (the field
+/// stage's weights, trusted and constrained faces and λ; field/smoothing.h).
+/// \throw NumericalError if the smoothing system cannot be factored.
+FrameField merge_cones(const Mesh& mesh, const FrameFieldResult& stage, const FrameField& field, double lambda,
+                       const std::vector<ConeMerge>& merges);
+
+}  // namespace quadcover

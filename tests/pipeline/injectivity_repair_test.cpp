@@ -1,0 +1,107 @@
+// The pipeline's repairs of maps that no untangling can make injective (issue 14 item 3): the curve refinement
+// (pipeline/curve_refinement.h) and the merging of coincident cones (pipeline/cone_merging.h), each compared with
+// the same job without it on a shipped mesh where the cause occurs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pipeline/cone_merging.h"
+#include "pipeline/curve_refinement.h"
+#include "pipeline/parameterize_mesh.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+/// Stuck faces (param/untangle.h) whose three corners lie on one integer iso-line of the map.
+int faces_on_one_iso_line(const Parameterization& map) {
+  int n = 0;
+  for (int f : map.untangling.stuck_faces)
+    for (int k = 0; k < 2; ++k) {
+      bool on = true;
+      const double line = k == 0 ? std::round(map.uv(f, 0).real()) : std::round(map.uv(f, 0).imag());
+      for (int c = 0; c < 3; ++c) on = on && std::abs((k == 0 ? map.uv(f, c).real() : map.uv(f, c).imag()) - line) < 1e-9;
+      if (on) {
+        ++n;
+        break;
+      }
+    }
+  return n;
+}
+
+/// Stuck faces with two branch corners on one point.
+int faces_with_coincident_cones(const Mesh& mesh, const Parameterization& map) {
+  std::vector<char> branch(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const BranchPoint& b : map.branch_points) branch[b.vertex] = 1;
+  int n = 0;
+  for (int f : map.untangling.stuck_faces)
+    for (int c = 0; c < 3; ++c)
+      if (branch[mesh.F()(f, c)] && branch[mesh.F()(f, (c + 1) % 3)] &&
+          std::abs(map.uv(f, c) - map.uv(f, (c + 1) % 3)) < 1e-9) {
+        ++n;
+        break;
+      }
+  return n;
+}
+
+TEST(CurveRefinement, NoTriangleKeepsThreeCurveCornersAndANonCurveEdge) {
+  const Mesh mesh = testing::load_test_mesh("camelhead_boundary");
+  const FeatureOptions features;
+  const CurveRefinement r = refine_for_curves(mesh, features);
+  ASSERT_TRUE(r.mesh);
+  EXPECT_EQ(curve_refinement_edges(*r.mesh, features), std::vector<int>{}) << "one pass must be enough";
+  EXPECT_EQ(r.mesh->num_faces(), mesh.num_faces() + r.added_faces);
+  EXPECT_EQ(r.mesh->num_vertices(), mesh.num_vertices() + static_cast<int>(r.split.size()));
+  EXPECT_EQ(r.mesh->genus(), mesh.genus());
+  EXPECT_EQ(r.mesh->num_boundary_loops(), mesh.num_boundary_loops());
+  EXPECT_NEAR(r.mesh->face_areas().sum(), mesh.face_areas().sum(), 1e-12 * mesh.face_areas().sum());
+  // Nothing to do where no curve runs: a closed smooth surface.
+  EXPECT_FALSE(refine_for_curves(testing::make_torus(48, 24), features).mesh);
+}
+
+TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
+  const Mesh mesh = testing::load_test_mesh("bunny_3k");
+  PipelineOptions plain;
+  plain.refine_curve_triangles = false;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  ASSERT_GT(faces_on_one_iso_line(without.map), 0) << "the case this test is about no longer occurs on bunny_3k";
+  EXPECT_EQ(without.map.uv.rows(), mesh.num_faces());
+  PipelineOptions refine;
+  refine.refine_curve_triangles = true;
+  const ParamJob with = parameterize_mesh(mesh, refine);
+  ASSERT_TRUE(with.refinement.mesh);
+  EXPECT_EQ(&with.mesh(mesh), with.refinement.mesh.get());
+  EXPECT_EQ(with.map.uv.rows(), with.mesh(mesh).num_faces());
+  EXPECT_EQ(faces_on_one_iso_line(with.map), 0);
+  EXPECT_FALSE(with.warnings.empty()) << "a refined triangulation is said";
+}
+
+TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles) {
+  const Mesh mesh = testing::load_test_mesh("cow");
+  PipelineOptions plain;
+  plain.merge_coincident_cones = false;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  const Mesh& m0 = without.mesh(mesh);
+  ASSERT_GT(faces_with_coincident_cones(m0, without.map), 0) << "the case this test is about no longer occurs";
+  const std::vector<ConeMerge> merges = coincident_cone_merges(m0, without.map);
+  ASSERT_FALSE(merges.empty());
+  for (const ConeMerge& c : merges) {
+    EXPECT_GT(c.from, c.into);
+    EXPECT_TRUE(c.quarters >= 1 && c.quarters <= 3);
+  }
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_LT(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
+  // Each merge turns at least one branch point into a regular vertex.
+  EXPECT_LE(with.map.branch_points.size() + with.merged_cone_pairs, without.map.branch_points.size());
+  // The index modulo 4 is moved, not lost: the sum over all branch points is the same modulo 4.
+  auto sum_mod4 = [](const Parameterization& p) {
+    int s = 0;
+    for (const BranchPoint& b : p.branch_points) s += b.quarter_index;
+    return ((s % 4) + 4) % 4;
+  };
+  EXPECT_EQ(sum_mod4(with.map), sum_mod4(without.map));
+}
+
+}  // namespace
+}  // namespace quadcover
