@@ -5,11 +5,7 @@
 
 namespace quadcover::grid {
 
-int local_corner(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
+int local_corner(const Mesh& mesh, int f, int v) { return mesh.corner_of(f, v); }
 
 namespace {
 
