@@ -8,6 +8,10 @@
 // The explicit formula printed in (1.6), ⟨X_s, e⟩ - ⟨X_t, e⟩, has the opposite sign of its own "= -div* JX".
 // div* X(e) = ⟨X_s, Je⟩ - ⟨X_t, Je⟩ as printed. Both are independent of the orientation of e.
 // All four throw std::invalid_argument if X does not have #F entries.
+//
+// Reference implementation on the real surface M (used by calculus/hodge.h): the product works with the covering's
+// complex operators (cover/complex_stiffness.h); tests/param/reference_stack_test.cpp checks the two against each
+// other through the Hodge decomposition.
 #include <Eigen/Core>
 
 #include "calculus/vector_field.h"

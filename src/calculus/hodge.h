@@ -2,6 +2,10 @@
 // Discrete Hodge decomposition X = X_P + X_C + X_H (Theorem 1.12) via (1.8)-(1.10), factorizing 𝔏 and 𝔏* once
 // and reusing the factors for every field.
 //
+// Reference implementation on the real surface M: the product removes curl on the covering (cover/, param/
+// parameterize.cpp); tests/param/reference_stack_test.cpp checks that, with a matching ≡ 0, its E_D = ‖X̃_C‖² is the
+// ‖X_C‖² of this decomposition.
+//
 // Kernel (1.10): on every connected component one vertex (and, on closed components, one edge) is pinned to 0,
 // which makes the reduced matrices positive definite without any diagonal shift; the solution is then shifted by
 // a constant per component so that ∫u dA = 0 (and ∫v dA = 0 on closed components). The result is the exact

@@ -64,6 +64,13 @@ void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std
       ->check(path_or_stdin);
 }
 
+CLI::App* add_mesh_command(CLI::App& app, const std::string& name, const std::string& description,
+                           std::vector<std::string>& inputs, const std::string& input_help) {
+  CLI::App* cmd = app.add_subcommand(name, description);
+  add_input_option(*cmd, inputs, input_help);
+  return cmd;
+}
+
 // ---- cancellation -------------------------------------------------------------------------------------------
 
 namespace {
@@ -409,6 +416,15 @@ std::string batch_output_path(const std::string& input, const std::string& outpu
   return path;
 }
 
+std::string output_path(const std::string& input, const std::string& output, bool batch, const std::string& suffix) {
+  return batch || output.empty() ? batch_output_path(input, output, suffix) : output;
+}
+
+std::string optional_output_path(const std::string& input, const std::string& output, bool batch,
+                                 const std::string& suffix) {
+  return output.empty() ? std::string() : batch ? batch_output_path(input, output, suffix) : output;
+}
+
 int describe_current_exception(std::string& message) {
   try {
     throw;
@@ -725,6 +741,19 @@ int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob&
   const std::vector<FileResult> results = process_files(files, global, job, std::cerr);
   print_summary(results, spec.summary_columns, global, std::cout);
   return batch_exit_code(results);
+}
+
+void run_on_inputs(CLI::App& cmd, const GlobalOptions& global, int& exit_code, const std::vector<std::string>& inputs,
+                   std::vector<std::string> columns, InputJob job) {
+  cmd.callback([&global, &exit_code, &inputs, columns = std::move(columns), job = std::move(job)] {
+    BatchSpec spec;
+    spec.inputs = inputs;
+    spec.summary_columns = columns;
+    const bool batch = is_batch(inputs);
+    exit_code = run_batch(spec, global, [&job, batch](const std::string& input, ProgressSink& progress) {
+      return job(input, batch, progress);
+    });
+  });
 }
 
 void write_json_atomically(const std::string& path, const nlohmann::json& j) {

@@ -68,6 +68,12 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global);
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
                       const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
+/// Adds the subcommand `name` with its positional mesh inputs (add_input_option) bound to `inputs`.
+/// \return the subcommand, owned by `app`.
+CLI::App* add_mesh_command(CLI::App& app, const std::string& name, const std::string& description,
+                           std::vector<std::string>& inputs,
+                           const std::string& input_help = "Input mesh files (.obj .off .ply .stl) or folders of them");
+
 // ---- cancellation -------------------------------------------------------------------------------------------
 
 /// Installs the signal handlers: the first Ctrl-C sets the interrupt flag; a second one, SIGTERM, SIGHUP, SIGQUIT
@@ -191,9 +197,9 @@ void prepare_outputs(const std::vector<std::string>& files, bool batch, const Gl
 /// What one file of a batch produced.
 struct FileResult {
   std::string input;
-  int exit_code = kOk;  ///< 0 ok, 1 internal, 2 bad input
+  int exit_code = kOk;   ///< 0 ok, 1 internal, 2 bad input
   bool skipped = false;  ///< --skip-existing found an output of it (exit_code stays 0)
-  std::string error;    ///< empty on success; otherwise the message main() would print (several lines allowed)
+  std::string error;     ///< empty on success; otherwise the message main() would print (several lines allowed)
   double seconds = 0;
   nlohmann::json result;  ///< what the job returned (null on failure)
 };
@@ -223,6 +229,25 @@ int batch_exit_code(const std::vector<FileResult>& results);
 /// (JSON with --json, "key: value" lines otherwise, nothing with --quiet). Several: process_files + print_summary.
 /// Returns the exit code.
 int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job);
+
+/// The work done for one input file of a command; `batch` is true when the command runs on several files or a
+/// folder (is_batch of its inputs).
+using InputJob = std::function<nlohmann::json(const std::string& input, bool batch, ProgressSink& progress)>;
+
+/// Makes `cmd` run `job` on every one of `inputs` through run_batch when it is invoked, with `columns` (keys of
+/// the job's JSON) in the summary table, and puts the exit code into `exit_code`.
+/// \pre `inputs` (the command's option storage), `global` and `exit_code` outlive `cmd`.
+void run_on_inputs(CLI::App& cmd, const GlobalOptions& global, int& exit_code, const std::vector<std::string>& inputs,
+                   std::vector<std::string> columns, InputJob job);
+
+/// Where the main output of `input` goes: `output` itself for one input, or, in a batch or when `output` is empty
+/// (default: next to the input), batch_output_path(input, output, suffix). \throw as batch_output_path.
+std::string output_path(const std::string& input, const std::string& output, bool batch, const std::string& suffix);
+
+/// An optional output: empty when `output` is, `output` itself for one input, batch_output_path(input, output,
+/// suffix) in a batch. \throw as batch_output_path.
+std::string optional_output_path(const std::string& input, const std::string& output, bool batch,
+                                 const std::string& suffix);
 
 // ---- errors and outputs ---------------------------------------------------------------------------------------
 

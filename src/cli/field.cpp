@@ -177,11 +177,10 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
 
 void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<FieldCmdOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "field",
-      "Compute the guiding cross field (principal curvature, trusted regions, smoothing; thesis ch. 5), "
-      "its matching and branch points, and write them as JSON");
-  add_input_option(*cmd, opt->inputs);
+  CLI::App* cmd = add_mesh_command(app, "field",
+                                   "Compute the guiding cross field (principal curvature, trusted regions, smoothing; "
+                                   "thesis ch. 5), its matching and branch points, and write them as JSON",
+                                   opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
                   "NAME.field.json");
@@ -230,17 +229,11 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
       ->check(CLI::Range(0, 10000))
       ->capture_default_str();
   add_global_options(*cmd, global);
-  cmd->callback([opt, &global, &exit_code] {
-    BatchSpec spec;
-    spec.inputs = opt->inputs;
-    spec.summary_columns = {"faces", "branch_points", "index_sum", "euler_characteristic", "energy_smooth"};
-    const bool batch = is_batch(opt->inputs);
-    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
-      const std::string output =
-          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".field.json") : opt->output;
-      return run_field(input, output, *opt, progress);
-    });
-  });
+  run_on_inputs(*cmd, global, exit_code, opt->inputs,
+                {"faces", "branch_points", "index_sum", "euler_characteristic", "energy_smooth"},
+                [opt](const std::string& input, bool batch, ProgressSink& progress) {
+                  return run_field(input, output_path(input, opt->output, batch, ".field.json"), *opt, progress);
+                });
 }
 
 const CommandRegistrar registrar{30, "field", register_field};

@@ -86,11 +86,11 @@ int run_single(const std::string& input, const InfoOptions& opt, const GlobalOpt
 
 void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "info", "Print counts, topology (genus, boundaries, components) and every validation problem of mesh files");
-  add_input_option(*cmd, opt->inputs,
-                   "Input meshes (.obj, .off, .ply, .stl) or folders of them; several are checked in parallel and "
-                   "summarized in a table");
+  CLI::App* cmd = add_mesh_command(
+      app, "info", "Print counts, topology (genus, boundaries, components) and every validation problem of mesh files",
+      opt->inputs,
+      "Input meshes (.obj, .off, .ply, .stl) or folders of them; several are checked in parallel and summarized in "
+      "a table");
   cmd->add_flag("--triangulate", opt->triangulate,
                 "Check the mesh as if its polygons were fan-triangulated (`quadcover repair` writes that mesh)");
   cmd->add_flag("--fix-orientation", opt->fix_orientation,

@@ -123,28 +123,23 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
 
 void register_metrics(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<MetricsOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "metrics",
+  CLI::App* cmd = add_mesh_command(
+      app, "metrics",
       "Quality numbers of a parameterized OBJ (per-corner vt: normalized ARAP, flips, cones, seamlessness, and the "
-      "extracted quad mesh) or of a quad mesh (RSD of edge lengths and angles, valences, non-quads, Table 7.1)");
-  add_input_option(*cmd, opt->inputs, "Parameterized OBJ (triangles with vt) or polygon mesh files, or folders");
+      "extracted quad mesh) or of a quad mesh (RSD of edge lengths and angles, valences, non-quads, Table 7.1)",
+      opt->inputs, "Parameterized OBJ (triangles with vt) or polygon mesh files, or folders");
   cmd->add_option("--ref", opt->ref, "Reference triangle mesh for the surface distance and the feature fidelity")
       ->check(CLI::ExistingFile);
   cmd->add_option("--report", opt->report, "Write the full JSON report (one input) or a folder for NAME.metrics.json");
   cmd->add_flag("--no-extract", opt->no_extract, "Parameterized input: do not extract and measure the quad mesh");
   add_global_options(*cmd, global);
-  cmd->callback([opt, &global, &exit_code] {
-    BatchSpec spec;
-    spec.inputs = opt->inputs;
-    spec.summary_columns = {"faces", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices", "arap"};
-    const bool batch = is_batch(opt->inputs);
-    const bool full = global.json && !batch;
-    exit_code = run_batch(spec, global, [opt, batch, full](const std::string& input, ProgressSink&) {
-      const std::string report =
-          opt->report.empty() ? std::string() : batch ? batch_output_path(input, opt->report, ".metrics.json") : opt->report;
-      return run_metrics(input, report, *opt, full);
-    });
-  });
+  run_on_inputs(*cmd, global, exit_code, opt->inputs,
+                {"faces", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices", "arap"},
+                [opt, &global](const std::string& input, bool batch, ProgressSink&) {
+                  const bool full = global.json && !batch;
+                  return run_metrics(input, optional_output_path(input, opt->report, batch, ".metrics.json"), *opt,
+                                     full);
+                });
 }
 
 const CommandRegistrar registrar{70, "metrics", register_metrics};

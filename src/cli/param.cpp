@@ -110,13 +110,13 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
 
 void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<ParamCmdOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "param",
+  CLI::App* cmd = add_mesh_command(
+      app, "param",
       "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
       "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
       "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
-      "30 quads per branch point of the field");
-  add_input_option(*cmd, opt->inputs);
+      "30 quads per branch point of the field",
+      opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");
   auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
@@ -138,22 +138,19 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
   add_optimize_options(*cmd, opt->optimize);
   add_picture_options(*cmd, opt->pictures, "PNG of the map: checkerboard (one square = one quad), seams, branch points");
   add_global_options(*cmd, global);
-  cmd->callback([opt, &global, &exit_code] {
-    BatchSpec spec;
-    spec.inputs = opt->inputs;
-    spec.summary_columns = {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "seamless"};
-    const bool batch = is_batch(opt->inputs);
-    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
-      const std::string output =
-          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".param.obj") : opt->output;
-      auto path = [&](const std::string& o, const char* suffix) {
-        return o.empty() ? std::string() : batch ? batch_output_path(input, o, suffix) : o;
-      };
-      const ParamOutputs out{output, path(opt->report, ".param.json"), path(opt->pictures.png, ".param.png"),
-                             path(opt->pictures.report_html, ".param.html"), path(opt->pictures.plot, ".optimize.png")};
-      return run_param(input, out, *opt, progress);
-    });
-  });
+  run_on_inputs(*cmd, global, exit_code, opt->inputs,
+                {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "seamless"},
+                [opt](const std::string& input, bool batch, ProgressSink& progress) {
+                  const std::string output = output_path(input, opt->output, batch, ".param.obj");
+                  auto path = [&](const std::string& o, const char* suffix) {
+                    return optional_output_path(input, o, batch, suffix);
+                  };
+                  const ParamOutputs out{output, path(opt->report, ".param.json"),
+                                         path(opt->pictures.png, ".param.png"),
+                                         path(opt->pictures.report_html, ".param.html"),
+                                         path(opt->pictures.plot, ".optimize.png")};
+                  return run_param(input, out, *opt, progress);
+                });
 }
 
 const CommandRegistrar registrar{40, "param", register_param};

@@ -94,11 +94,11 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
 
 void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RemeshOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "remesh",
+  CLI::App* cmd = add_mesh_command(
+      app, "remesh",
       "Quad remeshing: frame field -> QuadCover parameterization -> quad extraction along the integer iso-lines; "
-      "writes the quad mesh (OBJ) and optionally a JSON report with the Table 7.1 metrics");
-  add_input_option(*cmd, opt->inputs);
+      "writes the quad mesh (OBJ) and optionally a JSON report with the Table 7.1 metrics",
+      opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.quad.obj");
   auto* nv = cmd->add_option("--faces,--vertices", opt->vertices,
@@ -126,27 +126,21 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Also write the parameterization as OBJ with per-corner vt (one input) or a folder for them");
   add_picture_options(*cmd, opt->pictures, "PNG of the quad mesh: wireframe over flat shading");
   add_global_options(*cmd, global);
-  cmd->callback([opt, &global, &exit_code] {
-    BatchSpec spec;
-    spec.inputs = opt->inputs;
-    spec.summary_columns = {"vertices", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices",
-                            "arap", "manifold"};
-    const bool batch = is_batch(opt->inputs);
-    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink& progress) {
-      const std::string output =
-          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".quad.obj") : opt->output;
-      auto path = [&](const std::string& o, const char* suffix) {
-        return o.empty() ? std::string() : batch ? batch_output_path(input, o, suffix) : o;
-      };
-      const RemeshOutputs out{output,
-                              path(opt->report, ".remesh.json"),
-                              path(opt->param_output, ".param.obj"),
-                              path(opt->pictures.png, ".quad.png"),
-                              path(opt->pictures.report_html, ".remesh.html"),
-                              path(opt->pictures.plot, ".optimize.png")};
-      return run_remesh(input, out, *opt, progress);
-    });
-  });
+  run_on_inputs(*cmd, global, exit_code, opt->inputs,
+                {"vertices", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices", "arap",
+                 "manifold"},
+                [opt](const std::string& input, bool batch, ProgressSink& progress) {
+                  auto path = [&](const std::string& o, const char* suffix) {
+                    return optional_output_path(input, o, batch, suffix);
+                  };
+                  const RemeshOutputs out{output_path(input, opt->output, batch, ".quad.obj"),
+                                          path(opt->report, ".remesh.json"),
+                                          path(opt->param_output, ".param.obj"),
+                                          path(opt->pictures.png, ".quad.png"),
+                                          path(opt->pictures.report_html, ".remesh.html"),
+                                          path(opt->pictures.plot, ".optimize.png")};
+                  return run_remesh(input, out, *opt, progress);
+                });
 }
 
 const CommandRegistrar registrar{60, "remesh", register_remesh};

@@ -106,12 +106,12 @@ void write_report_page(const std::string& input, const std::string& html, const 
 
 void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RenderCmdOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "render",
+  CLI::App* cmd = add_mesh_command(
+      app, "render",
       "Render PNG pictures offscreen: a parameterized OBJ with a checkerboard from its per-corner `vt`, seams "
       "(orange) and cones (blue: index 1/4, red: -1/4, cyan/magenta: ±1/2, grey: other, e.g. whole turns); a "
-      "quad/polygon mesh as wireframe; or the UV layout");
-  add_input_option(*cmd, opt->inputs, "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
+      "quad/polygon mesh as wireframe; or the UV layout",
+      opt->inputs, "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
   cmd->add_option("-o,--output", opt->output,
                   "Output PNG (one input) or folder (several inputs: <name>.png inside; default: next to each input)");
   cmd->add_option("--view", opt->view,

@@ -43,27 +43,20 @@ nlohmann::json run_repair(const std::string& input, const std::string& output) {
 
 void register_repair(CLI::App& app, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RepairOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "repair",
+  CLI::App* cmd = add_mesh_command(
+      app, "repair",
       "Make a mesh usable where validation can: reorient an orientable but inconsistently oriented surface, "
       "fan-triangulate polygons and drop unreferenced vertices; write the triangle mesh (format by extension). "
-      "Problems it cannot repair are listed with exit 2 and nothing is written");
-  add_input_option(*cmd, opt->inputs);
+      "Problems it cannot repair are listed with exit 2 and nothing is written",
+      opt->inputs);
   cmd->add_option("-o,--output", opt->output,
                   "Output mesh .obj/.off/.ply/.stl (one input) or folder (several inputs); default: next to the "
                   "input as NAME.repaired.obj");
   add_global_options(*cmd, global);
-  cmd->callback([opt, &global, &exit_code] {
-    BatchSpec spec;
-    spec.inputs = opt->inputs;
-    spec.summary_columns = {"vertices", "faces", "flipped_faces", "triangulated_polygons"};
-    const bool batch = is_batch(opt->inputs);
-    exit_code = run_batch(spec, global, [opt, batch](const std::string& input, ProgressSink&) {
-      const std::string output =
-          batch || opt->output.empty() ? batch_output_path(input, opt->output, ".repaired.obj") : opt->output;
-      return run_repair(input, output);
-    });
-  });
+  run_on_inputs(*cmd, global, exit_code, opt->inputs, {"vertices", "faces", "flipped_faces", "triangulated_polygons"},
+                [opt](const std::string& input, bool batch, ProgressSink&) {
+                  return run_repair(input, output_path(input, opt->output, batch, ".repaired.obj"));
+                });
 }
 
 const CommandRegistrar registrar{15, "repair", register_repair};

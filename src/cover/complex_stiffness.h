@@ -17,6 +17,7 @@
 namespace quadcover {
 
 /// #F by 3: μ in 0..3 such that edge function ū (reference-face gauge) reads i^μ ū_e on face f's edge k.
+/// \throw InputError if matching does not have #E entries.
 Eigen::MatrixX3i edge_layers(const Mesh& mesh, const Eigen::VectorXi& matching);
 
 /// Per-corner layers of vertex functions and the branch-point flags.
@@ -24,16 +25,19 @@ struct VertexLayers {
   Eigen::MatrixX3i layer;  ///< #F by 3: λ in 0..3, value i^λ ū_p at corner (f, k) (0 at branch points)
   Eigen::VectorXi branch;  ///< #V: 1 iff p is an interior vertex with Σ m_e around p ≠ 0 mod 4
 };
+/// \throw InputError if matching does not have #E entries.
 VertexLayers vertex_layers(const Mesh& mesh, const Eigen::VectorXi& matching);
 
 /// 𝔏̄* (3.8): #E by #E Hermitian, (i,j) = i^l 𝔏*_ij where ẽ_i^l ~ ẽ_j^0 under the matching, (i,i) = 𝔏*_ii.
 /// Its sparsity pattern equals that of 𝔏* for every matching (zero-valued entries are stored explicitly).
 /// ūᴴ 𝔏̄* ū = ½ ũᵀ 𝔏̃* ũ (3.9) for the symmetric covering function ũ of ū.
+/// \throw InputError if matching does not have #E entries.
 Eigen::SparseMatrix<Complex> complex_nonconforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching);
 
 /// 𝔏̄: #V by #V Hermitian, (p,q) = i^l 𝔏_pq with ṽ_p^l ~ ṽ_q^0; rows and columns of branch points are zero
 /// except for a unit diagonal (so the matrix stays invertible; the value there is pinned to 0).
 /// `face_weights` (#F, optional): face f contributes w_f ∫_f ⟨∇φ_p, ∇φ_q⟩ (the weighted Dirichlet energy).
+/// \throw InputError if matching does not have #E entries or face_weights is neither empty nor #F.
 Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching,
                                                           const Eigen::VectorXd& face_weights = {});
 
@@ -41,6 +45,7 @@ Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, cons
 /// with e oriented positively in s = EF(e,0), curl* Z(e) = ⟨Z_t, e⟩ - ⟨i^{-m_e} Z_s, e⟩ read in r(e)'s gauge
 /// (⟨Z, e⟩ = ⟨X, e⟩ + i⟨Y, e⟩). It is the sign for which 𝔏̄* v = -curl* Z is the normal equation of
 /// min_v ‖Z - J∇v‖² on the covering (the co-potential of the curl part, (2.1) on M̃); boundary terms vanish.
+/// \throw InputError if the field does not have #F frames or its matching #E entries.
 Eigen::VectorXcd complex_curl_star(const Mesh& mesh, const FrameField& field);
 
 }  // namespace quadcover

@@ -35,12 +35,6 @@ int glued_layer(const Mesh& mesh, const Eigen::VectorXi& m, int e, int f, int l)
   return mod4(mesh.EF()(e, 0) == f ? l - m[e] : l + m[e]);
 }
 
-int corner_of(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
-
 }  // namespace
 
 std::vector<int> Covering::genus() const {
@@ -73,7 +67,7 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
       const int lt = glued_layer(mesh, m, e, s, l);
       for (int end = 0; end < 2; ++end) {
         const int v = mesh.E()(e, end);
-        corners.unite(slot(s, l, corner_of(mesh, s, v)), slot(t, lt, corner_of(mesh, t, v)));
+        corners.unite(slot(s, l, mesh.corner_of(s, v)), slot(t, lt, mesh.corner_of(t, v)));
       }
     }
   }

@@ -63,6 +63,12 @@ class Mesh {
 
   bool is_boundary_edge(int e) const { return EF_(e, 0) < 0 || EF_(e, 1) < 0; }
   bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }
+  /// The corner (0..2) of face f at vertex v, or -1 if v is not a vertex of f.
+  int corner_of(int f, int v) const {
+    for (int c = 0; c < 3; ++c)
+      if (F_(f, c) == v) return c;
+    return -1;
+  }
   /// The face across face edge k of f, or -1 on the boundary.
   int neighbor(int f, int k) const {
     const int e = FE_(f, k);

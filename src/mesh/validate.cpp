@@ -79,29 +79,20 @@ struct ProblemCollector {
   }
 };
 
-}  // namespace
-
-ValidationReport validate(const PolygonSoup& input, const ValidationOptions& options) {
-  ValidationReport report;
-  const PolygonSoup triangulated = options.triangulate ? triangulate_polygons(input) : PolygonSoup{};
-  const PolygonSoup& soup = options.triangulate ? triangulated : input;
+// Vertices with NaN/inf coordinates.
+void check_coordinates(const PolygonSoup& soup, const ValidationOptions& options, ValidationReport& report) {
   const auto nv = static_cast<long>(soup.num_vertices());
-  const auto nf = static_cast<long>(soup.num_faces());
-  if (nv == 0 || nf == 0) {
-    report.problems.push_back({ProblemKind::Empty, true,
-                               (soup.file.empty() ? std::string("<input>") : soup.file) + ": mesh is empty (" +
-                                   std::to_string(nv) + " vertices, " + std::to_string(nf) + " faces)",
-                               {}, {}});
-    return report;
-  }
-
   ProblemCollector nonfinite(soup, options, ProblemKind::NonFiniteCoordinate, "vertex with NaN/inf coordinates", "vertices with NaN/inf coordinates");
   for (long v = 0; v < nv; ++v)
     if (!soup.positions.row(v).allFinite()) nonfinite.vertex(v);
   nonfinite.flush(report);
+}
 
-  // Per-face checks. `usable` marks triangles whose indices are valid and distinct: the topological checks
-  // below only look at those (the others are already reported).
+// Per-face checks. \return per face: 1 for the triangles whose indices are valid and distinct (`usable`): the
+// topological checks below only look at those (the others are already reported).
+std::vector<char> check_faces(const PolygonSoup& soup, const ValidationOptions& options, ValidationReport& report) {
+  const auto nv = static_cast<long>(soup.num_vertices());
+  const auto nf = static_cast<long>(soup.num_faces());
   ProblemCollector range(soup, options, ProblemKind::IndexOutOfRange, "face with a vertex index out of range", "faces with a vertex index out of range");
   ProblemCollector polygon(soup, options, ProblemKind::NotTriangle, "non-triangle face", "non-triangle faces");
   polygon.hint = " (`quadcover repair MESH -o FIXED.obj` splits polygons into triangles)";
@@ -144,8 +135,13 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
   polygon.flush(report);
   repeated.flush(report);
   degenerate.flush(report);
+  return usable;
+}
 
-  // Duplicate faces: equal sorted vertex triples.
+// Duplicate faces: equal sorted vertex triples. \return per face: 1 for the repeats.
+std::vector<char> check_duplicates(const PolygonSoup& soup, const ValidationOptions& options,
+                                   const std::vector<char>& usable, ValidationReport& report) {
+  const auto nf = static_cast<long>(soup.num_faces());
   std::vector<std::pair<std::array<std::int64_t, 3>, long>> keys;
   keys.reserve(static_cast<std::size_t>(nf));
   for (long f = 0; f < nf; ++f) {
@@ -165,18 +161,12 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     }
   }
   duplicate.flush(report);
+  return is_duplicate;
+}
 
-  // Edge incidences of the usable triangles.
-  std::vector<std::array<std::int64_t, 3>> tris;
-  std::vector<long> tri_face;
-  for (long f = 0; f < nf; ++f) {
-    if (!usable[static_cast<std::size_t>(f)] || is_duplicate[static_cast<std::size_t>(f)]) continue;
-    const std::int64_t* c = soup.face_begin(static_cast<std::size_t>(f));
-    tris.push_back({c[0], c[1], c[2]});
-    tri_face.push_back(f);
-  }
-  const EdgeTable edges(static_cast<std::size_t>(nv), tris);
-
+// Non-manifold edges (in more than two usable triangles). \return per edge of `edges`: 1 for those.
+std::vector<char> check_edges(const PolygonSoup& soup, const ValidationOptions& options, const EdgeTable& edges,
+                              const std::vector<long>& tri_face, ValidationReport& report) {
   ProblemCollector nm_edge(soup, options, ProblemKind::NonManifoldEdge, "non-manifold edge", "non-manifold edges");
   std::vector<char> bad_edge(edges.num_edges(), 0);
   for (std::size_t e = 0; e < edges.num_edges(); ++e) {
@@ -191,8 +181,14 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     for (const auto& h : inc) nm_edge.problem.faces.push_back(tri_face[h.tri]);
   }
   nm_edge.flush(report);
+  return bad_edge;
+}
 
-  // Non-manifold vertices: the faces at v, linked through shared manifold edges at v, must form one fan.
+// Non-manifold vertices: the faces at v, linked through shared manifold edges at v, must form one fan.
+void check_vertex_fans(const PolygonSoup& soup, const ValidationOptions& options, const EdgeTable& edges,
+                       const std::vector<std::array<std::int64_t, 3>>& tris, const std::vector<char>& bad_edge,
+                       ValidationReport& report) {
+  const auto nv = static_cast<long>(soup.num_vertices());
   ProblemCollector nm_vertex(soup, options, ProblemKind::NonManifoldVertex, "non-manifold vertex", "non-manifold vertices");
   {
     // Triangles per vertex in compressed rows (counting sort: one allocation, triangles in increasing order).
@@ -237,9 +233,13 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     }
   }
   nm_vertex.flush(report);
+}
 
-  // Orientation: along every manifold interior edge the two faces must traverse it in opposite directions.
-  // Propagate a flip flag per face by BFS; a contradiction means the surface is not orientable.
+// Orientation: along every manifold interior edge the two faces must traverse it in opposite directions.
+// Propagate a flip flag per face by BFS; a contradiction means the surface is not orientable.
+void check_orientation(const PolygonSoup& soup, const ValidationOptions& options, const EdgeTable& edges,
+                       const std::vector<std::array<std::int64_t, 3>>& tris, const std::vector<long>& tri_face,
+                       const std::vector<char>& bad_edge, ValidationReport& report) {
   {
     ProblemCollector inconsistent(soup, options, ProblemKind::InconsistentOrientation,
                                   "edge whose two faces disagree in orientation",
@@ -278,8 +278,11 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
       }
     }
   }
+}
 
-  // Unreferenced vertices: a warning; they are dropped when the mesh is built.
+// Unreferenced vertices: a warning; they are dropped when the mesh is built.
+void check_unreferenced(const PolygonSoup& soup, const ValidationOptions& options, ValidationReport& report) {
+  const auto nv = static_cast<long>(soup.num_vertices());
   {
     std::vector<char> used(static_cast<std::size_t>(nv), 0);
     for (std::size_t i = 0; i < soup.face_vertices.size(); ++i) {
@@ -292,6 +295,42 @@ ValidationReport validate(const PolygonSoup& input, const ValidationOptions& opt
     report.unreferenced_vertices = unref.count;
     unref.flush(report, /*fatal=*/false);
   }
+}
+
+}  // namespace
+
+ValidationReport validate(const PolygonSoup& input, const ValidationOptions& options) {
+  ValidationReport report;
+  const PolygonSoup triangulated = options.triangulate ? triangulate_polygons(input) : PolygonSoup{};
+  const PolygonSoup& soup = options.triangulate ? triangulated : input;
+  const auto nv = static_cast<long>(soup.num_vertices());
+  const auto nf = static_cast<long>(soup.num_faces());
+  if (nv == 0 || nf == 0) {
+    report.problems.push_back({ProblemKind::Empty, true,
+                               (soup.file.empty() ? std::string("<input>") : soup.file) + ": mesh is empty (" +
+                                   std::to_string(nv) + " vertices, " + std::to_string(nf) + " faces)",
+                               {}, {}});
+    return report;
+  }
+
+  check_coordinates(soup, options, report);
+  const std::vector<char> usable = check_faces(soup, options, report);
+  const std::vector<char> is_duplicate = check_duplicates(soup, options, usable, report);
+
+  // Edge incidences of the usable triangles.
+  std::vector<std::array<std::int64_t, 3>> tris;
+  std::vector<long> tri_face;
+  for (long f = 0; f < nf; ++f) {
+    if (!usable[static_cast<std::size_t>(f)] || is_duplicate[static_cast<std::size_t>(f)]) continue;
+    const std::int64_t* c = soup.face_begin(static_cast<std::size_t>(f));
+    tris.push_back({c[0], c[1], c[2]});
+    tri_face.push_back(f);
+  }
+  const EdgeTable edges(static_cast<std::size_t>(nv), tris);
+  const std::vector<char> bad_edge = check_edges(soup, options, edges, tri_face, report);
+  check_vertex_fans(soup, options, edges, tris, bad_edge, report);
+  check_orientation(soup, options, edges, tris, tri_face, bad_edge, report);
+  check_unreferenced(soup, options, report);
   return report;
 }
 

@@ -10,12 +10,6 @@ namespace quadcover {
 
 namespace {
 
-int corner_of(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
-
 /// Value carried across crossing cr: φ_to from φ_from, with the transition of a cut edge.
 Complex cross(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, const FanCrossing& cr, Complex x) {
   if (!cut.graph.cut[cr.edge]) return x;
@@ -116,7 +110,7 @@ Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const E
     Complex est[2];
     for (int end = 0; end < 2; ++end) {
       const int v = mesh.E()(e, end);
-      est[end] = phi(t, corner_of(mesh, t, v)) - rot * phi(s, corner_of(mesh, s, v));
+      est[end] = phi(t, mesh.corner_of(t, v)) - rot * phi(s, mesh.corner_of(s, v));
     }
     c[e] = 0.5 * (est[0] + est[1]);
     worst = std::max(worst, std::abs(est[0] - est[1]));

@@ -20,6 +20,7 @@ inline Complex frame_dot(Complex w, Complex X, Complex Y) {
 
 /// Integrates a curl*-free frame field over the cut disk (1.12), u_q = u_p + ⟨e, Z_t⟩, with value 0 at the first
 /// corner of each disk. \return per cut-vertex (CutMesh numbering) complex values.
+/// \pre cut = build_cover_cut(mesh, …); Z is #F by 2. \throw only std::bad_alloc.
 Eigen::VectorXcd integrate_on_disk(const Mesh& mesh, const CoverCut& cut, const FramePairs& Z);
 
 /// Per-corner values (#F by 3) of a function given per cut-vertex.
@@ -37,7 +38,7 @@ Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const E
 
 /// Completes translations given on the path edges (leftover edges e_j) to all cut edges so that the transitions
 /// compose to the identity around every vertex off B (processed from the leaves of the shortest-path forest to the
-/// roots). Entries of c on tree cut edges are overwritten.
+/// roots). Entries of c on tree cut edges are overwritten. \pre c has #E entries. \throw only std::bad_alloc.
 void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorXcd& c);
 
 /// The same relations over GF(2) for lattice parities: bit j of edge e is the parity of the coefficient of path j

@@ -1,26 +1,27 @@
 // The QuadCover pipeline on the covering (thesis 2.4, 4.1-4.2).
 #include "param/parameterize.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
 
-#include <tbb/parallel_invoke.h>
-
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 #include "cover/complex_stiffness.h"
+#include "field/feature_alignment.h"
 #include "field/indices.h"
+#include "param/alignment.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
+#include "param/even_branch_fix.h"
 #include "param/harmonic_correction.h"
 #include "param/period_matrix.h"
-#include "param/alignment.h"
 #include "param/stiffening.h"
 #include "param/untangle.h"
-#include "field/feature_alignment.h"
 
 namespace quadcover {
 
@@ -78,8 +79,12 @@ Eigen::MatrixXd lattice_basis(Lattice lattice, int m) {
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m);
   Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * m, 2 * m);
   switch (lattice) {
-    case Lattice::Unit: T = Eigen::MatrixXd::Identity(2 * m, 2 * m); break;
-    case Lattice::Coarse: T = 2 * Eigen::MatrixXd::Identity(2 * m, 2 * m); break;
+    case Lattice::Unit:
+      T = Eigen::MatrixXd::Identity(2 * m, 2 * m);
+      break;
+    case Lattice::Coarse:
+      T = 2 * Eigen::MatrixXd::Identity(2 * m, 2 * m);
+      break;
     case Lattice::Rotated:
       T.topLeftCorner(m, m) = I;
       T.topRightCorner(m, m) = -I;
@@ -132,39 +137,6 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   return r;
 }
 
-/// GF(2) solve of A x = r (rows: even branch points, columns: paths); x minimal in the elimination sense.
-/// Returns false if inconsistent; `solvable_rows` flags rows whose condition could be met.
-bool solve_gf2(std::vector<std::vector<std::uint64_t>> A, std::vector<char> r, int ncols, std::vector<char>& x) {
-  const int nrows = static_cast<int>(A.size());
-  std::vector<int> pivot_col(static_cast<std::size_t>(nrows), -1);
-  int row = 0;
-  for (int col = 0; col < ncols && row < nrows; ++col) {
-    const std::size_t w = static_cast<std::size_t>(col) / 64;
-    const std::uint64_t bit = std::uint64_t{1} << (col % 64);
-    int p = row;
-    while (p < nrows && !(A[p][w] & bit)) ++p;
-    if (p == nrows) continue;
-    std::swap(A[p], A[row]);
-    std::swap(r[p], r[row]);
-    for (int q = 0; q < nrows; ++q)
-      if (q != row && (A[q][w] & bit)) {
-        for (std::size_t k = 0; k < A[q].size(); ++k) A[q][k] ^= A[row][k];
-        r[q] ^= r[row];
-      }
-    pivot_col[row] = col;
-    ++row;
-  }
-  bool ok = true;
-  x.assign(static_cast<std::size_t>(ncols), 0);
-  for (int q = 0; q < nrows; ++q) {
-    if (pivot_col[q] >= 0)
-      x[pivot_col[q]] = r[q];
-    else if (r[q])
-      ok = false;
-  }
-  return ok;
-}
-
 }  // namespace
 
 double target_edge_length(const Mesh& mesh, const ParamOptions& options, int branch_points) {
@@ -186,47 +158,60 @@ void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions
 /// The steps of parameterize() that report progress (its calls of lap()).
 constexpr double kParamSteps = 11;
 
-Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
-                              ProgressSink& progress) {
-  const int nf = mesh.num_faces(), ne = mesh.num_edges(), nv = mesh.num_vertices();
-  if (field.X.size() != nf || field.Y.size() != nf || field.matching.size() != ne)
-    throw InputError("", 0, "parameterize: the frame field does not match the mesh");
-  Parameterization P;
-  auto t = Clock::now();
-  auto lap = [&](const char* stage) {
-    const auto now = Clock::now();
-    P.stage_seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
-    t = now;
-    // One bar for the whole stage, in the order of its steps (kParamSteps of them, numbered by the laps).
-    progress.report("param", std::min(1.0, static_cast<double>(P.stage_seconds.size()) / kParamSteps), stage);
-  };
+namespace {
 
-  // ---- 1. cut through B and gauge (4.2)
-  const CoverCut cc = build_cover_cut(mesh, field.matching);
+/// The stage clock of parameterize(): one lap per step into P.stage_seconds, and one progress bar for the whole
+/// stage, in the order of its steps (kParamSteps of them, numbered by the laps).
+class StageLaps {
+ public:
+  StageLaps(Parameterization& P, ProgressSink& progress) : P_(P), progress_(progress), t_(Clock::now()) {}
+  void operator()(const char* stage) {
+    const auto now = Clock::now();
+    P_.stage_seconds.emplace_back(stage, std::chrono::duration<double>(now - t_).count());
+    t_ = now;
+    progress_.report("param", std::min(1.0, static_cast<double>(P_.stage_seconds.size()) / kParamSteps), stage);
+  }
+
+ private:
+  Parameterization& P_;
+  ProgressSink& progress_;
+  Clock::time_point t_;
+};
+
+/// Step 1 (4.2): the cut through B and the gauge; records the cut, the gauge, the branch points and h_sym in P.
+CoverCut cut_and_gauge(const Mesh& mesh, const FrameField& field, Parameterization& P) {
+  CoverCut cc = build_cover_cut(mesh, field.matching);
   P.cut_edges = cc.graph.cut;
   P.face_rotation = cc.face_rotation;
   {
     // Reported by the cross-field index (Def. 3.3, Σ = χ, the cone angle 2π(1 − q/4) of the map); the matching index
     // of the covering (Def. 3.2) agrees with it mod 4, which is all the covering needs.
     const Eigen::VectorXi q = cross_field_quarter_index(mesh, field);
-    for (int v = 0; v < nv; ++v)
+    for (int v = 0; v < mesh.num_vertices(); ++v)
       if (cc.branch[v]) P.branch_points.push_back({v, q[v]});
   }
   P.h_sym = cc.h_sym();
-  const std::vector<char> trivial = trivial_holonomy(mesh, cc);
-  {
-    std::vector<char> has_branch(trivial.size(), 0);
-    for (const BranchPoint& bp : P.branch_points) has_branch[mesh.vertex_component()[bp.vertex]] = 1;
-    for (int comp = 0; comp < mesh.num_components(); ++comp)
-      if (!trivial[comp] && !has_branch[comp] && mesh.components()[comp].boundary_loops == 0)
-        P.holonomy_without_branch_points.push_back(comp);
-  }
-  lap("cut");
+  return cc;
+}
 
-  // Density: scale so that one grid unit is h along the RMS-normalized field.
+/// The closed components whose holonomy is not trivial although they have no branch point.
+std::vector<int> holonomy_without_branch_points(const Mesh& mesh, const std::vector<char>& trivial,
+                                                const std::vector<BranchPoint>& branch_points) {
+  std::vector<int> components;
+  std::vector<char> has_branch(trivial.size(), 0);
+  for (const BranchPoint& bp : branch_points) has_branch[mesh.vertex_component()[bp.vertex]] = 1;
+  for (int comp = 0; comp < mesh.num_components(); ++comp)
+    if (!trivial[comp] && !has_branch[comp] && mesh.components()[comp].boundary_loops == 0) components.push_back(comp);
+  return components;
+}
+
+/// The gauged frames Z, scaled so that one grid unit is h along the RMS-normalized field (sets P.edge_length
+/// and P.scale). \throw InputError if the field is zero or not finite.
+FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverCut& cc, const ParamOptions& options,
+                         Parameterization& P) {
+  const int nf = mesh.num_faces();
   double rms = 0;
-  for (int f = 0; f < nf; ++f)
-    rms += mesh.face_areas()[f] * 0.5 * (std::norm(field.X[f]) + std::norm(field.Y[f]));
+  for (int f = 0; f < nf; ++f) rms += mesh.face_areas()[f] * 0.5 * (std::norm(field.X[f]) + std::norm(field.Y[f]));
   rms = std::sqrt(rms / mesh.total_area());
   if (!(rms > 0) || !std::isfinite(rms)) throw InputError("", 0, "parameterize: the frame field is zero or not finite");
   P.edge_length = target_edge_length(mesh, options, static_cast<int>(P.branch_points.size()));
@@ -237,8 +222,14 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     Z(f, 0) = P.scale * x;
     Z(f, 1) = P.scale * y;
   }
+  return Z;
+}
 
-  // ---- 2. curl removal on the covering: 𝔏̄* v = -curl* Z̃, X̂ = Z - J∇v
+/// Step 2: curl removal on the covering, 𝔏̄* v = -curl* Z̃; returns X̃_C = J∇v (X̂ = Z − X̃_C). The factorization
+/// of 𝔏̄ (#V, for steps 4-5) is independent of that of 𝔏̄* (#E): it runs beside it into `harmonic`.
+FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<char>& trivial, const FramePairs& Z,
+                       std::optional<HarmonicCorrection>& harmonic) {
+  const int ne = mesh.num_edges();
   Eigen::SparseMatrix<Complex> Ls = complex_nonconforming_stiffness(mesh, cc.matching);
   Eigen::VectorXcd rhs = -complex_curl_star(mesh, FrameField{Z.col(0), Z.col(1), cc.matching});
   {
@@ -257,10 +248,9 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     }
     pin_rows(Ls, pinned);
   }
-  // The factorizations of 𝔏̄* (#E, here) and of 𝔏̄ (#V, for steps 4-5) are independent: one per core (each is
-  // sequential, so the result does not depend on the thread count). 𝔏̄*'s factor is freed after its one solve.
+  // One factorization per core (each is sequential, so the result does not depend on the thread count). 𝔏̄*'s
+  // factor is freed after its one solve.
   Eigen::VectorXcd v;
-  std::optional<HarmonicCorrection> harmonic;
   tbb::parallel_invoke(
       [&] {
         SparseCholesky<Complex> chol_s;
@@ -268,28 +258,30 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
         v = chol_s.solve(rhs);
       },
       [&] { harmonic.emplace(mesh, cc, trivial); });
-  const FramePairs XC = rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
-  const FramePairs Xhat = Z - XC;
-  P.energy_curl = frame_norm2(mesh, XC);
-  lap("curl_removal");
+  return rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
+}
 
-  // ---- 3. integration over the cut disk and the periods
-  Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
-  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.integration_mismatch);
-  lap("integrate");
-
-  // ---- 4. rounding (4.2.2). The constant of each component fixes its dependent path at no cost.
+/// Step 4, first part: the constant of each component fixes its dependent path at no cost (shifts φ and c).
+void round_dependent_paths(const Mesh& mesh, const CoverCut& cc, Lattice lattice, Eigen::VectorXcd& phi,
+                           Eigen::VectorXcd& c) {
   for (int comp = 0; comp < mesh.num_components(); ++comp) {
     const int j0 = cc.dependent_path[comp];
     if (j0 < 0) continue;
     const int e0 = cc.path_edge[j0];
-    const Complex w = (round_to_lattice(c[e0], options.lattice) - c[e0]) / (Complex(1) - ipow(cc.rotation[e0]));
+    const Complex w = (round_to_lattice(c[e0], lattice) - c[e0]) / (Complex(1) - ipow(cc.rotation[e0]));
     for (int i = 0; i < cc.disk.num_vertices(); ++i)
       if (mesh.vertex_component()[cc.disk.original_vertex[i]] == comp) phi[i] += w;
-    for (int e = 0; e < ne; ++e)
+    for (int e = 0; e < mesh.num_edges(); ++e)
       if (cc.graph.cut[e] && mesh.face_component()[mesh.EF()(e, 0)] == comp)
         c[e] += (Complex(1) - ipow(cc.rotation[e])) * w;
   }
+}
+
+/// Step 4 (4.2.2, 6.3): the periods of the translations c, their rounding (direct, then with the period matrix,
+/// then the even branch point fix-up) into P; returns the translation change d per edge.
+Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
+                                  const Eigen::VectorXcd& c, const ParamOptions& options, ProgressSink& progress,
+                                  StageLaps& lap, Parameterization& P) {
   const int n = cc.num_paths();
   P.periods.resize(n);
   P.rounded_periods.resize(n);
@@ -298,85 +290,59 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     P.rounded_periods[j] = round_to_lattice(P.periods[j], options.lattice);
   }
   // The factor of 𝔏̄ serves the period matrix (6.3.2) and the final harmonic correction.
-  const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
   lap("harmonic_factor");
   const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, progress, P);
   if (rounding.active) lap("period_rounding");
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
-    // Even branch point q sits at D_q / 2 (D_q the translation around q); it is integral iff D_q ∈ 2Z[i]. Over the
-    // rotated lattice D_q ∈ (1+i)Z[i]; flipping the parity of path periods (± (1±i)) fixes it: a GF(2) system.
-    Eigen::VectorXcd cr = Eigen::VectorXcd::Zero(ne);
-    for (int j = 0; j < n; ++j) cr[cc.path_edge[j]] = P.rounded_periods[j];
-    complete_translations(mesh, cc, cr);
-    const auto bits = path_parities(mesh, cc);
-    std::vector<int> evens;
-    std::vector<std::vector<std::uint64_t>> A;
-    std::vector<char> r;
-    for (int q = 0; q < nv; ++q) {
-      if (!cc.branch[q] || ((cc.quarter_index[q] % 4) + 4) % 4 != 2) continue;
-      const auto [K, D] = transition_around(mesh, cc, cr, q);
-      std::vector<std::uint64_t> row(bits.empty() ? 0 : bits[0].size(), 0);
-      for (const FanCrossing& x : fan_crossings(mesh, q))
-        if (cc.graph.cut[x.edge])
-          for (std::size_t w = 0; w < row.size(); ++w) row[w] ^= bits[x.edge][w];
-      evens.push_back(q);
-      A.push_back(row);
-      r.push_back(distance_to_gaussian_integers(0.5 * D) > 0.25 ? 1 : 0);
-    }
-    std::vector<char> x;
-    const bool ok = solve_gf2(A, r, n, x);
-    for (int j = 0; j < n; ++j) {
-      if (!x[j]) continue;
-      // The parity step ±(1±i) with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
-      Complex best = 0;
-      double best_d = INFINITY;
-      for (const Complex delta : {Complex(1, 1), Complex(-1, -1), Complex(1, -1), Complex(-1, 1)}) {
-        P.rounded_periods[j] += delta;
-        const double d = rounding.active && rounding.variable_of_path[j] >= 0
-                             ? rounding.energy(P)
-                             : std::abs(P.rounded_periods[j] - P.periods[j]);
-        P.rounded_periods[j] -= delta;
-        if (d < best_d) best_d = d, best = delta;
-      }
-      P.rounded_periods[j] += best;
-    }
-    if (!ok) {  // report the even points that stay at half-integers
-      for (int j = 0; j < n; ++j) cr[cc.path_edge[j]] = P.rounded_periods[j];
-      complete_translations(mesh, cc, cr);
-      for (int q : evens)
-        if (distance_to_gaussian_integers(0.5 * transition_around(mesh, cc, cr, q).second) > 0.25)
-          P.unfixed_even_branch_points.push_back(q);
-    }
+    // The parity step with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
+    P.unfixed_even_branch_points = fix_even_branch_points(mesh, cc, P.rounded_periods, [&](int j) {
+      return rounding.active && rounding.variable_of_path[j] >= 0 ? rounding.energy(P)
+                                                                  : std::abs(P.rounded_periods[j] - P.periods[j]);
+    });
   }
-  Eigen::VectorXcd d = Eigen::VectorXcd::Zero(ne);
+  Eigen::VectorXcd d = Eigen::VectorXcd::Zero(mesh.num_edges());
   for (int j = 0; j < n; ++j) d[cc.path_edge[j]] = P.rounded_periods[j] - P.periods[j];
   complete_translations(mesh, cc, d);
   lap("round");
+  return d;
+}
 
-  // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
-  const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
-  const FramePairs Sigma = corner_gradient(mesh, sigma);
-  const Eigen::VectorXcd b = correction.rhs(Sigma);
-  const Eigen::VectorXcd u_free = correction.solve(b).col(0);
-  const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;  // φ = known − u
-  std::vector<CurveSlot> slots;
-  if (options.align_curves) {
-    // Boundary and feature curves on integer iso-lines: the same correction with one real component of u fixed
-    // at every curve vertex (seams untouched: u is continuous on the covering).
-    const FeatureConstraints features = feature_constraints(mesh, options.features);
-    slots = aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
-  }
-  std::optional<AlignedCorrection> aligned;
+/// ½‖X̃ − ∇φ̃‖² − E_D for a correction u: ∇φ − Z = (Σ̃_d − X̃_C) − ∇u, and X̃_C is orthogonal to both gradients.
+double correction_energy(const Mesh& mesh, const HarmonicCorrection& correction, const FramePairs& Sigma,
+                         const Eigen::VectorXcd& u) {
+  return frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
+}
+
+/// Boundary and feature curves on integer iso-lines (param/alignment.h): the same correction with one real
+/// component of u fixed at every curve vertex (seams untouched: u is continuous on the covering). Leaves `aligned`
+/// empty when no curve is aligned with the field. `known` must outlive `aligned`.
+void align_curves(const Mesh& mesh, const CoverCut& cc, const FramePairs& Z, const HarmonicCorrection& correction,
+                  const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u_free, const ParamOptions& options,
+                  std::optional<AlignedCorrection>& aligned) {
+  if (!options.align_curves) return;
+  const FeatureConstraints features = feature_constraints(mesh, options.features);
+  const std::vector<CurveSlot> slots =
+      aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
   if (!slots.empty())
     aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
                     CurveLimits{options.align_max_shift, options.align_min_length, options.align_max_spread});
-  Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
-  // ½‖X̃ − ∇φ̃‖² − E_D for a correction u: ∇φ − Z = (Σ̃_d − X̃_C) − ∇u, and X̃_C is orthogonal to both gradients.
-  auto correction_energy = [&](const Eigen::VectorXcd& w) {
-    return frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(w)));
-  };
-  P.energy_harmonic = correction_energy(u);
-  lap("harmonic");
+}
+
+/// The inputs of the refinements of the harmonic correction u (beyond the thesis).
+struct CorrectionInputs {
+  const HarmonicCorrection& correction;
+  AlignedCorrection* aligned;      ///< the curve constraints, or null
+  const Eigen::MatrixX3cd& known;  ///< φ = known − u
+  const FramePairs& Z;             ///< the scaled gauged frames
+  const FramePairs& Sigma;         ///< Σ̃_d
+  const FramePairs& XC;            ///< X̃_C
+};
+
+/// Relaxation, local stiffening and untangling of the correction u, with their energies into P.
+void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInputs& in, const ParamOptions& options,
+                       ProgressSink& progress, StageLaps& lap, Parameterization& P, Eigen::VectorXcd& u) {
+  const HarmonicCorrection& correction = in.correction;
+  AlignedCorrection* const aligned = in.aligned;
   // Relaxation rounds with flipped triangles and local stiffening re-solve with weighted 𝔏̄_w u = b_w, with the
   // curve constraints if there are any; they keep the pattern and reuse the symbolic analysis.
   SparseCholesky<Complex> weighted_chol;
@@ -393,26 +359,27 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     return Eigen::VectorXcd(weighted_chol.solve(bp));
   };
   // What the weighted solves of the stiffening follow: ∇φ ≈ Z, or the relaxed targets.
-  FramePairs followed_gradient = Z, followed_target = Sigma - XC;
+  FramePairs followed_gradient = in.Z, followed_target = in.Sigma - in.XC;
   if (options.relaxation.iterations > 0) {
     // The unweighted matrix is factored already: the relaxation rounds only re-solve.
     const CorrectionResolve resolve = [&](const Eigen::VectorXcd& bw) -> Eigen::VectorXcd {
       if (aligned) return aligned->solve(correction.stiffness(), bw, /*refactorize=*/false);
       return correction.solve(bw).col(0);
     };
-    RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, known, Z, 1.0 / P.edge_length, u,
+    RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, in.known, in.Z, 1.0 / P.edge_length, u,
                                                  resolve, solve, options.relaxation, progress, P.relaxation);
     u = std::move(relaxed.u);
     followed_gradient = std::move(relaxed.gradient_target);
     followed_target = std::move(relaxed.target);
-    P.relaxation.energy = correction_energy(u) - P.energy_harmonic;  // ≥ 0: u_free minimizes it (round-off aside)
+    // ≥ 0: u_free minimizes it (round-off aside)
+    P.relaxation.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic;
     if (P.relaxation.iterations > 0) lap("relaxation");
   }
   if (options.stiffening.max_iterations > 0) {
-    u = stiffen_correction(mesh, cc.matching, correction, known, followed_gradient, followed_target, u, solve,
+    u = stiffen_correction(mesh, cc.matching, correction, in.known, followed_gradient, followed_target, u, solve,
                            options.stiffening, progress, P.stiffening);
     if (P.stiffening.kept_iteration > 0)
-      P.stiffening.energy = correction_energy(u) - P.energy_harmonic - P.relaxation.energy;
+      P.stiffening.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic - P.relaxation.energy;
     if (P.stiffening.iterations > 0) lap("stiffening");
   }
   if (options.untangle.enabled) {
@@ -420,21 +387,20 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     const std::vector<char> fixed =
         untangle_fixed_components(mesh, correction.layers(), aligned ? std::vector<int>{} : correction.kernel_pins(),
                                   aligned ? aligned->fixed_components() : std::vector<char>{});
-    const double price_before = correction_energy(u);
-    u = untangle_map(mesh, correction, known, Z, fixed, u, options.untangle, progress, P.untangling,
+    const double price_before = correction_energy(mesh, correction, in.Sigma, u);
+    u = untangle_map(mesh, correction, in.known, in.Z, fixed, u, options.untangle, progress, P.untangling,
                      aligned ? aligned->fixed_components() : std::vector<char>{});
     if (P.untangling.iterations > 0) {
-      P.untangling.energy = correction_energy(u) - price_before;
+      P.untangling.energy = correction_energy(mesh, correction, in.Sigma, u) - price_before;
       lap("untangling");
     }
   }
-  if (aligned) {
-    P.aligned_curves = aligned->curves(u);
-    P.alignment_conflicts = aligned->conflicts();
-  }
+}
 
-  // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
-  P.uv = known - correction.corner_values(u);
+/// Step 6: the transitions of the final map φ = P.uv across the cut edges: rotation k_e and the Gaussian integer
+/// nearest to its translation (the residual into P.max_translation_residual).
+void assemble_transitions(const Mesh& mesh, const CoverCut& cc, Parameterization& P) {
+  const int ne = mesh.num_edges();
   const Eigen::VectorXcd cfinal = cut_translations(mesh, cc, P.uv);
   P.transition_rotation = Eigen::VectorXi::Zero(ne);
   P.transition_translation = Eigen::VectorXcd::Zero(ne);
@@ -445,6 +411,63 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
     P.max_translation_residual =
         std::max(P.max_translation_residual, std::abs(cfinal[e] - P.transition_translation[e]));
   }
+}
+
+}  // namespace
+
+Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
+                              ProgressSink& progress) {
+  if (field.X.size() != mesh.num_faces() || field.Y.size() != mesh.num_faces() ||
+      field.matching.size() != mesh.num_edges())
+    throw InputError("", 0, "parameterize: the frame field does not match the mesh");
+  Parameterization P;
+  StageLaps lap(P, progress);
+
+  // ---- 1. cut through B and gauge (4.2)
+  const CoverCut cc = cut_and_gauge(mesh, field, P);
+  const std::vector<char> trivial = trivial_holonomy(mesh, cc);
+  P.holonomy_without_branch_points = holonomy_without_branch_points(mesh, trivial, P.branch_points);
+  lap("cut");
+  const FramePairs Z = scaled_frames(mesh, field, cc, options, P);
+
+  // ---- 2. curl removal on the covering: 𝔏̄* v = -curl* Z̃, X̂ = Z - J∇v
+  std::optional<HarmonicCorrection> harmonic;
+  const FramePairs XC = remove_curl(mesh, cc, trivial, Z, harmonic);
+  const FramePairs Xhat = Z - XC;
+  P.energy_curl = frame_norm2(mesh, XC);
+  lap("curl_removal");
+
+  // ---- 3. integration over the cut disk and the periods
+  Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
+  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.integration_mismatch);
+  lap("integrate");
+
+  // ---- 4. rounding (4.2.2)
+  round_dependent_paths(mesh, cc, options.lattice, phi, c);
+  const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
+  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, options, progress, lap, P);
+
+  // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
+  const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
+  const FramePairs Sigma = corner_gradient(mesh, sigma);
+  const Eigen::VectorXcd b = correction.rhs(Sigma);
+  const Eigen::VectorXcd u_free = correction.solve(b).col(0);
+  const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;  // φ = known − u
+  std::optional<AlignedCorrection> aligned;
+  align_curves(mesh, cc, Z, correction, known, u_free, options, aligned);
+  Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
+  P.energy_harmonic = correction_energy(mesh, correction, Sigma, u);
+  lap("harmonic");
+  const CorrectionInputs inputs{correction, aligned ? &*aligned : nullptr, known, Z, Sigma, XC};
+  refine_correction(mesh, cc, inputs, options, progress, lap, P, u);
+  if (aligned) {
+    P.aligned_curves = aligned->curves(u);
+    P.alignment_conflicts = aligned->conflicts();
+  }
+
+  // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
+  P.uv = known - correction.corner_values(u);
+  assemble_transitions(mesh, cc, P);
   lap("assemble");
   return P;
 }

@@ -7,11 +7,6 @@ namespace quadcover {
 
 namespace {
 Complex round_gauss(Complex z) { return {std::round(z.real()), std::round(z.imag())}; }
-int corner_of(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
 }  // namespace
 
 SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double relative_tolerance) {
@@ -27,8 +22,8 @@ SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double r
     const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
     if (s < 0 || t < 0) continue;
     const int a = mesh.E()(e, 0), b = mesh.E()(e, 1);
-    const Complex sa = uv(s, corner_of(mesh, s, a)), sb = uv(s, corner_of(mesh, s, b));
-    const Complex ta = uv(t, corner_of(mesh, t, a)), tb = uv(t, corner_of(mesh, t, b));
+    const Complex sa = uv(s, mesh.corner_of(s, a)), sb = uv(s, mesh.corner_of(s, b));
+    const Complex ta = uv(t, mesh.corner_of(t, a)), tb = uv(t, mesh.corner_of(t, b));
     double best = INFINITY;
     bool identity = false;
     for (int k = 0; k < 4; ++k) {

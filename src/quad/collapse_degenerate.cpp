@@ -40,13 +40,15 @@ std::vector<int> one_ring(const Mesh& mesh, int v) {
   return ring;
 }
 
-// One pass: an independent set of collapsible edges, rebuilt into a new mesh. false if nothing was collapsed.
-bool collapse_pass(const Mesh& mesh, const Parameterization& param, double tol, const std::vector<int>& origin_in,
-                   CollapsedMap& out) {
+// The edges of one pass: an independent set of interior edges of zero length in the map (within tol) whose collapse
+// keeps a manifold (link condition, no boundary vertex). merge_into[b] = a for each, and the two triangles of the
+// edge are marked removed (also listed in removed_list). \return the number of edges.
+int choose_collapses(const Mesh& mesh, const Parameterization& param, double tol, std::vector<int>& merge_into,
+                     std::vector<char>& removed, std::vector<int>& removed_list) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
-  std::vector<char> locked(nv, 0), removed(nf, 0);
-  std::vector<int> merge_into(nv, -1);
-  std::vector<int> removed_list;
+  std::vector<char> locked(nv, 0);
+  removed.assign(nf, 0);
+  merge_into.assign(nv, -1);
   int count = 0;
   for (int e = 0; e < mesh.num_edges(); ++e) {
     const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
@@ -54,8 +56,8 @@ bool collapse_pass(const Mesh& mesh, const Parameterization& param, double tol, 
     const int a = mesh.E()(e, 0), b = mesh.E()(e, 1);
     const int ca = grid::local_corner(mesh, s, a), cb = grid::local_corner(mesh, s, b);
     if (std::abs(param.uv(s, ca) - param.uv(s, cb)) > tol) continue;
-    const int c = mesh.F()(s, 3 - ca - cb), d = mesh.F()(t, 3 - grid::local_corner(mesh, t, a) -
-                                                             grid::local_corner(mesh, t, b));
+    const int c = mesh.F()(s, 3 - ca - cb),
+              d = mesh.F()(t, 3 - grid::local_corner(mesh, t, a) - grid::local_corner(mesh, t, b));
     if (locked[a] || locked[b] || locked[c] || locked[d] || c == d) continue;
     if (mesh.is_boundary_vertex(a) || mesh.is_boundary_vertex(b)) continue;
     // link condition: the common neighbours of a and b are exactly c and d
@@ -71,39 +73,41 @@ bool collapse_pass(const Mesh& mesh, const Parameterization& param, double tol, 
     removed_list.push_back(t);
     ++count;
   }
-  if (count == 0) return false;
-  // New vertices: b merged into a at the midpoint (3D), then compacted.
+  return count;
+}
+
+// The collapsed triangles: b merged into a at the midpoint (3D), vertices compacted; the kept faces (old indices in
+// `kept`) with their corner uv.
+void collapsed_geometry(const Mesh& mesh, const Parameterization& param, const std::vector<int>& merge_into,
+                        const std::vector<char>& removed, Eigen::MatrixX3d& V, Eigen::MatrixX3i& F,
+                        Eigen::MatrixX3cd& uv, std::vector<int>& kept) {
+  const int nv = mesh.num_vertices(), nf = mesh.num_faces();
   std::vector<int> new_id(nv, -1);
   int n2 = 0;
   for (int v = 0; v < nv; ++v)
     if (merge_into[v] < 0) new_id[v] = n2++;
   for (int v = 0; v < nv; ++v)
     if (merge_into[v] >= 0) new_id[v] = new_id[merge_into[v]];
-  Eigen::MatrixX3d V(n2, 3);
+  V.resize(n2, 3);
   for (int v = 0; v < nv; ++v)
     if (merge_into[v] < 0) V.row(new_id[v]) = mesh.V().row(v);
   for (int v = 0; v < nv; ++v)
     if (merge_into[v] >= 0) V.row(new_id[v]) = 0.5 * (mesh.V().row(v) + mesh.V().row(merge_into[v]));
-  std::vector<int> kept;
   for (int f = 0; f < nf; ++f)
     if (!removed[f]) kept.push_back(f);
-  Eigen::MatrixX3i F(kept.size(), 3);
-  Eigen::MatrixX3cd uv(kept.size(), 3);
+  F.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  uv.resize(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t i = 0; i < kept.size(); ++i)
     for (int c = 0; c < 3; ++c) {
       F(i, c) = new_id[mesh.F()(kept[i], c)];
       uv(i, c) = param.uv(kept[i], c);
     }
-  Mesh m2;
-  try {
-    m2 = Mesh::from_triangles(V, F);
-  } catch (const std::exception&) {
-    return false;  // the collapse would not give a valid mesh: keep the input (its degenerate triangles are cut out)
-  }
-  if (m2.num_faces() != F.rows() || !(m2.F() == F)) return false;
-  // Transitions of the new edges: the old one between the same faces, or composed through a removed triangle.
-  Parameterization p2;
-  p2.uv = uv;
+}
+
+// Transitions of the edges of the collapsed mesh m2: the old one between the same faces, or composed through a
+// removed triangle. false if an adjacency has neither (not expected).
+bool collapsed_transitions(const Mesh& mesh, const Parameterization& param, const Mesh& m2,
+                           const std::vector<int>& kept, const std::vector<int>& removed_list, Parameterization& p2) {
   p2.transition_rotation = Eigen::VectorXi::Zero(m2.num_edges());
   p2.transition_translation = Eigen::VectorXcd::Zero(m2.num_edges());
   p2.cut_edges = Eigen::VectorXi::Zero(m2.num_edges());
@@ -122,6 +126,31 @@ bool collapse_pass(const Mesh& mesh, const Parameterization& param, double tol, 
     p2.transition_translation[e] = ch.c;
     p2.cut_edges[e] = ch.r != 0 || std::abs(ch.c) > 0;
   }
+  return true;
+}
+
+// One pass: an independent set of collapsible edges, rebuilt into a new mesh. false if nothing was collapsed.
+bool collapse_pass(const Mesh& mesh, const Parameterization& param, double tol, const std::vector<int>& origin_in,
+                   CollapsedMap& out) {
+  std::vector<int> merge_into, removed_list;
+  std::vector<char> removed;
+  const int count = choose_collapses(mesh, param, tol, merge_into, removed, removed_list);
+  if (count == 0) return false;
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;
+  Eigen::MatrixX3cd uv;
+  std::vector<int> kept;
+  collapsed_geometry(mesh, param, merge_into, removed, V, F, uv, kept);
+  Mesh m2;
+  try {
+    m2 = Mesh::from_triangles(V, F);
+  } catch (const std::exception&) {
+    return false;  // the collapse would not give a valid mesh: keep the input (its degenerate triangles are cut out)
+  }
+  if (m2.num_faces() != F.rows() || !(m2.F() == F)) return false;
+  Parameterization p2;
+  p2.uv = uv;
+  if (!collapsed_transitions(mesh, param, m2, kept, removed_list, p2)) return false;
   out.face_origin.resize(kept.size());
   for (std::size_t i = 0; i < kept.size(); ++i) out.face_origin[i] = origin_in[kept[i]];
   out.mesh = std::move(m2);

@@ -5,11 +5,7 @@
 
 namespace quadcover::grid {
 
-int local_corner(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
+int local_corner(const Mesh& mesh, int f, int v) { return mesh.corner_of(f, v); }
 
 namespace {
 
@@ -33,13 +29,11 @@ double snap_value(double x, double snap) {
   return std::abs(x - h) <= snap ? h : x;
 }
 
-}  // namespace
-
-GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance) {
-  GridMap g;
-  g.mesh = &mesh;
+/// Fixed-point corner coordinates of the map: a power-of-two scale keeping |coordinates| below 2^50 so that
+/// orient() products stay far inside 128 bits; values within `snap` of a half-integer are snapped to it.
+void fixed_point_corners(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance,
+                         GridMap& g) {
   const int nf = mesh.num_faces();
-  // Fixed-point scale: keep |coordinates| below 2^50 so that orient() products stay far inside 128 bits.
   double max_abs = 1;
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < 3; ++c)
@@ -58,12 +52,17 @@ GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double s
     }
   for (int e = 0; e < param.transition_translation.size(); ++e) {
     const Complex c = param.transition_translation[e];
-    if (std::abs(c - Complex(std::round(c.real()), std::round(c.imag()))) > seam_tolerance) ++g.non_integer_translations;
+    if (std::abs(c - Complex(std::round(c.real()), std::round(c.imag()))) > seam_tolerance)
+      ++g.non_integer_translations;
   }
+}
 
-  // Make each vertex's corners exactly consistent: walk its fan and carry the first corner's value across every
-  // seam whose transition holds to within seam_tolerance; mark the others torn.
-  const I64 tol = std::max<I64>(1, static_cast<I64>(seam_tolerance * S));
+/// Makes each vertex's corners exactly consistent: walks its fan and carries the first corner's value across every
+/// seam whose transition holds to within seam_tolerance. \return per edge: 1 for the others (torn).
+std::vector<char> carry_corners_across_seams(const Mesh& mesh, const Parameterization& param, double seam_tolerance,
+                                             GridMap& g) {
+  const int nf = mesh.num_faces();
+  const I64 tol = std::max<I64>(1, static_cast<I64>(seam_tolerance * static_cast<double>(g.scale)));
   std::vector<char> torn(mesh.num_edges(), 0);
   std::vector<char> done(3 * nf, 0);
   for (int f0 = 0; f0 < nf; ++f0)
@@ -78,7 +77,7 @@ GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double s
         f = p;
         c = local_corner(mesh, f, v);
       }
-      const int fs = f, cs = c;
+      const int fs = f;
       done[3 * f + c] = 1;
       for (int guard = 0; guard < 4 * nf; ++guard) {
         const int k = (c + 1) % 3;  // edge along r2 = p_{c+2} - p_c
@@ -102,10 +101,13 @@ GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double s
         c = cn;
         done[3 * f + c] = 1;
       }
-      (void)cs;
     }
-  g.torn_edges = static_cast<int>(std::count(torn.begin(), torn.end(), 1));
+  return torn;
+}
 
+/// Active faces (positive orientation) and their neighbour links across untorn edges, with the transitions.
+void link_active_faces(const Mesh& mesh, const Parameterization& param, const std::vector<char>& torn, GridMap& g) {
+  const int nf = mesh.num_faces();
   g.active.assign(nf, 0);
   for (int f = 0; f < nf; ++f) {
     const I128 o = orient(g.corner(f, 0), g.corner(f, 1), g.corner(f, 2));
@@ -123,8 +125,35 @@ GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double s
       g.nb[3 * f + k] = n;
       raw_transition(mesh, param, g.scale, f, k, g.nb_rot[3 * f + k], g.nb_trans[3 * f + k]);
     }
+}
 
-  // Sectors over active faces and holding seams, with their quarter-direction slots in counter-clockwise order.
+/// The quarter-direction slots of sector s: per corner, the directions in its half-open angle [r1, r2) (closed at
+/// the end of an open fan), in counter-clockwise order.
+void add_sector_slots(const GridMap& g, Sector& s) {
+  for (std::size_t i = 0; i < s.corners.size(); ++i) {
+    const int fc = s.corners[i], ff = fc / 3, cc = fc % 3;
+    const IPt p = g.q[fc], r1 = g.corner(ff, (cc + 1) % 3) - p, r2 = g.corner(ff, (cc + 2) % 3) - p;
+    const bool closed_end = !s.cyclic && i + 1 == s.corners.size();
+    std::vector<int> dirs;
+    for (int d = 0; d < 4; ++d) {
+      const IPt w = dir_vec(d);
+      const I128 a = cross(r1, w), b = cross(w, r2);
+      if (a >= 0 && (b > 0 || (closed_end && b == 0)) && !(a == 0 && dot(r1, w) < 0) && !(b == 0 && dot(w, r2) < 0))
+        dirs.push_back(d);
+    }
+    std::sort(dirs.begin(), dirs.end(), [&](int d1, int d2) {
+      const I128 a1 = cross(r1, dir_vec(d1)), a2 = cross(r1, dir_vec(d2));
+      if (a1 == 0) return a2 != 0;  // along r1 comes first
+      if (a2 == 0) return false;
+      return cross(dir_vec(d1), dir_vec(d2)) > 0;
+    });
+    for (int d : dirs) s.slots.push_back({ff, d});
+  }
+}
+
+/// Sectors over active faces and holding seams, with their quarter-direction slots in counter-clockwise order.
+void build_sectors(const Mesh& mesh, GridMap& g) {
+  const int nf = mesh.num_faces();
   g.corner_sector.assign(3 * nf, -1);
   g.corner_pos.assign(3 * nf, -1);
   for (int f0 = 0; f0 < nf; ++f0) {
@@ -158,29 +187,22 @@ GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double s
         f = n;
         c = local_corner(mesh, f, v);
       }
-      // Quarter directions in each corner's half-open angle [r1, r2) (closed at the end of an open fan).
-      for (std::size_t i = 0; i < s.corners.size(); ++i) {
-        const int fc = s.corners[i], ff = fc / 3, cc = fc % 3;
-        const IPt p = g.q[fc], r1 = g.corner(ff, (cc + 1) % 3) - p, r2 = g.corner(ff, (cc + 2) % 3) - p;
-        const bool closed_end = !s.cyclic && i + 1 == s.corners.size();
-        std::vector<int> dirs;
-        for (int d = 0; d < 4; ++d) {
-          const IPt w = dir_vec(d);
-          const I128 a = cross(r1, w), b = cross(w, r2);
-          if (a >= 0 && (b > 0 || (closed_end && b == 0)) && !(a == 0 && dot(r1, w) < 0) && !(b == 0 && dot(w, r2) < 0))
-            dirs.push_back(d);
-        }
-        std::sort(dirs.begin(), dirs.end(), [&](int d1, int d2) {
-          const I128 a1 = cross(r1, dir_vec(d1)), a2 = cross(r1, dir_vec(d2));
-          if (a1 == 0) return a2 != 0;  // along r1 comes first
-          if (a2 == 0) return false;
-          return cross(dir_vec(d1), dir_vec(d2)) > 0;
-        });
-        for (int d : dirs) s.slots.push_back({ff, d});
-      }
+      add_sector_slots(g, s);
       g.sectors.push_back(std::move(s));
     }
   }
+}
+
+}  // namespace
+
+GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance) {
+  GridMap g;
+  g.mesh = &mesh;
+  fixed_point_corners(mesh, param, snap, seam_tolerance, g);
+  const std::vector<char> torn = carry_corners_across_seams(mesh, param, seam_tolerance, g);
+  g.torn_edges = static_cast<int>(std::count(torn.begin(), torn.end(), 1));
+  link_active_faces(mesh, param, torn, g);
+  build_sectors(mesh, g);
   return g;
 }
 

@@ -76,6 +76,7 @@ struct GridMap {
 /// Builds the exact map. `snap` (grid units): coordinates this close to a multiple of ½ are snapped onto it
 /// (branch points of odd index sit at such points, thesis 4.2.2); `seam_tolerance`: how far the two sides of a
 /// seam may disagree before the seam counts as torn.
+/// \pre param.uv is #F by 3; its transitions are empty or #E. The map keeps a pointer to mesh. \throw only std::bad_alloc.
 GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance);
 
 /// Index of local corner of face f at vertex v, or -1.

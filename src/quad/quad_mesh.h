@@ -36,14 +36,17 @@ struct PolygonTopology {
 };
 
 /// Counts the above for faces over `num_vertices` vertices. Linear time.
+/// \pre every face index lies in [0, num_vertices). \throw only std::bad_alloc.
 PolygonTopology polygon_topology(int num_vertices, const std::vector<std::vector<int>>& faces);
 
 /// Where two faces use the same directed edge (possible next to cut-out folds), keeps the smallest face and drops
 /// the others. Returns the number of dropped faces.
+/// \pre every face index < q.num_vertices(). \throw only std::bad_alloc.
 int drop_faces_on_duplicate_edges(QuadMesh& q);
 
 /// Gives each fan of faces around a vertex its own copy of the vertex (a vertex pinched between holes).
 /// Returns the number of vertices added.
+/// \pre every face index < q.num_vertices(). \throw only std::bad_alloc.
 int split_pinched_vertices(QuadMesh& q);
 
 /// Cuts spikes out of a face loop: where the loop runs x → v → x (v is an end of the graph, a vertex of valence 1),
@@ -52,6 +55,7 @@ int remove_spikes(std::vector<int>& loop);
 
 /// Removes the vertices used by no face and numbers the others in order of first use by the faces.
 /// Returns the number of vertices removed.
+/// \pre every face index < q.num_vertices(). \throw only std::bad_alloc.
 int remove_unused_vertices(QuadMesh& q);
 
 }  // namespace quadcover

@@ -57,7 +57,7 @@ bool merge_loops(const std::vector<int>& F, const std::vector<int>& G, std::vect
     const int ja = static_cast<int>(std::find(G.begin(), G.end(), a) - G.begin());
     if (ja == m || G[(ja + m - 1) % m] != b) continue;
     merged.clear();
-    for (int k = 0; k < n; ++k) merged.push_back(F[(i + 1 + k) % n]);  // b round to a
+    for (int k = 0; k < n; ++k) merged.push_back(F[(i + 1 + k) % n]);   // b round to a
     for (int k = 1; k < m - 1; ++k) merged.push_back(G[(ja + k) % m]);  // after a, up to before b
     removed = edge_key(a, b);
     return true;
@@ -129,104 +129,130 @@ class Splitter {
   }
 };
 
-}  // namespace
+// The state of quadrangulate_polygons: edge uses and faces, the polygons consumed and the quads that replace them.
+class PolygonQuadrangulation {
+ public:
+  PolygonQuadrangulation(QuadMesh& q, int max_size) : q_(q), max_size_(max_size), nf_(q.num_faces()) {
+    for (int f = 0; f < nf_; ++f) {
+      const auto& F = q.faces[f];
+      for (std::size_t i = 0; i < F.size(); ++i) {
+        const Key k = edge_key(F[i], F[(i + 1) % F.size()]);
+        auto [it, fresh] = faces_of_.emplace(k, std::pair{f, -1});
+        if (!fresh) it->second.second = f;
+        ++uses_[k];
+      }
+    }
+    consumed_.assign(nf_, 0);
+  }
 
-QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
-  QuadrangulateReport rep;
-  const int nf = q.num_faces();
-  if (q.num_quads() == nf) return rep;
-  std::unordered_map<Key, int> uses;
-  std::unordered_map<Key, std::pair<int, int>> faces_of;  // undirected edge -> (first face, second face)
-  for (int f = 0; f < nf; ++f) {
-    const auto& F = q.faces[f];
-    for (std::size_t i = 0; i < F.size(); ++i) {
-      const Key k = edge_key(F[i], F[(i + 1) % F.size()]);
-      auto [it, fresh] = faces_of.emplace(k, std::pair{f, -1});
-      if (!fresh) it->second.second = f;
-      ++uses[k];
+  // Even polygons.
+  void split_even() {
+    for (int f = 0; f < nf_; ++f) {
+      const int n = static_cast<int>(q_.faces[f].size());
+      if (n == 4 || n % 2 || n > max_size_ || !interior(f)) continue;
+      std::vector<std::vector<int>> quads;
+      if (!splitter_.split(q_.faces[f], quads)) continue;
+      consumed_[f] = 1;
+      commit(q_.faces[f], quads);
+      ++rep_.split_polygons;
     }
   }
-  auto interior = [&](int f) {
-    const auto& F = q.faces[f];
+
+  // Odd polygons: merged with an odd neighbour, or through one quad with an odd polygon beyond it, then split.
+  void merge_odd() {
+    for (int pass = 0; pass < 2; ++pass)
+      for (int f = 0; f < nf_; ++f) {
+        if (!usable(f, true)) continue;
+        for (int g : neighbours(f)) {
+          if (consumed_[f] || !usable(g, pass == 0)) continue;
+          std::vector<int> m1;
+          Key k1 = 0;
+          if (!merge_loops(q_.faces[f], q_.faces[g], m1, k1)) continue;
+          if (pass == 0) {
+            take(m1, {k1}, {f, g});
+            continue;
+          }
+          for (int h : neighbours(g)) {  // f + quad g + odd h
+            std::vector<int> m2;
+            Key k2 = 0;
+            if (h == f || !usable(h, true) || !merge_loops(m1, q_.faces[h], m2, k2)) continue;
+            if (take(m2, {k1, k2}, {f, g, h})) break;
+          }
+        }
+      }
+  }
+
+  // Replaces the consumed faces of q by the new quads.
+  QuadrangulateReport finish() {
+    if (added_.empty()) return rep_;
+    std::vector<std::vector<int>> faces;
+    faces.reserve(nf_ + added_.size());
+    for (int f = 0; f < nf_; ++f)
+      if (!consumed_[f]) faces.push_back(std::move(q_.faces[f]));
+    for (auto& Q : added_) faces.push_back(std::move(Q));
+    q_.faces = std::move(faces);
+    return rep_;
+  }
+
+ private:
+  bool interior(int f) {
+    const auto& F = q_.faces[f];
     for (std::size_t i = 0; i < F.size(); ++i)
-      if (uses[edge_key(F[i], F[(i + 1) % F.size()])] != 2) return false;
+      if (uses_[edge_key(F[i], F[(i + 1) % F.size()])] != 2) return false;
     return true;
-  };
-  std::vector<char> consumed(nf, 0);
-  std::vector<std::vector<int>> added;
+  }
   // The new quads of polygon P: its sides keep their two faces, each diagonal gets the two quads beside it.
-  auto commit = [&](const std::vector<int>& P, const std::vector<std::vector<int>>& quads) {
+  void commit(const std::vector<int>& P, const std::vector<std::vector<int>>& quads) {
     std::unordered_set<Key> sides;
     for (std::size_t i = 0; i < P.size(); ++i) sides.insert(edge_key(P[i], P[(i + 1) % P.size()]));
     for (const auto& Q : quads)
       for (int i = 0; i < 4; ++i)
-        if (!sides.count(edge_key(Q[i], Q[(i + 1) % 4]))) uses[edge_key(Q[i], Q[(i + 1) % 4])] = 2;
-    added.insert(added.end(), quads.begin(), quads.end());
-  };
-  Splitter splitter(q.V, uses);
-  // Even polygons.
-  for (int f = 0; f < nf; ++f) {
-    const int n = static_cast<int>(q.faces[f].size());
-    if (n == 4 || n % 2 || n > max_size || !interior(f)) continue;
-    std::vector<std::vector<int>> quads;
-    if (!splitter.split(q.faces[f], quads)) continue;
-    consumed[f] = 1;
-    commit(q.faces[f], quads);
-    ++rep.split_polygons;
+        if (!sides.count(edge_key(Q[i], Q[(i + 1) % 4]))) uses_[edge_key(Q[i], Q[(i + 1) % 4])] = 2;
+    added_.insert(added_.end(), quads.begin(), quads.end());
   }
-  // Odd polygons: merged with an odd neighbour, or through one quad with an odd polygon beyond it, then split.
-  auto neighbours = [&](int f) {
+  std::vector<int> neighbours(int f) {
     std::vector<int> out;
-    const auto& F = q.faces[f];
+    const auto& F = q_.faces[f];
     for (std::size_t i = 0; i < F.size(); ++i) {
-      const auto [f1, f2] = faces_of[edge_key(F[i], F[(i + 1) % F.size()])];
+      const auto [f1, f2] = faces_of_[edge_key(F[i], F[(i + 1) % F.size()])];
       const int g = f1 == f ? f2 : f1;
       if (g >= 0 && g != f && std::find(out.begin(), out.end(), g) == out.end()) out.push_back(g);
     }
     return out;
-  };
-  auto usable = [&](int g, bool odd) {
-    return !consumed[g] && (q.faces[g].size() % 2 == 1) == odd && static_cast<int>(q.faces[g].size()) <= max_size &&
+  }
+  bool usable(int g, bool odd) {
+    return !consumed_[g] && (q_.faces[g].size() % 2 == 1) == odd && static_cast<int>(q_.faces[g].size()) <= max_size_ &&
            interior(g);
-  };
-  auto take = [&](const std::vector<int>& loop, const std::vector<Key>& removed, const std::vector<int>& from) {
+  }
+  bool take(const std::vector<int>& loop, const std::vector<Key>& removed, const std::vector<int>& from) {
     std::vector<std::vector<int>> quads;
-    if (static_cast<int>(loop.size()) > max_size + 2 || !splitter.split(loop, quads)) return false;
-    for (Key k : removed) uses.erase(k);
-    for (int g : from) consumed[g] = 1;
+    if (static_cast<int>(loop.size()) > max_size_ + 2 || !splitter_.split(loop, quads)) return false;
+    for (Key k : removed) uses_.erase(k);
+    for (int g : from) consumed_[g] = 1;
     commit(loop, quads);
-    ++rep.merged_pairs;
-    if (loop.size() > 4) ++rep.split_polygons;
+    ++rep_.merged_pairs;
+    if (loop.size() > 4) ++rep_.split_polygons;
     return true;
-  };
-  for (int pass = 0; pass < 2; ++pass)
-    for (int f = 0; f < nf; ++f) {
-      if (!usable(f, true)) continue;
-      for (int g : neighbours(f)) {
-        if (consumed[f] || !usable(g, pass == 0)) continue;
-        std::vector<int> m1;
-        Key k1 = 0;
-        if (!merge_loops(q.faces[f], q.faces[g], m1, k1)) continue;
-        if (pass == 0) {
-          take(m1, {k1}, {f, g});
-          continue;
-        }
-        for (int h : neighbours(g)) {  // f + quad g + odd h
-          std::vector<int> m2;
-          Key k2 = 0;
-          if (h == f || !usable(h, true) || !merge_loops(m1, q.faces[h], m2, k2)) continue;
-          if (take(m2, {k1, k2}, {f, g, h})) break;
-        }
-      }
-    }
-  if (added.empty()) return rep;
-  std::vector<std::vector<int>> faces;
-  faces.reserve(nf + added.size());
-  for (int f = 0; f < nf; ++f)
-    if (!consumed[f]) faces.push_back(std::move(q.faces[f]));
-  for (auto& Q : added) faces.push_back(std::move(Q));
-  q.faces = std::move(faces);
-  return rep;
+  }
+
+  QuadMesh& q_;
+  const int max_size_, nf_;
+  std::unordered_map<Key, int> uses_;
+  std::unordered_map<Key, std::pair<int, int>> faces_of_;  // undirected edge -> (first face, second face)
+  std::vector<char> consumed_;
+  std::vector<std::vector<int>> added_;
+  Splitter splitter_{q_.V, uses_};
+  QuadrangulateReport rep_;
+};
+
+}  // namespace
+
+QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
+  if (q.num_quads() == q.num_faces()) return {};
+  PolygonQuadrangulation run(q, max_size);
+  run.split_even();
+  run.merge_odd();
+  return run.finish();
 }
 
 int drop_closed_debris(QuadMesh& q, int min_faces) {

@@ -19,17 +19,19 @@ struct QuadrangulateReport {
 };
 
 /// Works on faces with at most `max_size` corners (default 8) whose edges all have a face on either side.
+/// \pre q is an oriented polygon mesh (every face index < q.num_vertices()). \throw only std::bad_alloc.
 QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size = 8);
 
 /// Removes connected components that are closed but have fewer than `min_faces` faces: pieces such as two quads
 /// glued along all their sides, which extraction can leave inside a cut-out fold (a closed quad surface needs at
-/// least 6 faces). Returns the number of faces removed.
+/// least 6 faces). Returns the number of faces removed. \pre as quadrangulate_polygons. \throw only std::bad_alloc.
 int drop_closed_debris(QuadMesh& q, int min_faces = 6);
 
 /// Closes each hole whose boundary loop is simple, has 3..max_loop edges, lies on a component holding at least a
 /// quarter of the faces and passes `allowed` (given the loop's vertices) with one polygon face (the loop reversed). Meant for the small holes left where folded triangles were
 /// cut out: the face covers the disk the fold occupied, so χ rises by one per hole and the boundary loops drop by
 /// one (the capped surface is unchanged). Returns the number of holes filled.
+/// \pre as quadrangulate_polygons; max_loop >= 3 to fill anything. Throws only what `allowed` throws.
 int fill_small_holes(QuadMesh& q, int max_loop, const std::function<bool(const std::vector<int>&)>& allowed);
 
 }  // namespace quadcover

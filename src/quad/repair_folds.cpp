@@ -24,7 +24,7 @@ Affine transition(const Mesh& mesh, const Parameterization& p, int f, int k) {
   const Complex a = ipow(p.transition_rotation.size() ? p.transition_rotation[e] : 0);
   const Complex c = p.transition_translation.size() ? p.transition_translation[e] : Complex(0, 0);
   if (mesh.EF()(e, 0) == f) return {a, c};  // φ_t = a φ_s + c
-  return {1.0 / a, -c / a};                   // φ_s = (φ_t − c) / a
+  return {1.0 / a, -c / a};                 // φ_s = (φ_t − c) / a
 }
 
 double signed_area(const Eigen::MatrixX3cd& uv, int f) {
@@ -134,21 +134,26 @@ Complex centroid(const std::vector<Complex>& poly) {
   return std::abs(area) > 1e-300 ? c / (3 * area) : mean / static_cast<double>(poly.size());
 }
 
-}  // namespace
+// The faces of uv whose signed area is at most `threshold`, in increasing order.
+std::vector<int> bad_faces(const Eigen::MatrixX3cd& uv, double threshold) {
+  std::vector<int> bad;
+  for (int f = 0; f < uv.rows(); ++f)
+    if (signed_area(uv, f) <= threshold) bad.push_back(f);
+  return bad;
+}
 
-FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, const FoldRepairOptions& options) {
-  FoldRepairResult r;
-  r.uv = param.uv;
-  const int nf = mesh.num_faces();
-  auto bad_faces = [&](double threshold) {
-    std::vector<int> bad;
-    for (int f = 0; f < nf; ++f)
-      if (signed_area(r.uv, f) <= threshold) bad.push_back(f);
-    return bad;
-  };
-  std::vector<int> bad = bad_faces(options.min_area);
-  r.bad_before = static_cast<int>(bad_faces(0.0).size());
-  if (bad.empty()) return r;
+// Puts the fan's vertex at p (in the chart of its first face) in every corner of the fan.
+void place_vertex(const Fan& fan, Complex p, Eigen::MatrixX3cd& uv) {
+  for (std::size_t j = 0; j < fan.corners.size(); ++j) {
+    const auto [f, c] = fan.corners[j];
+    uv(f, c) = fan.from_first[j](p);
+  }
+}
+
+// Tutte rounds: the vertices of the bad faces, grown by one ring per round, move to their one-ring averages; a
+// round that leaves more flipped triangles is undone.
+void tutte_rounds(const Mesh& mesh, const Parameterization& param, const FoldRepairOptions& options,
+                  std::vector<int> bad, FoldRepairResult& r, std::vector<char>& touched) {
   // The vertex set grows ring by ring around the bad faces; each vertex's fan is walked once (a fan of valence d
   // around a high-valence vertex would otherwise be re-walked for every bad face touching it).
   const int nv = mesh.num_vertices();
@@ -160,7 +165,6 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
   for (int f : bad)
     for (int c = 0; c < 3; ++c) add_moving(mesh.F()(f, c));
   std::sort(moving.begin(), moving.end());
-  std::vector<char> touched(mesh.num_vertices(), 0);
   int best = r.bad_before;
   for (int round = 0; round < options.rounds && !bad.empty(); ++round) {
     const Eigen::MatrixX3cd before = r.uv;
@@ -178,22 +182,18 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
           const auto [f, c] = fan.corners[j];
           sum += fan.from_first[j].inverse(r.uv(f, (c + 1) % 3));
         }
-        const Complex p = sum / static_cast<double>(fan.corners.size());
-        for (std::size_t j = 0; j < fan.corners.size(); ++j) {
-          const auto [f, c] = fan.corners[j];
-          r.uv(f, c) = fan.from_first[j](p);
-        }
+        place_vertex(fan, sum / static_cast<double>(fan.corners.size()), r.uv);
         touched[v] = 1;
       }
     // Tutte averaging is only guaranteed to untangle star-shaped rings: never accept a round that makes it worse.
-    const int now = static_cast<int>(bad_faces(0.0).size());
+    const int now = static_cast<int>(bad_faces(r.uv, 0.0).size());
     if (now > best) {
       r.uv = before;
       touched = touched_before;
     } else {
       best = now;
     }
-    bad = bad_faces(options.min_area);
+    bad = bad_faces(r.uv, options.min_area);
     // grow by one ring around what is still bad
     for (int f : bad)
       for (int c = 0; c < 3; ++c) {
@@ -205,88 +205,100 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
       }
     std::sort(moving.begin(), moving.end());
   }
-  // Kernel sweeps: each regular vertex near what is still bad moves to its one-ring's Tutte average when every
-  // incident triangle stays positive there, else (if it has a bad incident triangle) into the kernel of its ring.
-  // No move makes an incident triangle bad, so the bad count never grows; the neighbourhood grows by one ring
-  // whenever a sweep makes no progress.
-  std::vector<signed char> regular(mesh.num_vertices(), -1);
-  std::vector<Fan> fan_of(mesh.num_vertices());
+}
+
+// The vertices of the bad faces grown by `ring` rings (breadth first: each fan walked once), sorted. in_cand is
+// #V scratch, all 0 on entry and on return.
+std::vector<int> candidate_vertices(const Mesh& mesh, const std::vector<int>& bad, int ring,
+                                    std::vector<char>& in_cand) {
+  std::vector<int> cand;
+  auto add_cand = [&](int v) {
+    if (!in_cand[v]) in_cand[v] = 1, cand.push_back(v);
+  };
+  for (int f : bad)
+    for (int c = 0; c < 3; ++c) add_cand(mesh.F()(f, c));
+  for (int g = 0, begin = 0; g < ring; ++g) {
+    const int end = static_cast<int>(cand.size());
+    for (int k = begin; k < end; ++k)
+      for (const auto& fc : mesh.fan(cand[k]))
+        for (int cc = 0; cc < 3; ++cc) add_cand(mesh.F()(fc.face, cc));
+    begin = end;
+  }
+  for (int v : cand) in_cand[v] = 0;
+  std::sort(cand.begin(), cand.end());
+  return cand;
+}
+
+// The kernel-sweep position of a fan's vertex (first-chart coordinates): its one-ring's Tutte average when every
+// incident triangle stays positive there, else (if it has a bad incident triangle) a point of the ring's kernel,
+// else the point maximizing the smallest incident area if that helps. False: the vertex stays.
+bool kernel_position(const Fan& fan, const Eigen::MatrixX3cd& uv, double min_area, Complex& p) {
+  std::vector<std::pair<Complex, Complex>> edges;
+  Complex sum{0, 0};
+  bool has_bad = false;
+  for (std::size_t j = 0; j < fan.corners.size(); ++j) {
+    const auto [f, c] = fan.corners[j];
+    const Complex q1 = fan.from_first[j].inverse(uv(f, (c + 1) % 3));
+    edges.emplace_back(q1, fan.from_first[j].inverse(uv(f, (c + 2) % 3)));
+    sum += q1;
+    has_bad |= signed_area(uv, f) <= min_area;
+  }
+  const double margin = 2 * min_area;
+  p = sum / static_cast<double>(edges.size());
+  bool ok = true;
+  for (const auto& [q1, q2] : edges) {
+    const Complex d = q2 - q1;
+    ok &= d.real() * (p - q1).imag() - d.imag() * (p - q1).real() >= 2 * margin;
+  }
+  if (ok) return true;
+  if (!has_bad) return false;
+  const std::vector<Complex> kernel = ring_kernel(edges, margin);
+  if (!kernel.empty()) {
+    p = centroid(kernel);
+    return true;
+  }
+  // No valid position: the one maximizing the smallest incident area, taken only if that area grows and no more
+  // incident triangles are bad than before (local untangling; the ring may follow later).
+  const Complex old_p = fan.from_first[0].inverse(uv(fan.corners[0].first, fan.corners[0].second));
+  double t_best = 0;
+  const Complex q = max_min_area_point(edges, t_best);
+  double t_old = INFINITY;
+  int bad_old = 0, bad_new = 0;
+  for (const auto& [q1, q2] : edges) {
+    t_old = std::min(t_old, twice_area(q1, q2, old_p));
+    bad_old += twice_area(q1, q2, old_p) <= 2 * min_area;
+    bad_new += twice_area(q1, q2, q) <= 2 * min_area;
+  }
+  if (!(t_best > t_old + 1e-12) || bad_new > bad_old) return false;
+  p = q;
+  return true;
+}
+
+// Kernel sweeps: each regular vertex near what is still bad moves to kernel_position(). No move makes an incident
+// triangle bad, so the bad count never grows; the neighbourhood grows by one ring whenever a sweep makes no
+// progress.
+void kernel_sweeps(const Mesh& mesh, const Parameterization& param, const FoldRepairOptions& options,
+                   FoldRepairResult& r, std::vector<char>& touched) {
+  const int nv = mesh.num_vertices();
+  std::vector<signed char> regular(nv, -1);
+  std::vector<Fan> fan_of(nv);
   auto fan_at = [&](int v) -> const Fan* {
     if (regular[v] < 0) regular[v] = regular_fan(mesh, param, v, fan_of[v]) ? 1 : 0;
     return regular[v] ? &fan_of[v] : nullptr;
   };
-  bad = bad_faces(options.min_area);
-  std::vector<char> is_bad(nf, 0), in_cand(nv, 0);
+  std::vector<int> bad = bad_faces(r.uv, options.min_area);
+  std::vector<char> in_cand(nv, 0);
   int ring = 0, stalled = 0;
   for (int sweep = 0; sweep < options.kernel_sweeps && !bad.empty(); ++sweep) {
-    std::fill(is_bad.begin(), is_bad.end(), 0);
-    for (int f : bad) is_bad[f] = 1;
-    // Candidates: the vertices of the bad faces grown by `ring` rings (breadth first: each fan walked once).
-    std::vector<int> cand;
-    auto add_cand = [&](int v) {
-      if (!in_cand[v]) in_cand[v] = 1, cand.push_back(v);
-    };
-    for (int f : bad)
-      for (int c = 0; c < 3; ++c) add_cand(mesh.F()(f, c));
-    for (int g = 0, begin = 0; g < ring; ++g) {
-      const int end = static_cast<int>(cand.size());
-      for (int k = begin; k < end; ++k)
-        for (const auto& fc : mesh.fan(cand[k]))
-          for (int cc = 0; cc < 3; ++cc) add_cand(mesh.F()(fc.face, cc));
-      begin = end;
-    }
-    for (int v : cand) in_cand[v] = 0;
-    std::sort(cand.begin(), cand.end());
-    for (int v : cand) {
+    for (int v : candidate_vertices(mesh, bad, ring, in_cand)) {
       const Fan* fan = fan_at(v);
-      if (!fan) continue;
-      std::vector<std::pair<Complex, Complex>> edges;
-      Complex sum{0, 0};
-      bool has_bad = false;
-      for (std::size_t j = 0; j < fan->corners.size(); ++j) {
-        const auto [f, c] = fan->corners[j];
-        const Complex q1 = fan->from_first[j].inverse(r.uv(f, (c + 1) % 3));
-        edges.emplace_back(q1, fan->from_first[j].inverse(r.uv(f, (c + 2) % 3)));
-        sum += q1;
-        has_bad |= signed_area(r.uv, f) <= options.min_area;
-      }
-      const double margin = 2 * options.min_area;
-      Complex p = sum / static_cast<double>(edges.size());
-      bool ok = true;
-      for (const auto& [q1, q2] : edges) {
-        const Complex d = q2 - q1;
-        ok &= d.real() * (p - q1).imag() - d.imag() * (p - q1).real() >= 2 * margin;
-      }
-      if (!ok) {
-        if (!has_bad) continue;
-        const std::vector<Complex> kernel = ring_kernel(edges, margin);
-        if (!kernel.empty()) {
-          p = centroid(kernel);
-        } else {
-          // No valid position: the one maximizing the smallest incident area, taken only if that area grows and
-          // no more incident triangles are bad than before (local untangling; the ring may follow later).
-          const Complex old_p = fan->from_first[0].inverse(r.uv(fan->corners[0].first, fan->corners[0].second));
-          double t_best = 0;
-          const Complex q = max_min_area_point(edges, t_best);
-          double t_old = INFINITY;
-          int bad_old = 0, bad_new = 0;
-          for (const auto& [q1, q2] : edges) {
-            t_old = std::min(t_old, twice_area(q1, q2, old_p));
-            bad_old += twice_area(q1, q2, old_p) <= 2 * options.min_area;
-            bad_new += twice_area(q1, q2, q) <= 2 * options.min_area;
-          }
-          if (!(t_best > t_old + 1e-12) || bad_new > bad_old) continue;
-          p = q;
-        }
-      }
-      for (std::size_t j = 0; j < fan->corners.size(); ++j) {
-        const auto [f, c] = fan->corners[j];
-        r.uv(f, c) = fan->from_first[j](p);
-      }
+      Complex p;
+      if (!fan || !kernel_position(*fan, r.uv, options.min_area, p)) continue;
+      place_vertex(*fan, p, r.uv);
       touched[v] = 1;
     }
     const std::size_t before = bad.size();
-    bad = bad_faces(options.min_area);
+    bad = bad_faces(r.uv, options.min_area);
     if (bad.size() < before) {
       stalled = 0;
     } else if (++stalled >= 2) {
@@ -294,7 +306,20 @@ FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, c
       stalled = 0;
     }
   }
-  r.bad_after = static_cast<int>(bad_faces(0.0).size());
+}
+
+}  // namespace
+
+FoldRepairResult repair_folds(const Mesh& mesh, const Parameterization& param, const FoldRepairOptions& options) {
+  FoldRepairResult r;
+  r.uv = param.uv;
+  const std::vector<int> bad = bad_faces(r.uv, options.min_area);
+  r.bad_before = static_cast<int>(bad_faces(r.uv, 0.0).size());
+  if (bad.empty()) return r;
+  std::vector<char> touched(mesh.num_vertices(), 0);
+  tutte_rounds(mesh, param, options, bad, r, touched);
+  kernel_sweeps(mesh, param, options, r, touched);
+  r.bad_after = static_cast<int>(bad_faces(r.uv, 0.0).size());
   r.moved_vertices = static_cast<int>(std::count(touched.begin(), touched.end(), 1));
   return r;
 }

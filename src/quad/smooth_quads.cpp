@@ -134,21 +134,11 @@ void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int
       fixed[v] = 1;
   }
 }
-}  // namespace
 
-QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameterization& param,
-                                 const QuadSmoothingOptions& options, ProgressSink& progress) {
-  QuadSmoothingReport report;
-  const int nv = q.num_vertices(), nf = q.num_faces();
-  if (options.iterations <= 0 || nv == 0) return report;
-  if (q.source_face.size() != nv || q.uv.size() != nv)
-    throw InputError("smooth_quads", 0, "the quad mesh has no source face or uv per vertex (not from extract_quads)");
-  if (param.uv.rows() != mesh.num_faces())
-    throw InputError("smooth_quads", 0, "the parameterization does not belong to the mesh (uv rows != faces)");
-
-  // Fixed vertices: on the boundary (edges of one face), corners of non-quads, on sharp feature edges (below).
-  std::vector<char> fixed(nv, 0);
-  // Per undirected edge: number of faces, and whether a quad has it. h = mean length of the quads' edges.
+// Fixed vertices on the boundary (edges of one face) and at corners of non-quads into `fixed`. \return h, the mean
+// length of the quads' edges.
+double fix_boundary_and_edge_length(const QuadMesh& q, std::vector<char>& fixed) {
+  // Per undirected edge: number of faces, and whether a quad has it.
   std::map<std::pair<int, int>, std::pair<int, bool>> edges;
   for (const auto& f : q.faces)
     for (std::size_t k = 0; k < f.size(); ++k) {
@@ -165,69 +155,46 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   for (const auto& f : q.faces)
     if (f.size() != 4)
       for (int v : f) fixed[v] = 1;
-  const double h = quad_edges ? length_sum / quad_edges : 0;
-  if (!(h > 0)) return report;
-  report.edge_length = h;
-  // (quad, corner) pairs of each vertex.
-  std::vector<std::vector<std::pair<int, int>>> corners(nv);
-  for (int f = 0; f < nf; ++f)
-    if (q.faces[f].size() == 4)
-      for (int k = 0; k < 4; ++k) corners[q.faces[f][k]].push_back({f, k});
-  for (int v = 0; v < nv; ++v) {
-    const int t = q.source_face[v];
-    if (corners[v].empty() || t < 0 || t >= mesh.num_faces()) fixed[v] = 1;
-  }
-  // Sharp feature curves of the input: vertices on or near them slide along them, their corners stay.
-  const std::vector<int> feature_edges = feature_constraints(mesh).feature_edges;
-  Eigen::MatrixX2i feature_segments(static_cast<Eigen::Index>(feature_edges.size()), 2);
-  for (std::size_t s = 0; s < feature_edges.size(); ++s) feature_segments.row(s) = mesh.E().row(feature_edges[s]);
-  const SegmentGrid feature_grid(mesh.V(), feature_segments);
-  std::vector<int> feature_segment(nv, -1);  // sliding vertices: the feature edge (index into feature_edges) under it
-  snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);
-  for (int v = 0; v < nv; ++v) {
-    report.fixed_vertices += fixed[v];
-    report.feature_vertices += feature_segment[v] >= 0;
-  }
-  const auto feature_face = [&](int s) {
+  return quad_edges ? length_sum / quad_edges : 0;
+}
+
+// What one smoothing round reads: the quad mesh, the fixed and sliding vertices, the surface to project onto.
+struct SmoothingRound {
+  QuadMesh& q;
+  const Mesh& mesh;
+  const QuadSmoothingOptions& options;
+  double h;
+  const std::vector<char>& fixed;
+  const std::vector<std::vector<std::pair<int, int>>>& corners;  // (quad, corner) pairs of each vertex
+  const std::vector<int>& feature_edges;
+  const SegmentGrid& feature_grid;
+  const TriangleTree& tree;
+  std::vector<int>& feature_segment;  // sliding vertices: the feature edge (index into feature_edges) under it
+
+  int feature_face(int s) const {
     const int e = feature_edges[static_cast<std::size_t>(s)];
     return mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
-  };
-
-  const TriangleTree tree(mesh.V(), mesh.F());
-  const Eigen::MatrixX3d original = q.V;
+  }
   // On a feature the normal is the mean of the two sides' (a corner of a quad on either side turns around it).
-  const auto surface_normal = [&](int v) -> Eigen::Vector3d {
+  Eigen::Vector3d surface_normal(int v) const {
     if (feature_segment[v] < 0) return mesh.face_normals().row(q.source_face[v]);
     const int e = feature_edges[static_cast<std::size_t>(feature_segment[v])];
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     for (int j = 0; j < 2; ++j)
       if (mesh.EF()(e, j) >= 0) n += mesh.face_normals().row(mesh.EF()(e, j)).transpose();
     return n.normalized();
-  };
+  }
   // Number of corners of quad f that turn against the surface normal.
-  const auto bad_corners = [&](int f) {
+  int bad_corners(int f) const {
     int bad = 0;
     for (int k = 0; k < 4; ++k) bad += !corner_positive(q.V, q.faces[f], k, surface_normal(q.faces[f][k]));
     return bad;
-  };
+  }
 
-  std::vector<SquareFit> fits(nf);
-  std::vector<int> bad_before(nf, 0);
-  for (int it = 0; it < options.iterations && !progress.cancelled(); ++it) {
-    // Local step: the target square of every quad.
-    tbb::parallel_for(0, nf, [&](int f) {
-      if (q.faces[f].size() != 4) return;
-      Eigen::Vector3d p[4];
-      for (int k = 0; k < 4; ++k) p[k] = q.V.row(q.faces[f][k]);
-      fits[f] = fit_square(p, h, options.rigidity);
-      bad_before[f] = bad_corners(f);
-    });
-    // Global step (Jacobi): each free vertex moves tangentially towards the mean of its targets, then onto the
-    // surface.
-    const Eigen::MatrixX3d before = q.V;
-    const Eigen::VectorXi face_before = q.source_face;
-    const std::vector<int> segment_before = feature_segment;
-    tbb::parallel_for(0, nv, [&](int v) {
+  // Global step (Jacobi): each free vertex moves tangentially towards the mean of its targets, then onto the
+  // surface; a sliding vertex moves along its feature polyline (the first round snaps onto it).
+  void move_vertices(const std::vector<SquareFit>& fits, const Eigen::MatrixX3d& before) {
+    tbb::parallel_for(0, q.num_vertices(), [&](int v) {
       if (fixed[v]) return;
       Eigen::Vector3d target = Eigen::Vector3d::Zero();
       int count = 0;
@@ -240,7 +207,7 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
       }
       if (count == 0) return;
       const Eigen::Vector3d p = before.row(v);
-      if (feature_segment[v] >= 0) {  // slide along the feature polyline (the first round snaps onto it)
+      if (feature_segment[v] >= 0) {
         int s = -1;
         q.V.row(v) = feature_grid.closest_point(p + options.step * (target / count - p), &s).transpose();
         q.source_face[v] = feature_face(s);
@@ -257,7 +224,24 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
       q.V.row(v) = projected;
       q.source_face[v] = face;
     });
-    // Undo the moves of quads that got a new inside-out corner, until none does.
+  }
+
+  // One round: the target square of every quad (local step), move_vertices(), then the moves of quads that got a
+  // new inside-out corner are undone until none does. \return the number of undone vertex moves.
+  int run(std::vector<SquareFit>& fits, std::vector<int>& bad_before) {
+    const int nf = q.num_faces();
+    tbb::parallel_for(0, nf, [&](int f) {
+      if (q.faces[f].size() != 4) return;
+      Eigen::Vector3d p[4];
+      for (int k = 0; k < 4; ++k) p[k] = q.V.row(q.faces[f][k]);
+      fits[f] = fit_square(p, h, options.rigidity);
+      bad_before[f] = bad_corners(f);
+    });
+    const Eigen::MatrixX3d before = q.V;
+    const Eigen::VectorXi face_before = q.source_face;
+    const std::vector<int> segment_before = feature_segment;
+    move_vertices(fits, before);
+    int rejected = 0;
     for (bool changed = true; changed;) {
       changed = false;
       for (int f = 0; f < nf; ++f) {
@@ -267,20 +251,22 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
             q.V.row(v) = before.row(v);
             q.source_face[v] = face_before[v];
             feature_segment[v] = segment_before[v];
-            ++report.rejected_moves;
+            ++rejected;
             changed = true;
           }
       }
     }
-    ++report.iterations;
-    progress.report("smooth quads", static_cast<double>(it + 1) / options.iterations,
-                    "round " + std::to_string(it + 1));
+    return rejected;
   }
+};
 
-  // φ at the new points (barycentric interpolation in the source triangle).
+// φ at the new points of the free vertices (barycentric interpolation in the source triangle), and their
+// displacements in units of h.
+void interpolate_uv(QuadMesh& q, const Mesh& mesh, const Parameterization& param, const std::vector<char>& fixed,
+                    const Eigen::MatrixX3d& original, double h, QuadSmoothingReport& report) {
   double moved_sum = 0;
   int moved_count = 0;
-  for (int v = 0; v < nv; ++v) {
+  for (int v = 0; v < q.num_vertices(); ++v) {
     if (fixed[v]) continue;
     const double dist = (q.V.row(v) - original.row(v)).norm() / h;
     moved_sum += dist;
@@ -296,6 +282,58 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
     q.uv[v] = (1 - wb - wc) * param.uv(t, 0) + wb * param.uv(t, 1) + wc * param.uv(t, 2);
   }
   report.mean_displacement = moved_count ? moved_sum / moved_count : 0;
+}
+
+}  // namespace
+
+QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameterization& param,
+                                 const QuadSmoothingOptions& options, ProgressSink& progress) {
+  QuadSmoothingReport report;
+  const int nv = q.num_vertices(), nf = q.num_faces();
+  if (options.iterations <= 0 || nv == 0) return report;
+  if (q.source_face.size() != nv || q.uv.size() != nv)
+    throw InputError("smooth_quads", 0, "the quad mesh has no source face or uv per vertex (not from extract_quads)");
+  if (param.uv.rows() != mesh.num_faces())
+    throw InputError("smooth_quads", 0, "the parameterization does not belong to the mesh (uv rows != faces)");
+
+  // Fixed vertices: on the boundary (edges of one face), corners of non-quads, on sharp feature edges (below).
+  std::vector<char> fixed(nv, 0);
+  const double h = fix_boundary_and_edge_length(q, fixed);
+  if (!(h > 0)) return report;
+  report.edge_length = h;
+  // (quad, corner) pairs of each vertex.
+  std::vector<std::vector<std::pair<int, int>>> corners(nv);
+  for (int f = 0; f < nf; ++f)
+    if (q.faces[f].size() == 4)
+      for (int k = 0; k < 4; ++k) corners[q.faces[f][k]].push_back({f, k});
+  for (int v = 0; v < nv; ++v) {
+    const int t = q.source_face[v];
+    if (corners[v].empty() || t < 0 || t >= mesh.num_faces()) fixed[v] = 1;
+  }
+  // Sharp feature curves of the input: vertices on or near them slide along them, their corners stay.
+  const std::vector<int> feature_edges = feature_constraints(mesh).feature_edges;
+  Eigen::MatrixX2i feature_segments(static_cast<Eigen::Index>(feature_edges.size()), 2);
+  for (std::size_t s = 0; s < feature_edges.size(); ++s) feature_segments.row(s) = mesh.E().row(feature_edges[s]);
+  const SegmentGrid feature_grid(mesh.V(), feature_segments);
+  std::vector<int> feature_segment(nv, -1);
+  snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);
+  for (int v = 0; v < nv; ++v) {
+    report.fixed_vertices += fixed[v];
+    report.feature_vertices += feature_segment[v] >= 0;
+  }
+
+  const TriangleTree tree(mesh.V(), mesh.F());
+  const Eigen::MatrixX3d original = q.V;
+  SmoothingRound round{q, mesh, options, h, fixed, corners, feature_edges, feature_grid, tree, feature_segment};
+  std::vector<SquareFit> fits(nf);
+  std::vector<int> bad_before(nf, 0);
+  for (int it = 0; it < options.iterations && !progress.cancelled(); ++it) {
+    report.rejected_moves += round.run(fits, bad_before);
+    ++report.iterations;
+    progress.report("smooth quads", static_cast<double>(it + 1) / options.iterations,
+                    "round " + std::to_string(it + 1));
+  }
+  interpolate_uv(q, mesh, param, fixed, original, h, report);
   return report;
 }
 

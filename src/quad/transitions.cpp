@@ -6,14 +6,6 @@
 
 namespace quadcover {
 
-namespace {
-int corner_of(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
-}  // namespace
-
 TransitionFit fit_transitions(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
   const int ne = mesh.num_edges();
   TransitionFit fit;
@@ -25,8 +17,8 @@ TransitionFit fit_transitions(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
     const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
     if (s < 0 || t < 0) continue;
     const int a = mesh.E()(e, 0), b = mesh.E()(e, 1);
-    const Complex sa = uv(s, corner_of(mesh, s, a)), sb = uv(s, corner_of(mesh, s, b));
-    const Complex ta = uv(t, corner_of(mesh, t, a)), tb = uv(t, corner_of(mesh, t, b));
+    const Complex sa = uv(s, mesh.corner_of(s, a)), sb = uv(s, mesh.corner_of(s, b));
+    const Complex ta = uv(t, mesh.corner_of(t, a)), tb = uv(t, mesh.corner_of(t, b));
     // φ_t - i^k φ_s must be the same constant c at both endpoints: the edge vector rotates by i^k.
     int best_k = 0;
     double best = INFINITY;

@@ -19,10 +19,12 @@ struct TransitionFit {
 };
 
 /// Fits the rotation k minimizing the residual, then c from the edge midpoint. uv is #F by 3 (per corner φ).
+/// \pre uv.rows() == #F. \throw only std::bad_alloc.
 TransitionFit fit_transitions(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 
 /// A Parameterization from per-corner coordinates: fitted transitions with translations rounded to Z[i], cut
 /// edges where the transition is not the identity. Branch points and energies are left empty (unknown).
+/// \pre uv.rows() == #F. \throw only std::bad_alloc.
 Parameterization parameterization_from_uv(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 
 }  // namespace quadcover

@@ -1,6 +1,11 @@
 #pragma once
 // Harmonic fields from homology generators (thesis 1.2.6): the cut fields Σ_k (1.13), the standard basis
 // H_k = Σ_k - (Σ_k)_P of the harmonic fields, and the harmonic field H_b with prescribed periods (1.14).
+//
+// Reference implementation on the real surface M: the product computes harmonic fields and periods on the covering
+// (param/harmonic_correction.h, param/period_matrix.h); tests/param/reference_stack_test.cpp checks, with a matching
+// ≡ 0 on closed surfaces, that the cover's period matrix and the Gram matrix of this basis are congruent (equal
+// determinants).
 #include <Eigen/SparseCore>
 #include <span>
 

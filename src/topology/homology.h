@@ -8,6 +8,10 @@
 // Generator j contains exactly one leftover edge e_j of Algorithm 1.16 that no other generator contains; its dual
 // cycle crosses e_j from the left of γ_j to its right and then returns through the cotree T*, so it crosses no other
 // generator (thesis 1.2.6) and b_j(Σ_k) = δ_jk.
+//
+// Reference implementation on the real surface M (used by topology/harmonic_basis.h): the product reads its periods
+// from the covering's cut (param/cover_cut.h); tests/param/reference_stack_test.cpp compares the two period
+// lattices with a matching ≡ 0.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>

@@ -1,6 +1,10 @@
 #pragma once
 // Integration of locally integrable (curl*-free) fields over the cut mesh (thesis 1.2.5, (1.11)-(1.12)):
 // starting from one corner per piece, u_q = u_p + ⟨e, X_t⟩ across the uncut edges e = (p, q).
+//
+// Reference implementation: the product integrates on the covering's cut disk (param/disk_functions.h
+// integrate_on_disk); tests/param/reference_stack_test.cpp checks that both agree on the same cut mesh with a
+// matching ≡ 0.
 #include <Eigen/Core>
 
 #include "calculus/vector_field.h"

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "render/image.h"
 #include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
@@ -48,7 +50,43 @@ TEST_F(RenderCli, TexturedWireframeAndUvLayout) {
   EXPECT_EQ(j["seam_edges"], 0);
   EXPECT_EQ(j["cones"], 0);
   EXPECT_EQ(j["width"], 120);
-  EXPECT_GT(fs::file_size(path("tex.png")), 100u);
+  {
+    // The PNG decodes to the requested size, white at the corners (background), and the 4 × 4 checkerboard of the
+    // vt is there: along every row and column that crosses the grid the dark squares form exactly 2 runs (D L D L),
+    // never more.
+    const quadcover::Image im = quadcover::read_png(path("tex.png"));
+    ASSERT_EQ(im.width, 120);
+    ASSERT_EQ(im.height, 100);
+    for (auto [x, y] : {std::pair{0, 0}, {119, 0}, {0, 99}, {119, 99}}) {
+      const quadcover::Rgb c = im.at(x, y);
+      EXPECT_GT(std::min({c.r, c.g, c.b}), 0.99) << x << "," << y;
+    }
+    auto dark = [&](int x, int y) {
+      const quadcover::Rgb c = im.at(x, y);
+      return c.b > c.r + 0.15;
+    };
+    auto runs = [&](bool along_x, int k) {
+      int n = 0;
+      bool prev = false;
+      for (int i = 0; i < (along_x ? im.width : im.height); ++i) {
+        const bool d = along_x ? dark(i, k) : dark(k, i);
+        n += d && !prev;
+        prev = d;
+      }
+      return n;
+    };
+    int rows_with_two = 0, cols_with_two = 0;
+    for (int y = 0; y < im.height; ++y) {
+      EXPECT_LE(runs(true, y), 2) << "row " << y;
+      rows_with_two += runs(true, y) == 2;
+    }
+    for (int x = 0; x < im.width; ++x) {
+      EXPECT_LE(runs(false, x), 2) << "column " << x;
+      cols_with_two += runs(false, x) == 2;
+    }
+    EXPECT_GT(rows_with_two, im.height / 4);
+    EXPECT_GT(cols_with_two, im.height / 4);
+  }
 
   r = run("render " + path("grid.obj") + " -o " + path("all.png") + " --size 100x100 --view all --json");
   ASSERT_EQ(r.code, 0);

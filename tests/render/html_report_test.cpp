@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "support/test_meshes.h"
@@ -22,8 +24,17 @@ std::string between(const std::string& s, const std::string& open, const std::st
   return s.substr(a + open.size(), b - a - open.size());
 }
 
+std::string read_source_file(const std::string& relative) {
+  std::ifstream in(std::string(QUADCOVER_TEST_DATA_DIR) + "/../../" + relative, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 TEST(HtmlAssets, ThreeJsAndViewerAreEmbeddedAndSafeToInline) {
-  EXPECT_GT(html_assets::three_js().size(), 500000u);
+  // Embedded byte for byte (html/embed.cmake): a truncated or re-encoded asset would break the page.
+  const std::string three = read_source_file("html/vendor/three.module.min.js");
+  ASSERT_FALSE(three.empty());
+  EXPECT_EQ(html_assets::three_js(), three);
+  EXPECT_EQ(html_assets::viewer_js(), read_source_file("html/viewer.js"));
   EXPECT_NE(html_assets::three_js().find("WebGLRenderer"), std::string_view::npos);
   EXPECT_NE(html_assets::viewer_js().find("qc-data"), std::string_view::npos);
   for (std::string_view asset : {html_assets::three_js(), html_assets::viewer_js()}) {
@@ -85,6 +96,9 @@ TEST(HtmlReport, PageHoldsMetricsFiguresAndMeshData) {
   std::size_t scripts = 0;
   for (std::size_t p = 0; (p = page.find("<script", p)) != std::string::npos; ++p) ++scripts;
   EXPECT_EQ(scripts, 3u);
+  EXPECT_EQ(between(page, "<script type=\"text/plain\" id=\"qc-three\">", "</script>"), html_assets::three_js());
+  // The metrics in the page's data are the report's: every scalar of r.metrics is in the table with its value.
+  EXPECT_NE(table.find("<td>seamless</td><td class=\"v\">true</td>"), std::string::npos);
 }
 
 TEST(HtmlReport, QuadMeshFiguresMeasureEdgesAndAngles) {

@@ -100,15 +100,30 @@ TEST(Histogram, SvgBarsMatchNonEmptyBinsAndPngShowsThem) {
   EXPECT_GT(blue, 500);
 }
 
-TEST(Font, GlyphsExistForPlotCharacters) {
-  for (char c : std::string("0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.-+%()_/:=")) {
-    const auto g = glyph_5x7(c);
+TEST(Font, PlotCharactersHaveDistinctGlyphsInsideTheirCell) {
+  // Every character a plot label uses must be legible: its own glyph (no two alike, none blank), inside the 5×7
+  // cell (bits 0-4 only).
+  const std::string chars = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.-+%()_/:=";
+  for (std::size_t i = 0; i < chars.size(); ++i) {
+    const auto g = glyph_5x7(chars[i]);
     int bits = 0;
-    for (auto row : g) bits += __builtin_popcount(row);
-    EXPECT_GT(bits, 0) << c;
+    for (auto row : g) {
+      EXPECT_EQ(row & ~0x1F, 0) << chars[i];
+      bits += __builtin_popcount(row);
+    }
+    EXPECT_GT(bits, 0) << chars[i];
+    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(g, glyph_5x7(chars[j])) << chars[i] << " and " << chars[j];
   }
-  EXPECT_EQ(glyph_5x7('a'), glyph_5x7('A'));
-  EXPECT_NE(glyph_5x7('0'), glyph_5x7('8'));
+  // Lower case is drawn as upper case; space and unknown characters are blank.
+  for (char c = 'a'; c <= 'z'; ++c) EXPECT_EQ(glyph_5x7(c), glyph_5x7(static_cast<char>(c - 'a' + 'A'))) << c;
+  EXPECT_EQ(glyph_5x7(' '), (std::array<std::uint8_t, 7>{}));
+  EXPECT_EQ(glyph_5x7('\x7f'), (std::array<std::uint8_t, 7>{}));
+  // A few shapes by their pixels: '-' is one horizontal stroke in the middle row, '1' and 'I' have a vertical
+  // stroke through the middle column, '0' is closed left and right.
+  EXPECT_EQ(glyph_5x7('-'), (std::array<std::uint8_t, 7>{0, 0, 0, 0x0E, 0, 0, 0}));
+  for (char c : {'1', 'I'})
+    for (int r = 1; r < 6; ++r) EXPECT_TRUE(glyph_5x7(c)[r] & 0x04) << c << " row " << r;
+  for (int r = 1; r < 6; ++r) EXPECT_EQ(glyph_5x7('0')[r] & 0x11, 0x11) << r;
 }
 
 }  // namespace
