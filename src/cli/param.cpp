@@ -82,7 +82,8 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
 
   auto t = std::chrono::steady_clock::now();
-  const Mesh mesh = load_mesh(input, progress);
+  FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
+  const Mesh mesh = load_mesh(input, progress, file_vertices);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read_seconds});
@@ -97,7 +98,10 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                                       std::to_string(report["parameterization"]["max_transition_error"].get<double>()) +
                                       "); nothing written");
   t = std::chrono::steady_clock::now();
-  write_obj_with_uv(out.obj, mesh.V(), mesh.F(), UV, FUV);
+  Eigen::MatrixX3i file_faces(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) file_faces(f, c) = file_vertices.of_mesh[static_cast<std::size_t>(mesh.F()(f, c))];
+  write_obj_with_uv(out.obj, file_vertices.positions, file_faces, UV, FUV);
   report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   print_warnings(input, report);
   if (!out.png.empty()) write_parameterization_png(out.png, mesh, job.map, views, render_options);
