@@ -139,15 +139,37 @@ std::mutex& stderr_mutex() {
 
 void warn(ProgressSink& progress, const std::string& text) { progress.report("warning", -1, "warning: " + text); }
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress) {
-  MeshBuildResult built = build_mesh(read_mesh(input));
+namespace {
+
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices) {
+  const PolygonSoup soup = read_mesh(input);
+  MeshBuildResult built = build_mesh(soup);
   const std::size_t dropped = built.report.unreferenced_vertices;
-  if (dropped > 0)
-    warn(progress, (input == "-" ? std::string("<stdin>") : input) + ": " + std::to_string(dropped) +
-                       " unreferenced vertices (used by no face) dropped: the outputs number the " +
-                       std::to_string(built.mesh.num_vertices()) + " others in input order, so vertex numbers " +
-                       "after the first dropped one differ from the input's");
+  const std::string name = input == "-" ? std::string("<stdin>") : input;
+  if (dropped > 0 && file_vertices)
+    warn(progress, name + ": " + std::to_string(dropped) +
+                       " unreferenced vertices (used by no face) are written back unchanged, without texture "
+                       "coordinates, so the output keeps the input's vertex numbers");
+  else if (dropped > 0)
+    warn(progress, name + ": " + std::to_string(dropped) + " unreferenced vertices (used by no face) dropped: the " +
+                       "outputs number the " + std::to_string(built.mesh.num_vertices()) + " others in input " +
+                       "order, so vertex numbers after the first dropped one differ from the input's");
+  if (file_vertices) {
+    file_vertices->positions = soup.positions;
+    file_vertices->of_mesh.assign(static_cast<std::size_t>(built.mesh.num_vertices()), -1);
+    for (std::size_t v = 0; v < built.vertex_map.size(); ++v)
+      if (built.vertex_map[v] >= 0)
+        file_vertices->of_mesh[static_cast<std::size_t>(built.vertex_map[v])] = static_cast<int>(v);
+  }
   return std::move(built.mesh);
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& input, ProgressSink& progress) { return load_mesh(input, progress, nullptr); }
+
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices) {
+  return load_mesh(input, progress, &file_vertices);
 }
 
 // ---- progress -----------------------------------------------------------------------------------------------

@@ -149,6 +149,14 @@ void warn(ProgressSink& progress, const std::string& text);
 /// \throw InputError, TopologyError as read_mesh / build_mesh.
 Mesh load_mesh(const std::string& input, ProgressSink& progress);
 
+/// The file's own vertices, for outputs over the input mesh that keep the file's vertex numbers (`param`).
+struct FileVertices {
+  Eigen::MatrixX3d positions;  ///< every vertex of the file, unreferenced ones included
+  std::vector<int> of_mesh;    ///< mesh vertex -> its 0-based number in the file
+};
+/// load_mesh that also returns the file's vertices; the warning then says that unreferenced vertices are kept.
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices);
+
 // ---- batch --------------------------------------------------------------------------------------------------
 
 /// Files named on the command line, with every folder replaced by its mesh files (.obj .off .ply .stl, not

@@ -1,12 +1,14 @@
 // `quadcover info MESH...`: counts, topology and validation problems of mesh files (one file, several, or folders).
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/common.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
+#include "mesh/surface_counts.h"
 
 namespace quadcover::cli {
 
@@ -42,30 +44,35 @@ InfoResult inspect(const std::string& input, const InfoOptions& opt) {
                         {"faces", p.faces},
                         {"vertices", p.vertices}});
   j["problems"] = problems;
-  const bool manifold = !report.has(ProblemKind::NonManifoldEdge) && !report.has(ProblemKind::NonManifoldVertex);
-  const bool orientable = !report.has(ProblemKind::NonOrientable);
+  // Topology from mesh/surface_counts.h, the definition `metrics` and the reports use, for any mesh whose indices
+  // are in range (valid or not, triangles or polygons): the mesh as built when valid, else the file's faces.
+  bool triangles = true;
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) triangles = triangles && soup.face_size(f) == 3;
+  j["vertices"] = soup.num_vertices();
+  j["faces"] = soup.num_faces();
+  std::optional<SurfaceCounts> counts;
   if (report.valid()) {
     const Mesh mesh = build_mesh(soup, vopt).mesh;
-    j["vertices"] = mesh.num_vertices();
-    j["edges"] = mesh.num_edges();
-    j["faces"] = mesh.num_faces();
-    j["components"] = mesh.num_components();
-    j["boundary_loops"] = mesh.num_boundary_loops();
-    j["genus"] = mesh.genus();
-    j["euler_characteristic"] = mesh.euler_characteristic();
-    j["manifold"] = true;
-    j["orientable"] = true;
-    j["unreferenced_vertices_dropped"] = report.unreferenced_vertices;
+    counts = surface_counts(mesh);
+    counts->isolated_vertices = static_cast<int>(report.unreferenced_vertices);  // dropped by the build
     j["bounding_box_diagonal"] = mesh.bounding_box_diagonal();
     j["mean_edge_length"] = mesh.mean_edge_length();
     j["area"] = mesh.total_area();
-  } else {
-    j["vertices"] = soup.num_vertices();
-    j["faces"] = soup.num_faces();
-    if (!report.has(ProblemKind::Empty)) {  // nothing to say about the topology of no faces
-      j["manifold"] = manifold;
-      j["orientable"] = orientable;
-    }
+    j["unreferenced_vertices_dropped"] = report.unreferenced_vertices;
+  } else if (!report.has(ProblemKind::Empty) && !report.has(ProblemKind::IndexOutOfRange)) {
+    counts = surface_counts(static_cast<int>(soup.num_vertices()),
+                            soup_polygons(opt.triangulate ? triangulate_polygons(soup) : soup));
+  }
+  if (counts) {
+    const nlohmann::json topology = to_json(*counts);
+    for (const auto& [key, value] : topology.items()) j[key] = value;
+    // Orientability needs the validation's search (triangles only); a consistently oriented mesh is orientable.
+    if (counts->oriented())
+      j["orientable"] = true;
+    else if (triangles || opt.triangulate)
+      j["orientable"] = !report.has(ProblemKind::NonOrientable);
+    else
+      j["orientable"] = nullptr;
   }
   return r;
 }
@@ -77,7 +84,7 @@ int run_single(const std::string& input, const InfoOptions& opt, const GlobalOpt
   } else if (!global.quiet) {
     std::cout << input << "\n";
     for (const char* key : {"vertices", "edges", "faces", "components", "boundary_loops", "genus",
-                            "euler_characteristic", "manifold", "orientable"})
+                            "euler_characteristic", "manifold", "oriented", "orientable", "non_quads"})
       if (r.json.contains(key)) std::cout << "  " << key << ": " << r.json[key].dump() << "\n";
   }
   for (const auto& p : r.report.problems) std::cerr << (p.fatal ? "error: " : "warning: ") << p.message << "\n";

@@ -8,6 +8,7 @@
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "io/read_mesh.h"
+#include "mesh/surface_counts.h"
 #include "metrics/feature_fidelity.h"
 #include "metrics/report.h"
 #include "quad/extract_quads.h"
@@ -65,8 +66,11 @@ nlohmann::json summary(const Report& r) {
     j["rsd_edge_length"] = r.quad_mesh->rsd_edge_length;
     j["rsd_corner_angle"] = r.quad_mesh->rsd_corner_angle;
     j["irregular_vertices"] = r.quad_mesh->irregular_vertices;
-    j["manifold"] = r.quad_mesh->topology.manifold();
-    j["closed"] = r.quad_mesh->topology.closed();
+    // Topology as `info` and the reports count it (mesh/surface_counts.h).
+    const nlohmann::json topology = to_json(r.quad_mesh->topology);
+    for (const char* key :
+         {"components", "boundary_loops", "genus", "euler_characteristic", "manifold", "oriented", "closed"})
+      j[key] = topology[key];
   }
   if (r.surface_distance) {
     j["distance_mean"] = r.surface_distance->mean;
@@ -98,15 +102,7 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
       if (ref && ex.mesh.num_faces() > 0) fidelity = feature_fidelity(*ref, ex.mesh.V, ex.mesh.faces);
     }
   } else {
-    const int nv = static_cast<int>(soup.num_vertices());
-    std::vector<std::vector<int>> faces(soup.num_faces());
-    for (std::size_t f = 0; f < soup.num_faces(); ++f)
-      for (std::size_t j = 0; j < soup.face_size(f); ++j) {
-        const auto v = soup.face_begin(f)[j];
-        if (v < 0 || v >= nv)
-          throw InputError(input, soup.face_lines.empty() ? 0 : soup.face_lines[f], "vertex index out of range");
-        faces[f].push_back(static_cast<int>(v));
-      }
+    const std::vector<std::vector<int>> faces = soup_polygons(soup);
     report.quad_mesh = quad_quality(soup.positions, faces);
     if (ref) report.surface_distance = surface_distance(soup.positions, faces, ref->V(), ref->F());
     if (ref && !faces.empty()) fidelity = feature_fidelity(*ref, soup.positions, faces);

@@ -82,7 +82,8 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
 
   auto t = std::chrono::steady_clock::now();
-  const Mesh mesh = load_mesh(input, progress);
+  FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
+  const Mesh mesh = load_mesh(input, progress, file_vertices);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read_seconds});
@@ -98,7 +99,19 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
                                       std::to_string(report["parameterization"]["max_transition_error"].get<double>()) +
                                       "); nothing written");
   t = std::chrono::steady_clock::now();
-  write_obj_with_uv(out.obj, map_mesh.V(), map_mesh.F(), UV, FUV);
+  // The file's own vertices (unreferenced ones included, same numbers) first, then the refinement's midpoints.
+  const int n_file = static_cast<int>(file_vertices.positions.rows()), n_mesh = mesh.num_vertices();
+  const int n_added = map_mesh.num_vertices() - n_mesh;
+  Eigen::MatrixX3d positions(n_file + n_added, 3);
+  positions.topRows(n_file) = file_vertices.positions;
+  positions.bottomRows(n_added) = map_mesh.V().bottomRows(n_added);
+  Eigen::MatrixX3i file_faces(map_mesh.num_faces(), 3);
+  for (int f = 0; f < map_mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int v = map_mesh.F()(f, c);
+      file_faces(f, c) = v < n_mesh ? file_vertices.of_mesh[static_cast<std::size_t>(v)] : n_file + v - n_mesh;
+    }
+  write_obj_with_uv(out.obj, positions, file_faces, UV, FUV);
   report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   print_warnings(input, report);
   if (!out.png.empty()) write_parameterization_png(out.png, map_mesh, job.map, views, render_options);

@@ -45,8 +45,12 @@ nlohmann::json render_one(const std::string& input, const std::string& output, c
     lo.width = w;
     lo.height = h;
     lo.supersample = opt.supersample;
-    image = render_uv_layout(scene.uv, lo);
-    j["flipped_triangles"] = count_flipped(scene.uv);
+    // The classification every report uses (param/seams.h): what is drawn red is what is counted.
+    const FlipReport flips = flipped_triangles(triangle_areas(scene), scene.uv);
+    image = render_uv_layout(scene.uv, flips, lo);
+    j["flipped_triangles"] = flips.flipped;
+    j["collapsed_triangles"] = flips.collapsed;
+    j["non_positive_triangles"] = flips.non_positive;
   } else {
     RenderOptions ro;
     ro.width = w;
@@ -59,7 +63,7 @@ nlohmann::json render_one(const std::string& input, const std::string& output, c
     const bool polygons = opt.wireframe || !scene.all_triangles;
     std::vector<BranchPoint> cones;
     if (!polygons && scene.uv.rows() > 0) {
-      cones = cones_from_uv(scene.F, scene.uv);
+      cones = cones_from_uv(scene.F, scene.uv);  // the reports' computation (metrics/param_quality.h)
       j["seam_edges"] = uv_seam_edges(scene.F, scene.uv).size();
       j["cones"] = cones.size();
     }
@@ -117,7 +121,9 @@ void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--view", opt->view,
                   "Camera: front, side, top, back, bottom, iso, all (front+side+top side by side), or AZ,EL in "
                   "degrees (default front)");
-  cmd->add_flag("--uv-layout", opt->uv_layout, "Draw the parameter domain instead (flipped triangles in red)");
+  cmd->add_flag(
+      "--uv-layout", opt->uv_layout,
+      "Draw the parameter domain instead (flipped and collapsed triangles in red, as the reports count them)");
   cmd->add_flag("--wireframe", opt->wireframe, "Draw edges over flat shading (default for non-triangle meshes)");
   cmd->add_option("--size", opt->size, "Image size WxH in pixels per view (default 800x800)");
   cmd->add_option("--texture", opt->texture, "Surface texture from the UVs: checker, grid or none (default checker)")

@@ -27,6 +27,38 @@ Eigen::Matrix2d map_jacobian(const Mesh& mesh, const Eigen::MatrixX3cd& uv, int 
   return U * P.inverse();  // J P = U
 }
 
+std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
+                                       const std::vector<char>& boundary) {
+  std::vector<BranchPoint> cones;
+  std::vector<double> angle(boundary.size(), 0.0);
+  std::vector<char> used(boundary.size(), 0);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Complex e1 = uv(f, (k + 1) % 3) - uv(f, k), e2 = uv(f, (k + 2) % 3) - uv(f, k);
+      used[F(f, k)] = 1;
+      if (std::abs(e1) > 0 && std::abs(e2) > 0) angle[F(f, k)] += std::arg(e2 / e1);
+    }
+  for (std::size_t v = 0; v < boundary.size(); ++v) {
+    if (boundary[v] || !used[v]) continue;
+    const int q = static_cast<int>(std::lround((2 * std::numbers::pi - angle[v]) / (std::numbers::pi / 2)));
+    if (q != 0) cones.push_back({static_cast<int>(v), q});
+  }
+  return cones;
+}
+
+std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv) {
+  if (uv.rows() != F.rows() || F.rows() == 0) return {};
+  std::vector<std::pair<int, int>> directed;  // every side (a, b) of every triangle, sorted
+  directed.reserve(static_cast<std::size_t>(3 * F.rows()));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) directed.emplace_back(F(f, k), F(f, (k + 1) % 3));
+  std::sort(directed.begin(), directed.end());
+  std::vector<char> boundary(static_cast<std::size_t>(F.maxCoeff()) + 1, 0);
+  for (const auto& [a, b] : directed)
+    if (!std::binary_search(directed.begin(), directed.end(), std::make_pair(b, a))) boundary[a] = boundary[b] = 1;
+  return cones_from_uv(F, uv, boundary);
+}
+
 ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, const ParamQualityOptions& options) {
   ParamQuality q;
   const int nf = mesh.num_faces();
@@ -91,23 +123,16 @@ ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, cons
       q.max_transition_error = std::max(q.max_transition_error, std::abs(param.uv(t, ct) - (r * param.uv(s, cs) + c)));
     }
   }
-  // Cone points from the parameter angle sums.
-  std::vector<double> theta(mesh.num_vertices(), 0);
+  // Cone points from the parameter angle sums; a corner of each vertex for its φ.
+  std::vector<char> boundary(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (int v = 0; v < mesh.num_vertices(); ++v) boundary[v] = mesh.is_boundary_vertex(v);
   std::vector<int> corner_face(mesh.num_vertices(), -1), corner_idx(mesh.num_vertices(), -1);
   for (int f = 0; f < nf; ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Complex a = param.uv(f, (c + 1) % 3) - param.uv(f, c), b = param.uv(f, (c + 2) % 3) - param.uv(f, c);
-      theta[mesh.F()(f, c)] += std::arg(b / a);  // signed: a flipped corner counts negative
-      corner_face[mesh.F()(f, c)] = f;
-      corner_idx[mesh.F()(f, c)] = c;
-    }
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (mesh.is_boundary_vertex(v) || corner_face[v] < 0) continue;
-    const int qi = static_cast<int>(std::lround(4 - 2 * theta[v] / std::numbers::pi));
-    if (qi == 0) continue;
-    ++q.branch_points_by_index[qi];
+    for (int c = 0; c < 3; ++c) corner_face[mesh.F()(f, c)] = f, corner_idx[mesh.F()(f, c)] = c;
+  for (const BranchPoint& b : cones_from_uv(mesh.F(), param.uv, boundary)) {
+    ++q.branch_points_by_index[b.quarter_index];
     ++q.branch_points;
-    const Complex z = param.uv(corner_face[v], corner_idx[v]);
+    const Complex z = param.uv(corner_face[b.vertex], corner_idx[b.vertex]);
     q.max_branch_point_offset =
         std::max(q.max_branch_point_offset, std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))));
   }

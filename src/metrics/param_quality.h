@@ -44,6 +44,17 @@ struct ParamQuality {
 /// Measures the map. \pre param.uv is #F by 3; transitions per edge (empty vectors mean identity everywhere).
 ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, const ParamQualityOptions& options = {});
 
+/// Cone points of a map from its per-corner coordinates alone, the one computation behind `param`, `metrics`, the
+/// reports and `render`: vertices with boundary[v] == 0 whose signed parameter angle sum Θ (a flipped corner counts
+/// negative; a corner with a side of zero length adds nothing) differs from 2π, with quarter_index
+/// round((2π − Θ) / (π/2)) = round(4 − 2Θ/π) = 4·ind_p (FrameField's convention).
+/// \pre uv is #F by 3; boundary has an entry per vertex F uses.
+std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
+                                       const std::vector<char>& boundary);
+/// The same, with the boundary vertices found from F (ends of an edge no triangle traverses the other way), for
+/// triangles read from a file. Empty if uv does not have a row per face.
+std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv);
+
 /// ½ min_{R ∈ SO(2)} ‖J − R‖²_F for a 2×2 matrix J = [[a, b], [c, d]]: ½(‖J‖² + 2 − 2·|(a+d, c−b)|).
 double arap_density(const Eigen::Matrix2d& J);
 

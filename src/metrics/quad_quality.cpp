@@ -21,7 +21,7 @@ double relative_std_percent(const std::vector<double>& x) {
 QuadQuality quad_quality(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces) {
   QuadQuality q;
   const int nv = static_cast<int>(V.rows());
-  q.topology = polygon_topology(nv, faces);
+  q.topology = surface_counts(nv, faces);
   q.vertices = q.topology.vertices;
   q.faces = static_cast<int>(faces.size());
   std::unordered_map<long long, int> edge_use;  // undirected edge -> faces

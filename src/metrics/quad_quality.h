@@ -6,6 +6,7 @@
 #include <map>
 #include <vector>
 
+#include "mesh/surface_counts.h"
 #include "quad/quad_mesh.h"
 
 namespace quadcover {
@@ -22,7 +23,7 @@ struct QuadQuality {
   int irregular_vertices = 0;       ///< interior vertices with valence ≠ 4 (Table 7.1's singularities)
   int boundary_vertices = 0;
   int irregular_boundary_vertices = 0;  ///< boundary vertices with valence ∉ {2, 3}
-  PolygonTopology topology;
+  SurfaceCounts topology;               ///< manifold, boundary loops, components, genus: mesh/surface_counts.h
 };
 
 /// Quality of the polygon mesh (V #V by 3, faces counter-clockwise). Standard deviations are population ones.

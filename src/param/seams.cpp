@@ -44,6 +44,10 @@ SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double r
 }
 
 FlipReport flipped_triangles(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double tolerance) {
+  return flipped_triangles(mesh.face_areas(), uv, tolerance);
+}
+
+FlipReport flipped_triangles(const Eigen::VectorXd& face_areas, const Eigen::MatrixX3cd& uv, double tolerance) {
   FlipReport r;
   const Eigen::Index nf = uv.rows();
   std::vector<double> area(static_cast<std::size_t>(nf));
@@ -53,10 +57,10 @@ FlipReport flipped_triangles(const Mesh& mesh, const Eigen::MatrixX3cd& uv, doub
     total_uv += std::abs(area[f]);
     r.parameter_area += area[f];
   }
-  const double total_3d = mesh.total_area();
+  const double total_3d = face_areas.sum();
   const double ratio = total_3d > 0 ? total_uv / total_3d : 0;
   for (Eigen::Index f = 0; f < nf; ++f) {
-    const double ref = tolerance * mesh.face_areas()[f] * ratio;
+    const double ref = tolerance * face_areas[f] * ratio;
     if (std::abs(area[f]) <= ref)
       ++r.collapsed;
     else if (area[f] < 0)

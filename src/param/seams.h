@@ -37,5 +37,8 @@ inline constexpr double flip_tolerance = 1e-8;
 /// Signed parameter areas ½ Im(conj(uv1 - uv0)(uv2 - uv0)) of all faces, judged against the 3D areas of `mesh`.
 /// \pre uv is #F by 3.
 FlipReport flipped_triangles(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double tolerance = flip_tolerance);
+/// The same with the 3D areas per face given (a soup that is not a Mesh: `render --uv-layout`). \pre #areas = #uv rows.
+FlipReport flipped_triangles(const Eigen::VectorXd& face_areas, const Eigen::MatrixX3cd& uv,
+                             double tolerance = flip_tolerance);
 
 }  // namespace quadcover

@@ -48,7 +48,7 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
   job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
   lap("smooth");
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
-  for (const std::string& p : job.surface.problems) job.param.warnings.push_back("remesh changed the surface: " + p);
+  for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
   return job;
 }
 

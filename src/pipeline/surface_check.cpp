@@ -1,68 +1,8 @@
 #include "pipeline/surface_check.h"
 
-#include <map>
 #include <utility>
 
-#include "quad/quad_mesh.h"
-#include "topology/union_find.h"
-
 namespace quadcover {
-
-namespace {
-
-/// Boundary loops of the directed boundary edges (edges whose reverse no face uses): each loop is a cycle when the
-/// mesh is manifold; at a pinched vertex the loops through it are counted by following the first unused edge.
-int count_boundary_loops(const std::vector<std::vector<int>>& faces) {
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& f : faces)
-    for (std::size_t i = 0; i < f.size(); ++i) ++directed[{f[i], f[(i + 1) % f.size()]}];
-  std::multimap<int, int> next;  // boundary edge a → b, listed by a
-  for (const auto& [e, count] : directed)
-    if (!directed.count({e.second, e.first})) next.emplace(e.first, e.second);
-  int loops = 0;
-  while (!next.empty()) {
-    auto it = next.begin();
-    const int start = it->first;
-    int v = it->second;
-    next.erase(it);
-    for (auto step = next.find(v); v != start && step != next.end(); step = next.find(v)) {
-      v = step->second;
-      next.erase(step);
-    }
-    ++loops;
-  }
-  return loops;
-}
-
-}  // namespace
-
-SurfaceCounts surface_counts(int num_vertices, const std::vector<std::vector<int>>& faces) {
-  SurfaceCounts c;
-  const PolygonTopology t = polygon_topology(num_vertices, faces);
-  c.euler_characteristic = t.euler_characteristic;
-  c.non_manifold_edges = t.non_manifold_edges;
-  c.non_manifold_vertices = t.non_manifold_vertices;
-  detail::UnionFind sets(num_vertices);
-  std::vector<char> used(static_cast<std::size_t>(num_vertices), 0);
-  for (const auto& f : faces) {
-    c.non_quads += f.size() != 4;
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      used[static_cast<std::size_t>(f[i])] = 1;
-      sets.unite(f[i], f[(i + 1) % f.size()]);
-    }
-  }
-  for (int v = 0; v < num_vertices; ++v) c.components += used[static_cast<std::size_t>(v)] && sets.find(v) == v;
-  c.boundary_loops = count_boundary_loops(faces);
-  return c;
-}
-
-SurfaceCounts surface_counts(const Mesh& mesh) {
-  SurfaceCounts c;
-  c.components = mesh.num_components();
-  c.boundary_loops = mesh.num_boundary_loops();
-  c.euler_characteristic = mesh.euler_characteristic();
-  return c;
-}
 
 SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vector<std::vector<int>>& faces) {
   SurfaceCheck s;
@@ -77,9 +17,13 @@ SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vecto
   differ("components", a.components, b.components);
   differ("boundary loops", a.boundary_loops, b.boundary_loops);
   differ("Euler characteristic", a.euler_characteristic, b.euler_characteristic);
-  if (b.non_manifold_edges + b.non_manifold_vertices > 0)
+  if (!b.manifold())
     s.problems.push_back("the quad mesh is not manifold (" + std::to_string(b.non_manifold_edges) + " edges, " +
-                         std::to_string(b.non_manifold_vertices) + " vertices)");
+                         std::to_string(b.non_manifold_vertices) + " vertices, " + std::to_string(b.degenerate_faces) +
+                         " degenerate faces)");
+  if (!b.oriented())
+    s.problems.push_back("the quad mesh is not consistently oriented (" + std::to_string(b.inconsistent_edges) +
+                         " edges whose two faces disagree)");
   s.same_topology = s.problems.empty();
   const bool closed = a.boundary_loops == 0;
   s.closed_all_quads = !closed || (b.boundary_loops == 0 && b.non_quads == 0 && s.same_topology);
@@ -89,19 +33,50 @@ SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vecto
 }
 
 nlohmann::json to_json(const SurfaceCheck& s) {
-  auto counts = [](const SurfaceCounts& c) {
-    return nlohmann::json{{"components", c.components},
-                          {"boundary_loops", c.boundary_loops},
-                          {"euler_characteristic", c.euler_characteristic},
-                          {"non_manifold_edges", c.non_manifold_edges},
-                          {"non_manifold_vertices", c.non_manifold_vertices},
-                          {"non_quads", c.non_quads}};
-  };
-  return {{"input", counts(s.input)},
-          {"output", counts(s.output)},
+  return {{"input", to_json(s.input)},
+          {"output", to_json(s.output)},
           {"same_topology", s.same_topology},
           {"closed_all_quads", s.closed_all_quads},
           {"problems", s.problems}};
+}
+
+namespace {
+
+/// One sentence listing the repairs of the extraction, or none.
+std::vector<std::string> extraction_repairs(const ExtractionReport& r) {
+  std::vector<std::string> repairs;
+  auto note = [&](int n, const char* one, const char* many) {
+    if (n > 0) repairs.push_back(std::to_string(n) + " " + (n == 1 ? one : many));
+  };
+  note(r.unfolded_triangles, "folded triangle unfolded", "folded triangles unfolded");
+  note(r.moved_vertices, "vertex moved by the fold repair", "vertices moved by the fold repair");
+  note(r.collapsed_edges, "edge mapped to a point collapsed", "edges mapped to a point collapsed");
+  note(r.flipped_triangles, "flipped triangle cut out", "flipped triangles cut out");
+  note(r.degenerate_triangles, "collapsed triangle cut out", "collapsed triangles cut out");
+  note(r.torn_seams, "torn seam treated as boundary", "torn seams treated as boundary");
+  note(r.non_integer_translations, "non-integer transition", "non-integer transitions");
+  note(r.failed_traces, "iso-line that could not be followed", "iso-lines that could not be followed");
+  note(r.dropped_faces, "face dropped", "faces dropped");
+  note(r.degenerate_faces, "degenerate face dropped", "degenerate faces dropped");
+  note(r.removed_spikes, "spike removed", "spikes removed");
+  note(r.split_vertices, "pinched vertex split", "pinched vertices split");
+  note(r.filled_holes, "hole filled", "holes filled");
+  if (repairs.empty()) return {};
+  std::string line = "the extraction repaired the map (";
+  for (std::size_t i = 0; i < repairs.size(); ++i) line += (i ? ", " : "") + repairs[i];
+  return {line + "): the quad mesh is not the exact integer grid of the map there"};
+}
+
+}  // namespace
+
+std::vector<std::string> remesh_warnings(const SurfaceCheck& check, const ExtractionReport& extraction) {
+  std::vector<std::string> warnings;
+  for (const std::string& p : check.problems) warnings.push_back("remesh changed the surface: " + p);
+  for (std::string& w : extraction_repairs(extraction)) warnings.push_back(std::move(w));
+  if (check.input.boundary_loops > 0 && check.output.non_quads > 0)  // a closed input's are a problem above
+    warnings.push_back(std::to_string(check.output.non_quads) + " of the " + std::to_string(check.output.faces) +
+                       " faces are not quads");
+  return warnings;
 }
 
 }  // namespace quadcover

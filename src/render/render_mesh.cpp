@@ -85,13 +85,6 @@ Rgb branch_point_color(int quarter_index) {
   }
 }
 
-int count_flipped(const Eigen::MatrixX3cd& uv) {
-  int n = 0;
-  for (Eigen::Index f = 0; f < uv.rows(); ++f)
-    n += std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0))) < 0;
-  return n;
-}
-
 std::vector<std::pair<int, int>> uv_seam_edges(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
                                                double tolerance) {
   std::vector<std::pair<int, int>> seams;
@@ -111,29 +104,6 @@ std::vector<std::pair<int, int>> uv_seam_edges(const Eigen::MatrixX3i& F, const 
       if (jump > tol) seams.emplace_back(f, k);
     }
   return seams;
-}
-
-std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv) {
-  std::vector<BranchPoint> cones;
-  if (uv.rows() != F.rows() || F.rows() == 0) return cones;
-  const int nv = F.maxCoeff() + 1;
-  std::vector<double> angle(static_cast<std::size_t>(nv), 0.0);
-  std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
-  const HalfEdges half(F);
-  for (int f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, (k + 1) % 3), b = F(f, (k + 2) % 3);
-      if (!half.map.count(HalfEdges::key(b, a))) boundary[a] = boundary[b] = 1;
-      // Signed angle at corner k: arg((z_{k+1} - z_k) / (z_{k+2} - z_k)) measured counter-clockwise.
-      const std::complex<double> e1 = uv(f, (k + 1) % 3) - uv(f, k), e2 = uv(f, (k + 2) % 3) - uv(f, k);
-      if (std::abs(e1) > 0 && std::abs(e2) > 0) angle[F(f, k)] += std::arg(e2 / e1);
-    }
-  for (int v = 0; v < nv; ++v) {
-    if (boundary[v]) continue;
-    const int q = static_cast<int>(std::lround((2 * std::numbers::pi - angle[v]) / (std::numbers::pi / 2)));
-    if (q != 0) cones.push_back({v, q});
-  }
-  return cones;
 }
 
 Image render_textured_mesh(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
@@ -214,7 +184,7 @@ Image render_polygon_mesh(const Eigen::MatrixX3d& V, const std::vector<std::vect
   return canvas.resolve();
 }
 
-Image render_uv_layout(const Eigen::MatrixX3cd& uv, const UvLayoutOptions& o) {
+Image render_uv_layout(const Eigen::MatrixX3cd& uv, const FlipReport& flips, const UvLayoutOptions& o) {
   Canvas canvas(o.width, o.height, o.supersample, o.background);
   if (uv.rows() == 0) return canvas.resolve();
   double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
@@ -241,10 +211,12 @@ Image render_uv_layout(const Eigen::MatrixX3cd& uv, const UvLayoutOptions& o) {
     for (double u = std::ceil(lo_u); u <= hi_u; ++u) line({u, lo_v}, {u, hi_v});
     for (double v = std::ceil(lo_v); v <= hi_v; ++v) line({lo_u, v}, {hi_u, v});
   }
-  // Flipped triangles are drawn last (in front) so that a fold is never hidden by the sheet it covers.
+  // Non-positive triangles are drawn last (in front) so that a fold is never hidden by the sheet it covers.
+  std::vector<char> bad(static_cast<std::size_t>(uv.rows()), 0);
+  for (const int f : flips.flipped_faces) bad[static_cast<std::size_t>(f)] = 1;
   for (int pass = 0; pass < 2; ++pass)
     for (Eigen::Index f = 0; f < uv.rows(); ++f) {
-      const bool flipped = std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0))) < 0;
+      const bool flipped = bad[static_cast<std::size_t>(f)] != 0;
       if (flipped != (pass == 1)) continue;
       Eigen::Vector3d p[3];
       for (int k = 0; k < 3; ++k) {
@@ -258,6 +230,8 @@ Image render_uv_layout(const Eigen::MatrixX3cd& uv, const UvLayoutOptions& o) {
           Eigen::Vector3d a = p[k], b = p[(k + 1) % 3];
           canvas.draw_line(a, b, 0.6, flipped ? scale(o.flipped, 0.6) : o.edge_color, 0.5);
         }
+      if (flipped)  // also a dot: a collapsed triangle covers no pixel
+        canvas.draw_disk((p[0] + p[1] + p[2]) / 3, o.marker_radius, o.flipped, 2);
     }
   return canvas.resolve();
 }

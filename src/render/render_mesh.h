@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "field/frame_field.h"
+#include "metrics/param_quality.h"
+#include "param/seams.h"
 #include "render/canvas.h"
 #include "render/image.h"
 
@@ -42,10 +44,7 @@ Rgb branch_point_color(int quarter_index);
 std::vector<std::pair<int, int>> uv_seam_edges(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
                                                double tolerance = 1e-9);
 
-/// Cones of a seamless map found from the UVs alone: interior vertices whose total signed UV corner angle Θ differs
-/// from 2π; quarter_index = round((2π - Θ) / (π/2)) = 4·ind_p (Θ = 2π(1 - ind_p) for a cone of index ind_p).
-/// Boundary vertices are skipped. Used when only a parameterized OBJ is at hand.
-std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv);
+// Cones of a map from its UVs: cones_from_uv (metrics/param_quality.h), the computation the reports use.
 
 /// The triangle mesh shaded (Lambert + Blinn, headlight), textured from uv (may be empty: plain shading), with
 /// seams and the given branch points marked.
@@ -67,16 +66,16 @@ struct UvLayoutOptions {
   bool edges = true;         ///< triangle edges
   Rgb background{1, 1, 1};
   Rgb fill{0.78, 0.86, 0.95};     ///< positively oriented triangles
-  Rgb flipped{0.90, 0.05, 0.05};  ///< negative-area (flipped) triangles
+  Rgb flipped{0.90, 0.05, 0.05};  ///< flipped and collapsed triangles (FlipReport::flipped_faces)
+  double marker_radius = 2.5;     ///< each non-positive triangle is also marked by a dot (px): collapsed ones are thin
   Rgb edge_color{0.25, 0.30, 0.40};
   Rgb grid_color{0.80, 0.80, 0.80};
 };
 
-/// The parameter domain: every triangle drawn at its per-corner UVs (u right, v up), flipped ones in red.
-/// uv #F by 3 per-corner coordinates.
-Image render_uv_layout(const Eigen::MatrixX3cd& uv, const UvLayoutOptions& options = {});
-
-/// Number of triangles with negative signed UV area.
-int count_flipped(const Eigen::MatrixX3cd& uv);
+/// The parameter domain: every triangle drawn at its per-corner UVs (u right, v up); the non-positive ones of
+/// `flips` (flipped_triangles in param/seams.h: flipped or collapsed against τ·A_ref, the classification every report
+/// uses) in red, in front, each also marked by a dot at its centroid (a collapsed one covers no pixel).
+/// uv #F by 3 per-corner coordinates; flips.flipped_faces index its rows.
+Image render_uv_layout(const Eigen::MatrixX3cd& uv, const FlipReport& flips, const UvLayoutOptions& options = {});
 
 }  // namespace quadcover

@@ -1,5 +1,7 @@
 #include "render/scene.h"
 
+#include <Eigen/Geometry>
+
 #include "common/errors.h"
 
 namespace quadcover {
@@ -49,6 +51,15 @@ MeshScene scene_from_soup(const PolygonSoup& soup) {
     }
   }
   return s;
+}
+
+Eigen::VectorXd triangle_areas(const MeshScene& s) {
+  Eigen::VectorXd A(s.F.rows());
+  for (Eigen::Index f = 0; f < s.F.rows(); ++f) {
+    const Eigen::Vector3d p0 = s.V.row(s.F(f, 0)), p1 = s.V.row(s.F(f, 1)), p2 = s.V.row(s.F(f, 2));
+    A[f] = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+  }
+  return A;
 }
 
 }  // namespace quadcover

@@ -19,4 +19,8 @@ struct MeshScene {
 /// \throw InputError naming the face's file and line for an index out of range or a face with < 3 corners.
 MeshScene scene_from_soup(const PolygonSoup& soup);
 
+/// 3D area of each triangle of scene.F, computed as Mesh::face_areas() is (½‖(p1 − p0) × (p2 − p0)‖), so that the
+/// flip classification of `render` matches the reports' bit for bit.
+Eigen::VectorXd triangle_areas(const MeshScene& scene);
+
 }  // namespace quadcover

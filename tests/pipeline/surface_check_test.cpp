@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -63,6 +65,80 @@ TEST(SurfaceCheck, SameTopologyPassesAndEveryChangeIsNamed) {
   EXPECT_TRUE(hex.same_topology) << (hex.problems.empty() ? "" : hex.problems[0]);
   EXPECT_FALSE(hex.closed_all_quads);
   EXPECT_EQ(hex.output.non_quads, 1);
+}
+
+TEST(SurfaceCheck, PinchedVerticesInconsistentFacesAndPolygons) {
+  // Two quad squares sharing one corner (a bow-tie): one component, two boundary loops (one per fan), one
+  // non-manifold vertex, genus undefined.
+  auto faces = quad_grid(2, 2, false);
+  for (auto f : quad_grid(2, 2, false)) {
+    for (int& v : f) v = v == 0 ? 8 : v + 8;  // its corner vertex 0 is the first square's vertex 8
+    faces.push_back(f);
+  }
+  const SurfaceCounts bow = surface_counts(17, faces);
+  EXPECT_EQ(bow.components, 1);
+  EXPECT_EQ(bow.boundary_loops, 2);
+  EXPECT_EQ(bow.non_manifold_vertices, 1);
+  EXPECT_EQ(bow.non_manifold_edges, 0);
+  EXPECT_FALSE(bow.manifold());
+  EXPECT_EQ(bow.genus, -1);
+  EXPECT_EQ(bow.isolated_vertices, 0);
+  // One face of a torus reversed: still a manifold of genus 1, but 4 edges disagree in orientation.
+  auto flipped = quad_grid(8, 6, true);
+  std::reverse(flipped[7].begin(), flipped[7].end());
+  const SurfaceCounts f = surface_counts(48, flipped);
+  EXPECT_TRUE(f.manifold());
+  EXPECT_FALSE(f.oriented());
+  EXPECT_EQ(f.inconsistent_edges, 4);
+  EXPECT_EQ(f.genus, -1);
+  EXPECT_EQ(surface_counts(48, quad_grid(8, 6, true)).genus, 1);
+  // A fin: a third quad on an edge of the square grid, and a face with a repeated corner.
+  auto fin = quad_grid(2, 2, false);
+  fin.push_back({1, 4, 10, 9});  // on the interior edge (1, 4) of the first two quads
+  const SurfaceCounts nm = surface_counts(11, fin);
+  EXPECT_EQ(nm.non_manifold_edges, 1);
+  EXPECT_FALSE(nm.manifold());
+  auto repeated = quad_grid(2, 2, false);
+  repeated.push_back({2, 5, 2, 9});
+  EXPECT_EQ(surface_counts(10, repeated).degenerate_faces, 1);
+  // A triangle mesh counted as polygons is the Mesh's own topology.
+  const Mesh torus = testing::make_torus(16, 8);
+  const SurfaceCounts t = surface_counts(torus);
+  EXPECT_EQ(t.genus, torus.genus());
+  EXPECT_EQ(t.edges, torus.num_edges());
+  EXPECT_EQ(t.non_quads, torus.num_faces());
+}
+
+TEST(SurfaceCheck, RemeshWarningsSayEveryDegradation) {
+  const Mesh torus = testing::make_torus(16, 8);
+  ExtractionReport clean;
+  EXPECT_TRUE(remesh_warnings(check_surface(torus, 48, quad_grid(8, 6, true)), clean).empty());
+  ExtractionReport repaired;
+  repaired.moved_vertices = 3;
+  repaired.torn_seams = 1;
+  repaired.filled_holes = 1;
+  const auto w = remesh_warnings(check_surface(torus, 48, quad_grid(8, 6, true)), repaired);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("3 vertices moved by the fold repair, 1 torn seam treated as boundary, 1 hole filled"),
+            std::string::npos)
+      << w[0];
+  // A closed input with a hexagon: the check's problem, flagged, once.
+  auto merged = quad_grid(8, 6, true);
+  merged[0] = {0, 1, 2, 10, 9, 8};
+  merged.erase(merged.begin() + 1);
+  const SurfaceCheck hex = check_surface(torus, 48, merged);
+  EXPECT_FALSE(hex.closed_all_quads);
+  const auto wh = remesh_warnings(hex, clean);
+  ASSERT_EQ(wh.size(), 1u);
+  EXPECT_EQ(wh[0], "remesh changed the surface: the input is closed but 1 faces are not quads");
+  // An open input with a hexagon: not a change of the surface, but still said.
+  const Mesh grid = testing::make_grid(8);
+  auto open = quad_grid(8, 6, false);
+  open[0] = {0, 1, 2, 11, 10, 9};
+  open.erase(open.begin() + 1);
+  const auto wo = remesh_warnings(check_surface(grid, 63, open), clean);
+  ASSERT_FALSE(wo.empty());
+  EXPECT_EQ(wo.back(), "1 of the 47 faces are not quads");
 }
 
 }  // namespace

@@ -65,7 +65,7 @@ TEST(UvLayout, UnitSquareCoversExpectedArea) {
   o.margin = 0.1;
   o.edges = false;
   o.integer_grid = false;
-  const Image im = render_uv_layout(uv, o);
+  const Image im = render_uv_layout(uv, FlipReport{}, o);
   const int covered = im.width * im.height - count_pixels(im, o.background, 0.01);
   EXPECT_NEAR(covered, 160 * 160, 0.02 * 160 * 160);
   EXPECT_NEAR(count_pixels(im, o.fill), 160 * 160, 0.03 * 160 * 160);
@@ -77,20 +77,21 @@ TEST(UvLayout, UnitSquareCoversExpectedArea) {
 TEST(UvLayout, FlippedTrianglesAreRed) {
   const Mesh grid = make_grid(4);
   Eigen::MatrixX3cd uv = planar_uv(grid, 4.0);
-  ASSERT_EQ(count_flipped(uv), 0);
+  ASSERT_EQ(flipped_triangles(grid, uv).non_positive, 0);
   // Fold one triangle over by mirroring one corner through the opposite edge.
   const std::complex<double> a = uv(5, 1), b = uv(5, 2), c = uv(5, 0);
   const std::complex<double> d = (b - a) / std::abs(b - a);
   uv(5, 0) = a + d * std::conj((c - a) / d);
-  EXPECT_EQ(count_flipped(uv), 1);
+  const FlipReport flips = flipped_triangles(grid, uv);
+  EXPECT_EQ(flips.flipped, 1);
   UvLayoutOptions o;
   o.width = o.height = 200;
-  const Image im = render_uv_layout(uv, o);
+  const Image im = render_uv_layout(uv, flips, o);
   const int red = count_pixels(im, o.flipped, 0.05);
   // Half a grid cell of (200·0.9/4)² px² is ≈ 1012 px², minus its drawn edges.
   EXPECT_GT(red, 600);
   EXPECT_LT(red, 1100);
-  const Image clean = render_uv_layout(planar_uv(grid, 4.0), o);
+  const Image clean = render_uv_layout(planar_uv(grid, 4.0), flipped_triangles(grid, planar_uv(grid, 4.0)), o);
   EXPECT_EQ(count_pixels(clean, o.flipped, 0.05), 0);
 }
 
