@@ -29,7 +29,6 @@ struct ParamCmdOptions {
   std::string lattice = "rotated";
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
-  bool align = true;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
@@ -73,7 +72,6 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   po.param.lattice = parse_lattice(opt.lattice);
   po.param.edge_length = opt.edge_length;
   po.param.target_quads = opt.quads;
-  po.param.align_curves = opt.align;
   apply_optimize_options(opt.optimize, po);
   validate(po);
   if (!out.plot.empty() && po.optimize == OptimizeMode::None)
@@ -129,9 +127,6 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
-      ->capture_default_str();
-  cmd->add_option("--align", opt->align,
-                  "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write a JSON report (one input) or a folder for NAME.param.json files");
   add_optimize_options(*cmd, opt->optimize);
