@@ -1,8 +1,11 @@
 // quadcover HTML report viewer: interactive 3D views of the meshes embedded in the page (three.js, inlined).
-// Data: the JSON script element #qc-data holds {"meshes": [{name, positions, triangles, uv, edges}]}
+// Data: the JSON script element #qc-data holds {"meshes": [{name, positions, triangles, uv, edges, seams,
+// branch_points, decimated}]}
 // (this file is inlined into a script element: it must never contain a closing script tag)
 //   positions  flat [x, y, z, ...]; triangles flat vertex indices; uv (optional) flat [u, v] per triangle corner
-//   (3 per triangle, in grid units); edges (optional) flat vertex index pairs drawn as a wireframe.
+//   (3 per triangle, in grid units); edges (optional) flat vertex index pairs drawn as a wireframe; seams flat
+//   vertex index pairs drawn in orange; branch_points [{vertex, quarter_index}] drawn as dots (+1 blue, -1 red,
+//   +2 cyan, -2 magenta, others grey); decimated (optional) {faces, original_faces, method, cell_size}.
 // Each mesh gets a canvas element of class qc-view with data-mesh="k". Drag rotates, the wheel zooms, double-click resets.
 // After the first frame every canvas gets data-nonblank = number of pixels differing from the background, and
 // #qc-status says "ok" (or the error), so headless browsers can check the page.
@@ -68,6 +71,25 @@ function buildObject(mesh) {
     const lines = new THREE.BufferGeometry();
     lines.setAttribute('position', new THREE.BufferAttribute(pos, 3));
     group.add(new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ color: 0x1a1a22 })));
+  }
+  if (mesh.seams && mesh.seams.length) {
+    const S = mesh.seams, pos = new Float32Array(S.length * 3);
+    for (let i = 0; i < S.length; ++i) for (let d = 0; d < 3; ++d) pos[3 * i + d] = P[3 * S[i] + d];
+    const lines = new THREE.BufferGeometry();
+    lines.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    group.add(new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ color: 0xe6730d })));
+  }
+  if (mesh.branch_points && mesh.branch_points.length) {
+    const B = mesh.branch_points, pos = new Float32Array(B.length * 3), col = new Float32Array(B.length * 3);
+    const colours = { 1: [0.1, 0.3, 0.95], '-1': [0.9, 0.1, 0.1], 2: [0.0, 0.75, 0.85], '-2': [0.8, 0.1, 0.8] };
+    B.forEach((b, i) => {
+      for (let d = 0; d < 3; ++d) pos[3 * i + d] = P[3 * b.vertex + d];
+      col.set(colours[b.quarter_index] || [0.3, 0.3, 0.3], 3 * i);
+    });
+    const points = new THREE.BufferGeometry();
+    points.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    points.setAttribute('color', new THREE.BufferAttribute(col, 3));
+    group.add(new THREE.Points(points, new THREE.PointsMaterial({ size: 9, sizeAttenuation: false, vertexColors: true })));
   }
   geometry.computeBoundingSphere();
   return { group, sphere: geometry.boundingSphere };

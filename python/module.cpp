@@ -120,6 +120,18 @@ FieldOptions field_options(double trusted_fraction, double lambda, int smoothing
   return o;
 }
 
+/// feature_angle= as degrees: a number, or "off" (= 0, no sharp features). \throw InputError otherwise (the range
+/// is checked by validate()).
+double feature_angle_degrees(const py::object& value) {
+  if (py::isinstance<py::str>(value)) {
+    if (value.cast<std::string>() == "off") return 0;
+  } else if (!py::isinstance<py::bool_>(value) && py::hasattr(value, "__float__")) {
+    return value.cast<double>();
+  }
+  throw InputError("feature_angle", 0,
+                   "expected a number of degrees in [0, 180] or 'off', got " + py::repr(value).cast<std::string>());
+}
+
 /// The keyword arguments shared by parameterize() and remesh(), as pipeline options.
 struct JobArgs {
   double edge_length = 0;
@@ -128,6 +140,8 @@ struct JobArgs {
   long max_iterations = kAutoBudget;
   bool keep_better = true;
   int stiffening = 0, relaxation = 0;
+  double feature_angle = FeatureOptions{}.sharp_angle_degrees;
+  bool align_curves = true;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -144,6 +158,9 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.keep_better = a.keep_better;
   o.param.stiffening.max_iterations = a.stiffening;
   o.param.relaxation.iterations = a.relaxation;
+  o.param.features.sharp_angle_degrees = a.feature_angle;
+  o.param.align_curves = a.align_curves;
+  validate(o);  // ValueError naming the keyword before any work
   return o;
 }
 
@@ -325,20 +342,23 @@ PYBIND11_MODULE(_quadcover, m) {
         "Curvature-guided cross field (thesis Chapter 5): dict with X, Y (#F complex, face basis basis1/basis2), "
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
   const auto job_args = [](double edge_length, int quads, int faces, const std::string& lattice,
-                            const std::string& optimize, const std::string& rounding, long max_iterations,
-                            bool keep_better, int stiffening, int relaxation, const std::string& field) {
-    return JobArgs{edge_length, quads,      faces,          lattice,     optimize,  rounding,
-                   field,       max_iterations, keep_better, stiffening, relaxation};
+                           const std::string& optimize, const std::string& rounding, long max_iterations,
+                           bool keep_better, int stiffening, int relaxation, const std::string& field,
+                           const py::object& feature_angle, bool align_curves) {
+    return JobArgs{edge_length, quads,      faces,      lattice,
+                   optimize,    rounding,   field,      max_iterations,
+                   keep_better, stiffening, relaxation, feature_angle_degrees(feature_angle),
+                   align_curves};
   };
   m.def(
       "parameterize",
       [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
                  const std::string& lattice, const std::string& optimize, const std::string& rounding,
                  long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 py::object progress) {
+                 const py::object& feature_angle, bool align_curves, py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
-                                        keep_better, stiffening, relaxation, field),
+                                        keep_better, stiffening, relaxation, field, feature_angle, align_curves),
                                std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -346,6 +366,7 @@ PYBIND11_MODULE(_quadcover, m) {
       py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
       py::arg("progress") = py::none(),
       "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
       "units (integer iso-lines are quad edges) and the report dict: the same document as the CLI's `param --report` "
@@ -357,6 +378,9 @@ PYBIND11_MODULE(_quadcover, m) {
       "search2, search3 or exact. keep_better: also parameterize the original field and keep the map with the lower "
       "E_D + E_H. stiffening: re-solves of the final correction against flipped triangles (0 = off). relaxation: "
       "ARAP local/global rounds of the final map (0 = off). field: 'curvature' (thesis ch. 5) or 'smooth'. "
+      "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
+      "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
+      "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
       "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
       "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
       "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.");
@@ -365,10 +389,11 @@ PYBIND11_MODULE(_quadcover, m) {
       [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
                  const std::string& lattice, const std::string& optimize, const std::string& rounding,
                  long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 int smooth_quads, double smooth_rigidity, py::object progress) {
+                 const py::object& feature_angle, bool align_curves, int smooth_quads, double smooth_rigidity,
+                 py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
-                                  stiffening, relaxation, field),
+                                  stiffening, relaxation, field, feature_angle, align_curves),
                          smooth_quads, smooth_rigidity, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -376,6 +401,7 @@ PYBIND11_MODULE(_quadcover, m) {
       py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(),
       "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing), the same job as the "

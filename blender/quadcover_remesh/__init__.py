@@ -97,11 +97,12 @@ def _settings_props():
                                               description="Target quad count over the whole object (0 = default "
                                               "density); loose parts share it by area"),
         "feature_angle": bpy.props.FloatProperty(name="Feature Angle", subtype="ANGLE", default=np.radians(35.0),
-                                                 min=0.0, max=np.pi, description="Edges sharper than this are kept "
-                                                 "as quad edges (needs a quadcover module that has features)"),
+                                                 min=0.0, max=np.pi, description="Edges whose faces meet at more "
+                                                 "than this angle (on creases of at least 8 edges) are followed by "
+                                                 "the quads; 0 = no sharp features (boundaries are still followed)"),
         "align_boundary": bpy.props.BoolProperty(name="Align to Boundary", default=True,
-                                                 description="Quads follow open boundaries (needs a quadcover module "
-                                                 "that has it)"),
+                                                 description="Quad edges run exactly along open boundaries and "
+                                                 "along the sharp features of Feature Angle"),
         "smoothing": bpy.props.IntProperty(name="Smoothing", default=20, min=0, max=200,
                                            description="Rounds of tangential quad smoothing on the surface"),
         "field_style": bpy.props.EnumProperty(name="Field", items=FIELD_STYLES, default="curvature"),

@@ -14,15 +14,15 @@ from . import prep
 @dataclass
 class Settings:
     target_faces: int = 2000
-    feature_angle: float = 35.0  # degrees; passed on only if the module has it
-    align_boundary: bool = True  # passed on only if the module has it
+    feature_angle: float = 35.0  # degrees, 0 = no sharp features: remesh(feature_angle=)
+    align_boundary: bool = True  # boundaries and sharp features on quad edges: remesh(align_curves=)
     smoothing: int = 20  # rounds of quad smoothing
     field_style: str = "curvature"
 
 
-# Keyword names the module may give these settings (newer modules take them; older ones do not).
+# Keyword names of these settings in quadcover.remesh (an older module lacks them: the panel greys them out and they are not passed).
 FEATURE_ANGLE_NAMES = ("feature_angle",)
-BOUNDARY_NAMES = ("align_boundary", "boundary_alignment", "boundary")
+BOUNDARY_NAMES = ("align_curves",)
 
 
 def supported(quadcover, names):

@@ -1,6 +1,7 @@
 #include "cli/optimize_options.h"
 
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "cli/commands.h"
@@ -16,6 +17,16 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "reliable (thesis ch. 5); smooth = the smoothest cross field with a weak pull to them (as MIQ), "
                  "lower distortion on organic shapes (Table 7.1 in BENCHMARKS.md). Features are followed by both")
       ->check(CLI::IsMember({"curvature", "smooth"}))
+      ->capture_default_str();
+  cmd.add_option("--feature-angle", options.feature_angle,
+                 "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
+                 "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
+                 "features (boundaries are still followed)")
+      ->type_name("DEG|off")
+      ->capture_default_str();
+  cmd.add_option("--align", options.align,
+                 "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges "
+                 "(true/false)")
       ->capture_default_str();
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
@@ -57,6 +68,25 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
+namespace {
+
+/// "off" -> 0, else the number of degrees in [0, 180]. \throw InputError naming --feature-angle otherwise.
+double parse_feature_angle(const std::string& text) {
+  if (text == "off") return 0;
+  double degrees = -1;
+  std::size_t used = 0;
+  try {
+    degrees = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !(degrees >= 0 && degrees <= 180))
+    throw InputError("--feature-angle", 0, "expected 'off' or an angle in degrees in [0, 180], got '" + text + "'");
+  return degrees;
+}
+
+}  // namespace
+
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options) {
   auto flag = [](const char* name, auto parse) {
     try {
@@ -73,6 +103,8 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
+  options.param.features.sharp_angle_degrees = parse_feature_angle(cli.feature_angle);
+  options.param.align_curves = cli.align;
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

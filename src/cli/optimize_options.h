@@ -24,14 +24,17 @@ struct OptimizeCliOptions {
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
+  std::string feature_angle = "35";  ///< sharp feature angle in degrees, or "off" (= 0), field/feature_alignment.h
+  bool align = true;                 ///< see ParamOptions::align_curves
 };
 
-/// Adds --field, --optimize, --rounding, --max-iterations, --keep-better, --relaxation and --stiffening to `cmd`
-/// (validated by CLI11).
+/// Adds --field, --feature-angle, --align, --optimize, --rounding, --max-iterations, --keep-better, --relaxation,
+/// --stiffening and --max-memory to `cmd` (validated by CLI11, --feature-angle by apply_optimize_options).
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
-/// Sets the field, optimization, rounding, relaxation and stiffening options of the pipeline from the command line.
-/// \throw InputError (naming the flag) for an unknown field style, mode or rounding strategy.
+/// Sets the field, feature, optimization, rounding, relaxation and stiffening options of the pipeline from the
+/// command line. \throw InputError (naming the flag) for an unknown field style, mode or rounding strategy, or a
+/// feature angle that is neither 'off' nor a number of degrees in [0, 180].
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations

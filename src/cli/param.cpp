@@ -11,6 +11,7 @@
 #include "common/errors.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "io/write_ply.h"
 #include "mesh/mesh.h"
 #include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
@@ -29,7 +30,6 @@ struct ParamCmdOptions {
   std::string lattice = "rotated";
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
-  bool align = true;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
@@ -67,19 +67,42 @@ Eigen::MatrixX3cd corner_values(const Eigen::MatrixX2d& UV, const Eigen::MatrixX
   return written;
 }
 
+/// "obj" or "ply", the formats that hold per-corner texture coordinates. \throw InputError otherwise.
+std::string param_output_format(const std::string& path) {
+  const std::string format = mesh_output_format(path);
+  if (format != "obj" && format != "ply")
+    throw InputError(
+        path, 0,
+        "a parameterization is written as .obj (vt) or .ply (texcoord); ." + format + " holds no texture coordinates");
+  return format;
+}
+
+/// The map as binary PLY: the triangles with `texcoord` (float32) per corner. Returns the largest rounding of a
+/// coordinate to float32, in grid units.
+double write_param_ply(const std::string& path, const Mesh& mesh, const Eigen::MatrixX2d& UV,
+                       const Eigen::MatrixX3i& FUV) {
+  PolygonSoup soup = PolygonSoup::from_triangles(mesh.V(), mesh.F());
+  soup.uv = UV;
+  soup.face_uv.reserve(soup.face_vertices.size());
+  for (Eigen::Index f = 0; f < FUV.rows(); ++f)
+    for (int c = 0; c < 3; ++c) soup.face_uv.push_back(FUV(f, c));
+  write_ply(path, soup);
+  return (UV - UV.cast<float>().cast<double>()).cwiseAbs().maxCoeff();
+}
+
 nlohmann::json run_param(const std::string& input, const ParamOutputs& out, const ParamCmdOptions& opt,
                          ProgressSink& progress) {
   PipelineOptions po;
   po.param.lattice = parse_lattice(opt.lattice);
   po.param.edge_length = opt.edge_length;
   po.param.target_quads = opt.quads;
-  po.param.align_curves = opt.align;
   apply_optimize_options(opt.optimize, po);
   validate(po);
   if (!out.plot.empty() && po.optimize == OptimizeMode::None)
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
+  const std::string format = param_output_format(out.obj);
 
   auto t = std::chrono::steady_clock::now();
   FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
@@ -111,7 +134,10 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
       const int v = map_mesh.F()(f, c);
       file_faces(f, c) = v < n_mesh ? file_vertices.of_mesh[static_cast<std::size_t>(v)] : n_file + v - n_mesh;
     }
-  write_obj_with_uv(out.obj, positions, file_faces, UV, FUV);
+  if (format == "ply")  // the report's numbers are of the exact (OBJ) coordinates; the float32 rounding is said
+    report["texcoord_float32_rounding"] = write_param_ply(out.obj, map_mesh, UV, FUV);
+  else
+    write_obj_with_uv(out.obj, positions, file_faces, UV, FUV);
   report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   print_warnings(input, report);
   if (!out.png.empty()) write_parameterization_png(out.png, map_mesh, job.map, views, render_options);
@@ -131,7 +157,9 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "30 quads per branch point of the field",
       opt->inputs);
   cmd->add_option("-o,--output", opt->output,
-                  "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.param.obj");
+                  "Output: .obj with per-corner vt, or .ply (binary) with per-corner 'texcoord' (float32, as Blender "
+                  "and MeshLab read it) (one input), or a folder (several inputs); default: next to the input as "
+                  "NAME.param.obj");
   auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
                 ->check(CLI::PositiveNumber);
   cmd->add_option("--faces,--quads", opt->quads,
@@ -143,9 +171,6 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
-      ->capture_default_str();
-  cmd->add_option("--align", opt->align,
-                  "Put boundary and sharp feature curves the field follows on integer iso-lines (true/false)")
       ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write a JSON report (one input) or a folder for NAME.param.json files");
   add_optimize_options(*cmd, opt->optimize);

@@ -11,6 +11,8 @@
 #include "common/errors.h"
 #include "io/read_mesh.h"
 #include "io/write_mesh.h"
+#include "io/write_ply.h"
+#include "metrics/vertex_quality.h"
 #include "pipeline/job_report.h"
 #include "pipeline/remesh_mesh.h"
 #include "render/pipeline_pictures.h"
@@ -27,6 +29,7 @@ struct RemeshOptions {
   int vertices = 0;
   double edge_length = 0;
   std::string lattice = "rotated";
+  bool ply_quality = false;
   QuadSmoothingOptions smoothing;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
@@ -48,6 +51,14 @@ void write_param_obj(const std::string& path, const Mesh& mesh, const Eigen::Mat
   write_obj_with_uv(path, mesh.V(), mesh.F(), UV, FUV);
 }
 
+/// The quad mesh as binary PLY with the per-vertex `quality` (worst corner angle deviation, degrees) and `valence`
+/// of metrics/vertex_quality.h.
+void write_quality_ply(const std::string& path, const QuadMesh& quads) {
+  const VertexQuality q = vertex_quality(quads.V, quads.faces);
+  write_ply(path, PolygonSoup::from_polygons(quads.V, quads.faces),
+            {{"quality", q.worst_angle_deviation, false}, {"valence", q.valence.cast<double>(), true}});
+}
+
 nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, const RemeshOptions& opt,
                           ProgressSink& progress) {
   PipelineOptions po;
@@ -60,7 +71,8 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   validate(po);
   if (!out.plot.empty() && po.optimize == OptimizeMode::None)
     throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
-  mesh_output_format(out.quads);  // an unknown extension fails before any work
+  if (mesh_output_format(out.quads) != "ply" && opt.ply_quality)  // an unknown extension fails before any work
+    throw InputError(out.quads, 0, "--ply-quality needs a .ply output");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   using Clock = std::chrono::steady_clock;
@@ -79,7 +91,9 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   report["output"] = out.quads;
   t = Clock::now();
   const QuadMesh& quads = job.extraction.mesh;
-  if (const std::size_t split = write_polygon_mesh(out.quads, quads.V, quads.faces); split > 0)
+  if (opt.ply_quality)
+    write_quality_ply(out.quads, quads);
+  else if (const std::size_t split = write_polygon_mesh(out.quads, quads.V, quads.faces); split > 0)
     report["warnings"].push_back(std::to_string(split) + " polygons were split into triangles for the STL output");
   if (!out.param.empty()) write_param_obj(out.param, job.param.mesh(mesh), job.param.map.uv);
   report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
@@ -100,7 +114,12 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "writes the quad mesh (OBJ) and optionally a JSON report with the Table 7.1 metrics",
       opt->inputs);
   cmd->add_option("-o,--output", opt->output,
-                  "Output OBJ (one input) or folder (several inputs); default: next to the input as NAME.quad.obj");
+                  "Output mesh, format by extension: .obj, .off, .ply (binary), .stl (triangulated) (one input), or "
+                  "a folder (several inputs); default: next to the input as NAME.quad.obj");
+  cmd->add_flag("--ply-quality", opt->ply_quality,
+                "Write the quad mesh as binary PLY (.ply output; NAME.quad.ply in batches) with per-vertex "
+                "'quality' = the worst corner angle deviation from 90 degrees at the vertex (degrees; for a non-quad "
+                "n-gon from its regular angle) and 'valence' = the vertex's edge count");
   auto* nv = cmd->add_option("--faces,--vertices", opt->vertices,
                              "Target number of quads N, hit within 2 % of the map's quad count (on a closed mesh the "
                              "quad mesh has about as many vertices); --vertices is its old name")
@@ -133,7 +152,7 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   auto path = [&](const std::string& o, const char* suffix) {
                     return optional_output_path(input, o, batch, suffix);
                   };
-                  const RemeshOutputs out{output_path(input, opt->output, batch, ".quad.obj"),
+                  const RemeshOutputs out{output_path(input, opt->output, batch, opt->ply_quality ? ".quad.ply" : ".quad.obj"),
                                           path(opt->report, ".remesh.json"),
                                           path(opt->param_output, ".param.obj"),
                                           path(opt->pictures.png, ".quad.png"),

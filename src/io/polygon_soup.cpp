@@ -35,6 +35,16 @@ PolygonSoup PolygonSoup::from_triangles(const Eigen::MatrixX3d& V, const Eigen::
   return soup;
 }
 
+PolygonSoup PolygonSoup::from_polygons(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces) {
+  PolygonSoup soup;
+  soup.positions = V;
+  for (const std::vector<int>& face : faces) {
+    soup.face_vertices.insert(soup.face_vertices.end(), face.begin(), face.end());
+    soup.face_offsets.push_back(static_cast<std::int64_t>(soup.face_vertices.size()));
+  }
+  return soup;
+}
+
 PolygonSoup triangulate_polygons(const PolygonSoup& soup) {
   PolygonSoup out;
   out.file = soup.file;

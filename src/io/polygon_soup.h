@@ -59,6 +59,8 @@ struct PolygonSoup {
 
   /// A soup from plain triangle arrays (V #V by 3, F #F by 3, 0-based), e.g. from the Python module.
   static PolygonSoup from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+  /// A soup from a polygon mesh (quad meshes): V #V by 3, faces 0-based vertex indices per face (not checked here).
+  static PolygonSoup from_polygons(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
 };
 
 /// Fans every polygon with more than three corners into triangles (corner 0 to each consecutive pair).

@@ -1,9 +1,14 @@
 // OFF, PLY and STL writers (OBJ is in write_mesh.cpp).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstring>
-#include <Eigen/Geometry>
 #include <stdexcept>
+#include <string_view>
+#include <type_traits>
 
 #include "io/atomic_file.h"
 #include "io/text_format.h"
@@ -55,6 +60,89 @@ void put_ascii_body(TextBuffer& b, const PolygonSoup& soup) {
   }
 }
 
+/// Properties must be PLY identifiers other than the positions, with one value per vertex; uv indices in range.
+void check_ply_properties(const std::string& path, const PolygonSoup& soup,
+                          const std::vector<PlyVertexProperty>& properties) {
+  for (const PlyVertexProperty& p : properties) {
+    const bool identifier = !p.name.empty() && std::all_of(p.name.begin(), p.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+    if (!identifier || p.name == "x" || p.name == "y" || p.name == "z")
+      throw std::invalid_argument(path + ": invalid PLY vertex property name '" + p.name + "'");
+    if (p.values.size() != soup.positions.rows())
+      throw std::invalid_argument(path + ": PLY vertex property '" + p.name + "' has " +
+                                  std::to_string(p.values.size()) + " values for " +
+                                  std::to_string(soup.num_vertices()) + " vertices");
+  }
+  if (!soup.has_uv()) return;
+  if (soup.face_uv.size() != soup.face_vertices.size())
+    throw std::invalid_argument(path + ": face_uv must have one entry per face corner");
+  for (std::int64_t i : soup.face_uv)
+    if (i >= soup.uv.rows())
+      throw std::invalid_argument(path + ": texture coordinate index " + std::to_string(i) + " outside [0, " +
+                                  std::to_string(soup.uv.rows()) + ")");
+}
+
+void put_ply_header(TextBuffer& b, const PolygonSoup& soup, const std::vector<PlyVertexProperty>& properties,
+                    PlyEncoding encoding) {
+  const char* format = encoding == PlyEncoding::Ascii                ? "ascii"
+                       : encoding == PlyEncoding::BinaryLittleEndian ? "binary_little_endian"
+                                                                     : "binary_big_endian";
+  b.put("ply\nformat ").put(format).put(" 1.0\ncomment written by quadcover\nelement vertex ");
+  b.num(static_cast<std::int64_t>(soup.num_vertices()));
+  b.put("\nproperty double x\nproperty double y\nproperty double z\n");
+  for (const PlyVertexProperty& p : properties)
+    b.put(p.integer ? "property int " : "property float ").put(p.name).put('\n');
+  b.put("element face ").num(static_cast<std::int64_t>(soup.num_faces()));
+  b.put("\nproperty list uchar int vertex_indices\n");
+  if (soup.has_uv()) b.put("property list uchar float texcoord\n");
+  b.put("end_header\n");
+}
+
+/// The element values of a PLY body: binary in the file's byte order, or ASCII (one line per element).
+class PlyBody {
+ public:
+  PlyBody(std::ostream& out, PlyEncoding encoding)
+      : out_(out), text_(out), ascii_(encoding == PlyEncoding::Ascii), big_(encoding == PlyEncoding::BinaryBigEndian) {
+    buf_.reserve(1 << 16);
+  }
+  template <class T>
+  void value(T x) {
+    if (!ascii_) return put_binary(buf_, x, big_);
+    if (!first_) text_.put(' ');
+    first_ = false;
+    if constexpr (std::is_same_v<T, float>) {  // the float's own shortest form ("0.1", not 0.10000000149...)
+      char tmp[32];
+      text_.put(std::string_view(tmp, static_cast<std::size_t>(std::to_chars(tmp, tmp + sizeof tmp, x).ptr - tmp)));
+    } else if constexpr (std::is_floating_point_v<T>) {
+      text_.num(static_cast<double>(x));
+    } else {
+      text_.num(static_cast<std::int64_t>(x));
+    }
+  }
+  void end_element() {
+    if (ascii_) {
+      text_.put('\n');
+      first_ = true;
+    } else if (buf_.size() >= (1 << 16)) {
+      drain();
+    }
+  }
+  void flush() {
+    if (ascii_) return text_.flush();
+    drain();
+  }
+
+ private:
+  void drain() {
+    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+  }
+  std::ostream& out_;
+  TextBuffer text_;
+  std::string buf_;
+  bool ascii_, big_, first_ = true;
+};
 }  // namespace
 
 void write_off(const std::string& path, const PolygonSoup& soup) {
@@ -72,44 +160,39 @@ void write_off(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::
   write_off(path, soup_of(V, F));
 }
 
-void write_ply(const std::string& path, const PolygonSoup& soup, PlyEncoding encoding) {
+void write_ply(const std::string& path, const PolygonSoup& soup, const std::vector<PlyVertexProperty>& properties,
+               PlyEncoding encoding) {
   check_soup(path, soup, 255);
+  check_ply_properties(path, soup, properties);
+  const bool texcoords = soup.has_uv();
   write_file_atomically(path, [&](std::ostream& out) {
-    const char* format = encoding == PlyEncoding::Ascii                ? "ascii"
-                         : encoding == PlyEncoding::BinaryLittleEndian ? "binary_little_endian"
-                                                                       : "binary_big_endian";
-    TextBuffer b(out);
-    b.put("ply\nformat ").put(format).put(" 1.0\ncomment written by quadcover\nelement vertex ");
-    b.num(static_cast<std::int64_t>(soup.num_vertices()));
-    b.put("\nproperty double x\nproperty double y\nproperty double z\nelement face ");
-    b.num(static_cast<std::int64_t>(soup.num_faces()));
-    b.put("\nproperty list uchar int vertex_indices\nend_header\n");
-    if (encoding == PlyEncoding::Ascii) {
-      put_ascii_body(b, soup);
-      b.flush();
-      return;
-    }
-    b.flush();
-    const bool big = encoding == PlyEncoding::BinaryBigEndian;
-    std::string buf;
-    buf.reserve(1 << 16);
-    auto drain = [&](bool force) {
-      if (force || buf.size() >= (1 << 16)) {
-        out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-        buf.clear();
-      }
-    };
+    TextBuffer header(out);
+    put_ply_header(header, soup, properties, encoding);
+    header.flush();
+    PlyBody body(out, encoding);
     for (Eigen::Index v = 0; v < soup.positions.rows(); ++v) {
-      for (int c = 0; c < 3; ++c) put_binary(buf, soup.positions(v, c), big);
-      drain(false);
+      for (int c = 0; c < 3; ++c) body.value(soup.positions(v, c));
+      for (const PlyVertexProperty& p : properties)
+        if (p.integer)
+          body.value(static_cast<std::int32_t>(std::lround(p.values[v])));
+        else
+          body.value(static_cast<float>(p.values[v]));
+      body.end_element();
     }
     for (std::size_t f = 0; f < soup.num_faces(); ++f) {
-      put_binary(buf, static_cast<std::uint8_t>(soup.face_size(f)), big);
-      for (std::size_t k = 0; k < soup.face_size(f); ++k)
-        put_binary(buf, static_cast<std::int32_t>(soup.face_begin(f)[k]), big);
-      drain(false);
+      const std::size_t n = soup.face_size(f);
+      body.value(static_cast<std::uint8_t>(n));
+      for (std::size_t k = 0; k < n; ++k) body.value(static_cast<std::int32_t>(soup.face_begin(f)[k]));
+      if (texcoords) {
+        const std::int64_t* uv = soup.face_uv.data() + soup.face_offsets[f];
+        const bool complete = std::all_of(uv, uv + n, [](std::int64_t i) { return i >= 0; });
+        body.value(static_cast<std::uint8_t>(complete ? 2 * n : 0));
+        for (std::size_t k = 0; complete && k < n; ++k)
+          for (int c = 0; c < 2; ++c) body.value(static_cast<float>(soup.uv(uv[k], c)));
+      }
+      body.end_element();
     }
-    drain(true);
+    body.flush();
   });
 }
 

@@ -129,14 +129,10 @@ std::size_t write_polygon_mesh(const std::string& path, const Eigen::MatrixX3d& 
     write_polygon_obj(path, V, faces);
     return 0;
   }
-  PolygonSoup soup;
-  soup.positions = V;
-  for (std::size_t f = 0; f < faces.size(); ++f) {
+  for (std::size_t f = 0; f < faces.size(); ++f)
     if (faces[f].size() < 3)
       throw std::invalid_argument(path + ": face " + std::to_string(f) + " has fewer than 3 corners");
-    const std::vector<std::int64_t> corners(faces[f].begin(), faces[f].end());
-    soup.add_face(corners.data(), corners.size(), static_cast<long>(f));
-  }
+  const PolygonSoup soup = PolygonSoup::from_polygons(V, faces);
   if (format == "off") {
     write_off(path, soup);
     return 0;

@@ -1,7 +1,9 @@
 #include "pipeline/job_report.h"
 
+#include <algorithm>
 #include <chrono>
 
+#include "field/feature_alignment.h"
 #include "metrics/feature_fidelity.h"
 #include "metrics/param_quality.h"
 #include "metrics/quad_quality.h"
@@ -28,7 +30,17 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
-          {"merge_coincident_cones", o.merge_coincident_cones}};
+          {"merge_coincident_cones", o.merge_coincident_cones}, {"feature_angle", o.param.features.sharp_angle_degrees}};
+}
+
+/// The curves the field stage followed (field/feature_alignment.h with the job's feature options): the faces whose
+/// cross was fixed to a boundary or sharp edge, and the sharp edges.
+nlohmann::json features_json(const Mesh& mesh, const PipelineOptions& o) {
+  const FeatureConstraints c = feature_constraints(mesh, field_stage_options(o).features);
+  return {{"sharp_angle_degrees", o.param.features.sharp_angle_degrees},
+          {"boundaries", o.param.features.boundaries},
+          {"sharp_edges", c.feature_edges.size()},
+          {"constrained_faces", std::count(c.constrained.begin(), c.constrained.end(), 1)}};
 }
 
 /// The branch points of the field the map was made from (the map's own cones are parameterization.branch_points).
@@ -112,6 +124,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
                   {"quads", job.density.quads},
                   {"resolves", job.density.resolves}};
   r["field"] = field_json(job);
+  r["field"]["features"] = features_json(mesh, job.options);
   r["parameterization"] = map_json(mesh, map, uv);
   r["parameterization"]["h_sym"] = map.h_sym;
   r["optimize"] = job.optimize;

@@ -1,5 +1,7 @@
 #include "pipeline/pipeline_options.h"
 
+#include <sstream>
+
 #include "common/errors.h"
 
 namespace quadcover {
@@ -17,9 +19,19 @@ void validate(const PipelineOptions& o) {
   if (o.smoothing.iterations < 0) throw InputError("smooth_quads", 0, "must be >= 0 (0 = off)");
   if (!(o.smoothing.rigidity >= 0 && o.smoothing.rigidity <= 1))
     throw InputError("smooth_rigidity", 0, "must be in [0, 1]");
+  const double angle = p.features.sharp_angle_degrees;
+  if (!(angle >= 0 && angle <= 180)) {
+    std::ostringstream got;
+    got << angle;
+    throw InputError("feature_angle", 0, "must be in [0, 180] degrees (0 = no sharp features), got " + got.str());
+  }
 }
 
-FieldOptions field_stage_options(const PipelineOptions& options) { return field_options(options.field_style); }
+FieldOptions field_stage_options(const PipelineOptions& options) {
+  FieldOptions o = field_options(options.field_style);
+  o.features = options.param.features;
+  return o;
+}
 
 OptimizeOptions optimize_stage_options(const PipelineOptions& options, const ParamOptions& param) {
   OptimizeOptions o;

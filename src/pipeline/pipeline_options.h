@@ -27,7 +27,9 @@ struct PipelineOptions {
   /// Merge branch point pairs that the map puts on one lattice point into one cone and solve the map again
   /// (pipeline/cone_merging.h).
   bool merge_coincident_cones = true;
-  /// Density, lattice, rounding, relaxation, stiffening (param/parameterize.h).
+  /// Density, lattice, rounding, relaxation, stiffening, curve alignment (param/parameterize.h). Its `features`
+  /// (the feature angle: sharp_angle_degrees, 0 = no sharp features; boundaries) are the curves of both the field
+  /// stage (field_stage_options) and the alignment of the map, so the two always follow the same curves.
   ParamOptions param;
   /// Remesh only: extraction and tangential smoothing of the quad mesh.
   ExtractOptions extraction;
@@ -39,10 +41,11 @@ struct PipelineOptions {
 
 /// Checks every option a user can set, naming it as the Python keyword (the CLI validates its flags first).
 /// \throw InputError for a contradictory or out-of-range option (both edge_length and quads, negative counts,
-/// rigidity outside [0, 1], a budget below -1).
+/// rigidity outside [0, 1], a budget below -1, a feature angle outside [0, 180]).
 void validate(const PipelineOptions& options);
 
-/// The FieldOptions of the field stage (the preset), whose λ also serves Algorithm 6.1's re-smoothing.
+/// The FieldOptions of the field stage (the preset with options.param.features), whose λ also serves Algorithm 6.1's
+/// re-smoothing.
 FieldOptions field_stage_options(const PipelineOptions& options);
 
 /// The OptimizeOptions of the optimization stage (mode, budget, λ of the field stage, `param` for E_H).

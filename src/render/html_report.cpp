@@ -1,6 +1,7 @@
 #include "render/html_report.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -8,6 +9,8 @@
 #include <string_view>
 
 #include "io/atomic_file.h"
+#include "render/html_decimate.h"
+#include "render/render_mesh.h"
 
 namespace quadcover {
 
@@ -18,6 +21,8 @@ std::string_view viewer_js();  // html/viewer.js
 
 namespace {
 
+std::string format_value(const nlohmann::json& j);
+
 void flatten(const nlohmann::json& j, const std::string& prefix,
              std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
@@ -27,13 +32,8 @@ void flatten(const nlohmann::json& j, const std::string& prefix,
     }
   } else if (j.is_array() && j.size() > 12) {
     rows.emplace_back(prefix, "[" + std::to_string(j.size()) + " values]");
-  } else if (j.is_number_float()) {
-    std::ostringstream s;
-    s.precision(6);
-    s << j.get<double>();
-    rows.emplace_back(prefix, s.str());
   } else {
-    rows.emplace_back(prefix, j.is_string() ? j.get<std::string>() : j.dump());
+    rows.emplace_back(prefix, format_value(j));
   }
 }
 
@@ -49,7 +49,157 @@ std::string script_safe(std::string s) {
   return s;
 }
 
+/// x rounded to `decimals` places, as a double whose shortest decimal form is that rounding (compact JSON).
+double rounded(double x, int decimals) {
+  char tmp[64];
+  const auto end = std::to_chars(tmp, tmp + sizeof tmp, x, std::chars_format::fixed, decimals).ptr;
+  double y = x;
+  std::from_chars(tmp, end, y);
+  return y == 0 ? 0.0 : y;  // no "-0.0"
+}
+
+/// Seams and branch points of a parameterized triangle mesh from its per-corner uv (when not given).
+void find_seams_and_cones(HtmlMesh& m) {
+  if (!m.seams.empty() || !m.branch_points.empty() || m.uv.rows() != static_cast<Eigen::Index>(m.faces.size())) return;
+  Eigen::MatrixX3i F(static_cast<Eigen::Index>(m.faces.size()), 3);
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    if (m.faces[f].size() != 3) return;
+    for (int k = 0; k < 3; ++k) F(static_cast<Eigen::Index>(f), k) = m.faces[f][static_cast<std::size_t>(k)];
+  }
+  for (const auto& [f, k] : uv_seam_edges(F, m.uv)) m.seams.emplace_back(F(f, (k + 1) % 3), F(f, (k + 2) % 3));
+  m.branch_points = cones_from_uv(F, m.uv);
+}
+
+/// The page data of one display mesh (see html/viewer.js): positions to 1e-5 of the bounding box diagonal, uv to
+/// 1/1000 of a quad.
+nlohmann::json mesh_json(const HtmlMesh& m) {
+  nlohmann::json j{{"name", m.name}};
+  const double diagonal = m.V.rows() > 0 ? (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm() : 1.0;
+  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(std::max(diagonal, 1e-300) * 1e-5))), 0, 17);
+  std::vector<double> pos;
+  pos.reserve(static_cast<std::size_t>(m.V.rows()) * 3);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v)
+    for (int d = 0; d < 3; ++d) pos.push_back(rounded(m.V(v, d), decimals));
+  std::vector<int> tris, edges, seams;
+  std::set<std::pair<int, int>> seen;  // each edge once, interior or boundary
+  std::vector<double> uv;
+  const bool with_uv = m.uv.rows() == static_cast<Eigen::Index>(m.faces.size());
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    const auto& poly = m.faces[f];
+    for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
+      tris.insert(tris.end(), {poly[0], poly[i], poly[i + 1]});
+      if (with_uv && poly.size() == 3)
+        for (int c = 0; c < 3; ++c) {
+          uv.push_back(rounded(m.uv(static_cast<Eigen::Index>(f), c).real(), 3));
+          uv.push_back(rounded(m.uv(static_cast<Eigen::Index>(f), c).imag(), 3));
+        }
+    }
+    if (m.wireframe)
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const int a = poly[i], b = poly[(i + 1) % poly.size()];
+        if (seen.insert({std::min(a, b), std::max(a, b)}).second) edges.insert(edges.end(), {a, b});
+      }
+  }
+  for (const auto& [a, b] : m.seams) seams.insert(seams.end(), {a, b});
+  j["positions"] = pos;
+  j["triangles"] = tris;
+  if (!uv.empty() && uv.size() == tris.size() * 2) j["uv"] = uv;
+  if (!edges.empty()) j["edges"] = edges;
+  j["seams"] = seams;
+  j["branch_points"] = nlohmann::json::array();
+  for (const BranchPoint& b : m.branch_points)
+    j["branch_points"].push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}});
+  if (m.decimated_from > 0)
+    j["decimated"] = {{"faces", m.faces.size()},
+                      {"original_faces", m.decimated_from},
+                      {"method", "vertex clustering"},
+                      {"cell_size", m.cell_size}};
+  return j;
+}
+
+/// The value at a "/"-separated path of the report, or null.
+const nlohmann::json* at(const nlohmann::json& j, const std::string& path) {
+  const nlohmann::json* node = &j;
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    const std::size_t end = std::min(path.find('/', begin), path.size());
+    const std::string key = path.substr(begin, end - begin);
+    if (!node->is_object() || !node->contains(key)) return nullptr;
+    node = &(*node)[key];
+    begin = end + 1;
+  }
+  return node->is_null() ? nullptr : node;
+}
+
+std::string format_value(const nlohmann::json& j) {
+  if (j.is_number_float()) {
+    std::ostringstream s;
+    s.precision(6);
+    s << j.get<double>();
+    return s.str();
+  }
+  return j.is_string() ? j.get<std::string>() : j.dump();
+}
+
+/// The 3D views (display meshes decimated beyond r.max_display_faces, said in a note) and their page data.
+void put_views(std::ostringstream& h, const HtmlReport& r, nlohmann::json& data) {
+  std::vector<std::string> notes;
+  if (r.meshes.empty()) return;
+  h << "<div><div class=\"views\">\n";
+  for (std::size_t k = 0; k < r.meshes.size(); ++k) {
+    HtmlMesh m = r.meshes[k];
+    find_seams_and_cones(m);
+    if (m.faces.size() > r.max_display_faces) {
+      m = decimate_display_mesh(m, r.max_display_faces);
+      notes.push_back(m.name + ": " + std::to_string(m.faces.size()) + " of " + std::to_string(m.decimated_from) +
+                      " faces");
+    }
+    data["meshes"].push_back(mesh_json(m));
+    h << "<figure><canvas class=\"qc-view\" data-mesh=\"" << k << "\" width=\"480\" height=\"420\"></canvas>"
+      << "<figcaption>" << escape_markup(m.name)
+      << (m.seams.empty() && m.branch_points.empty() ? "" : " — seams orange, branch points: +1 blue, −1 red")
+      << "</figcaption></figure>\n";
+  }
+  h << "</div>\n<p>Drag to rotate, scroll to zoom, double-click to reset.</p>\n";
+  if (!notes.empty()) {
+    h << "<p class=\"qc-note\" id=\"qc-decimated\">Display meshes decimated to stay small (vertex clustering): ";
+    for (std::size_t i = 0; i < notes.size(); ++i) h << (i ? "; " : "") << escape_markup(notes[i]);
+    h << ". Every number on this page is of the full meshes.</p>\n";
+  }
+  h << "</div>\n";
+}
+
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> key_numbers(const nlohmann::json& report) {
+  static const std::pair<const char*, const char*> kKeys[] = {
+      {"input faces", "mesh/faces"},
+      {"quads", "quad_mesh/quads"},
+      {"non-quads", "quad_mesh/non_quads"},
+      {"irregular vertices", "quad_mesh/irregular_vertices"},
+      {"RSD edge length %", "quad_mesh/rsd_edge_length"},
+      {"RSD corner angle %", "quad_mesh/rsd_corner_angle"},
+      {"manifold", "quad_mesh/manifold"},
+      {"features covered %", "feature_fidelity/total/covered_percent"},
+      {"max distance to input", "surface_distance/max"},
+      {"edge length h", "edge_length"},
+      {"branch points", "parameterization/branch_points"},
+      {"seam edges", "parameterization/cut_edges"},
+      {"seamless", "parameterization/seamless"},
+      {"flipped triangles", "parameterization/flipped_triangles"},
+      {"E_D", "parameterization/energy_curl"},
+      {"E_H", "parameterization/energy_harmonic"},
+      {"ARAP", "parameterization/arap"},
+      {"feature angle", "options/feature_angle"},
+      {"seconds", "seconds/total"},
+  };
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (const auto& [label, path] : kKeys)
+    if (const nlohmann::json* v = at(report, path)) rows.emplace_back(label, format_value(*v));
+  if (report.is_object() && report.contains("warnings") && report["warnings"].is_array())
+    rows.emplace_back("warnings", std::to_string(report["warnings"].size()));
+  return rows;
+}
 
 LinePlot optimization_history_plot(const nlohmann::json& history) {
   const bool by_evaluation = !history.empty() && !history[0].contains("iteration") && history[0].contains("evaluation");
@@ -141,12 +291,31 @@ std::string html_report(const HtmlReport& r) {
        "h1{font-size:22px}h2{font-size:17px;margin-top:28px}\n"
        "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ddd;padding:3px 10px;text-align:left}\n"
        "td.v{font-family:monospace;text-align:right}\n"
+       ".top{display:flex;flex-wrap:wrap;gap:16px;align-items:flex-start}\n"
        ".views,.figures{display:flex;flex-wrap:wrap;gap:16px}\n"
        "figure{margin:0}figcaption{font-size:13px;color:#555;margin-top:4px}\n"
        "canvas.qc-view{border:1px solid #ccc;cursor:grab;touch-action:none}\n"
-       "#qc-status{font-size:11px;color:#999}\n"
+       "#qc-status{font-size:11px;color:#999}.qc-note{font-size:13px;color:#a05a00}\n"
        "</style>\n</head>\n<body>\n<h1>"
     << escape_markup(r.title) << "</h1>\n<p id=\"qc-status\" data-state=\"loading\">loading 3D views…</p>\n";
+  // First screen: the 3D views next to the key numbers; the plots and the whole metric table below.
+  nlohmann::json data{{"meshes", nlohmann::json::array()}, {"report", r.metrics}};
+  h << "<div class=\"top\">\n";
+  put_views(h, r, data);
+  const auto key = key_numbers(r.metrics);
+  if (!key.empty()) {
+    h << "<div><h2>Key numbers</h2>\n<table id=\"qc-key\">\n";
+    for (const auto& [k, v] : key)
+      h << "<tr><td>" << escape_markup(k) << "</td><td class=\"v\">" << escape_markup(v) << "</td></tr>\n";
+    h << "</table></div>\n";
+  }
+  h << "</div>\n";
+  if (!r.figures.empty()) {
+    h << "<h2>Plots</h2>\n<div class=\"figures\">\n";
+    for (const auto& [caption, svg] : r.figures)
+      h << "<figure>" << svg << "<figcaption>" << escape_markup(caption) << "</figcaption></figure>\n";
+    h << "</div>\n";
+  }
   std::vector<std::pair<std::string, std::string>> rows;
   if (!r.metrics.is_null()) flatten(r.metrics, "", rows);
   if (!rows.empty()) {
@@ -154,53 +323,6 @@ std::string html_report(const HtmlReport& r) {
     for (const auto& [k, v] : rows)
       h << "<tr><td>" << escape_markup(k) << "</td><td class=\"v\">" << escape_markup(v) << "</td></tr>\n";
     h << "</table>\n";
-  }
-  // The page's data: the display meshes and the report itself, as the CLI writes it (script id "qc-data").
-  nlohmann::json data{{"meshes", nlohmann::json::array()}, {"report", r.metrics}};
-  if (!r.meshes.empty()) {
-    h << "<h2>3D views</h2>\n<p>Drag to rotate, scroll to zoom, double-click to reset.</p>\n<div class=\"views\">\n";
-    for (std::size_t k = 0; k < r.meshes.size(); ++k) {
-      const HtmlMesh& m = r.meshes[k];
-      nlohmann::json j{{"name", m.name}};
-      std::vector<float> pos;
-      pos.reserve(static_cast<std::size_t>(m.V.rows()) * 3);
-      for (Eigen::Index v = 0; v < m.V.rows(); ++v)
-        for (int d = 0; d < 3; ++d) pos.push_back(static_cast<float>(m.V(v, d)));
-      std::vector<int> tris, edges;
-      std::set<std::pair<int, int>> seen;  // each edge once, interior or boundary
-      std::vector<float> uv;
-      const bool with_uv = m.uv.rows() == static_cast<Eigen::Index>(m.faces.size());
-      for (std::size_t f = 0; f < m.faces.size(); ++f) {
-        const auto& poly = m.faces[f];
-        for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
-          tris.insert(tris.end(), {poly[0], poly[i], poly[i + 1]});
-          if (with_uv && poly.size() == 3)
-            for (int c = 0; c < 3; ++c) {
-              uv.push_back(static_cast<float>(m.uv(static_cast<Eigen::Index>(f), c).real()));
-              uv.push_back(static_cast<float>(m.uv(static_cast<Eigen::Index>(f), c).imag()));
-            }
-        }
-        if (m.wireframe)
-          for (std::size_t i = 0; i < poly.size(); ++i) {
-            const int a = poly[i], b = poly[(i + 1) % poly.size()];
-            if (seen.insert({std::min(a, b), std::max(a, b)}).second) edges.insert(edges.end(), {a, b});
-          }
-      }
-      j["positions"] = pos;
-      j["triangles"] = tris;
-      if (!uv.empty() && uv.size() == tris.size() * 2) j["uv"] = uv;
-      if (!edges.empty()) j["edges"] = edges;
-      data["meshes"].push_back(std::move(j));
-      h << "<figure><canvas class=\"qc-view\" data-mesh=\"" << k << "\" width=\"480\" height=\"420\"></canvas>"
-        << "<figcaption>" << escape_markup(m.name) << "</figcaption></figure>\n";
-    }
-    h << "</div>\n";
-  }
-  if (!r.figures.empty()) {
-    h << "<h2>Plots</h2>\n<div class=\"figures\">\n";
-    for (const auto& [caption, svg] : r.figures)
-      h << "<figure>" << svg << "<figcaption>" << escape_markup(caption) << "</figcaption></figure>\n";
-    h << "</div>\n";
   }
   h << "<script type=\"application/json\" id=\"qc-data\">" << script_safe(data.dump()) << "</script>\n";
   if (!r.meshes.empty()) {

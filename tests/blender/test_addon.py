@@ -181,6 +181,37 @@ def _():
     assert np.mean(sizes == 4) > 0.97, np.unique(sizes, return_counts=True)
 
 
+@check("feature angle and boundary alignment reach the remesher: cylinder rims on quad edges only with both")
+def _():
+    import quadcover
+
+    from quadcover_remesh import job as job_module
+
+    # The panel's rows are enabled (not greyed out) with this build's module, and the settings are passed on.
+    assert job_module.supported(quadcover, job_module.FEATURE_ANGLE_NAMES) == "feature_angle"
+    assert job_module.supported(quadcover, job_module.BOUNDARY_NAMES) == "align_curves"
+    kw = job_module.remesh_kwargs(quadcover, job_module.Settings(feature_angle=20.0, align_boundary=False), 500)
+    assert kw["feature_angle"] == 20.0 and kw["align_curves"] is False and kw["faces"] == 500, kw
+    clear_scene()
+    # 90 degree rims at z = +-1; caps as triangle fans around a centre vertex
+    bpy.ops.mesh.primitive_cylinder_add(vertices=32, radius=1.0, depth=2.0, end_fill_type="TRIFAN")
+    cyl = bpy.context.active_object
+
+    def rim_edges(angle_degrees, align):
+        """Quad edges lying on a rim (both ends on the same rim circle)."""
+        result = remesh(cyl, target_faces=800, feature_angle=np.radians(angle_degrees), align_boundary=align)
+        P = np.array([v.co[:] for v in result.data.vertices])
+        E = np.array([e.vertices[:] for e in result.data.edges])
+        bpy.data.objects.remove(result)
+        on = (np.abs(np.abs(P[:, 2]) - 1.0) < 1e-3) & (np.abs(np.hypot(P[:, 0], P[:, 1]) - 1.0) < 0.02)
+        return int(np.sum(on[E[:, 0]] & on[E[:, 1]] & (np.sign(P[E[:, 0], 2]) == np.sign(P[E[:, 1], 2]))))
+
+    aligned, no_features, not_aligned = rim_edges(35, True), rim_edges(0, True), rim_edges(35, False)
+    print(f"  quad edges on the rims: 35 deg aligned {aligned}, 0 deg {no_features}, 35 deg not aligned {not_aligned}")
+    # Two rims of length 2 pi at h ~ 0.15 (800 quads on area 6 pi): ~80 edges when both rims are quad edge loops.
+    assert aligned > 70 and aligned > 1.5 * no_features and aligned > 1.5 * not_aligned
+
+
 @check("two selected objects: one result each, named after its original")
 def _():
     clear_scene()

@@ -1,0 +1,91 @@
+// `param` / `remesh --feature-angle DEG|off --align BOOL` through the real binary: the angle reaches the field stage
+// (report field.features: constrained faces and sharp edges follow it), 'off' keeps the boundaries, the options
+// section names it, and an angle outside [0, 180] is refused (exit 2) before anything is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+#include "support/test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using quadcover::testing::run_cli;
+using quadcover::testing::slurp;
+
+class FeatureAngleCli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir = quadcover::testing::fresh_dir("feature_angle_cli", "files"); }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+
+  /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` and returns its report.
+  nlohmann::json report(const std::string& command, const std::string& mesh, const std::string& angle,
+                        const std::string& extra = "") {
+    const std::string json = path(command + "_" + mesh + "_" + angle + ".json");
+    const std::string args = command + " " + quadcover::testing::data_path(mesh) + " -o " + path("out.obj") +
+                             " --optimize none --report " + json + " -q" +
+                             (angle.empty() ? "" : " --feature-angle " + angle) + " " + extra;
+    EXPECT_EQ(run_cli(args).code, 0) << args;
+    return nlohmann::json::parse(slurp(json));
+  }
+  fs::path dir;
+};
+
+TEST_F(FeatureAngleCli, AngleReachesTheFieldStageAndTheReport) {
+  const nlohmann::json by_default = report("param", "fandisk", "");
+  const nlohmann::json at35 = report("param", "fandisk", "35");
+  const nlohmann::json at80 = report("param", "fandisk", "80");
+  const nlohmann::json off = report("param", "fandisk", "off");
+  EXPECT_EQ(by_default["options"]["feature_angle"], 35.0);
+  EXPECT_EQ(at80["options"]["feature_angle"], 80.0);
+  EXPECT_EQ(off["options"]["feature_angle"], 0.0);
+  EXPECT_EQ(by_default["field"]["features"], at35["field"]["features"]);
+  const auto sharp = [](const nlohmann::json& r) { return r["field"]["features"]["sharp_edges"].get<int>(); };
+  const auto fixed = [](const nlohmann::json& r) { return r["field"]["features"]["constrained_faces"].get<int>(); };
+  // fandisk is closed: without sharp features no face is constrained and no curve is aligned.
+  EXPECT_GT(sharp(at35), 100);
+  EXPECT_GT(fixed(at35), sharp(at35));  // each sharp edge fixes its faces, the two faces of an edge are distinct
+  EXPECT_EQ(sharp(off), 0);
+  EXPECT_EQ(fixed(off), 0);
+  EXPECT_TRUE(off["aligned_curves"]["curves"].empty());
+  EXPECT_FALSE(at35["aligned_curves"]["curves"].empty());
+  // A larger angle keeps a subset of the sharp edges.
+  EXPECT_LT(sharp(at80), sharp(at35));
+  EXPECT_GT(sharp(at80), 0);
+  // Another field stage: different crosses on the same mesh at another angle (the field follows the angle).
+  EXPECT_NE(at35["parameterization"]["energy_curl"], off["parameterization"]["energy_curl"]);
+}
+
+TEST_F(FeatureAngleCli, OffKeepsTheBoundariesAligned) {
+  const nlohmann::json off = report("remesh", "camelhead_boundary", "off");
+  EXPECT_EQ(off["field"]["features"]["sharp_edges"], 0);
+  EXPECT_TRUE(off["field"]["features"]["boundaries"].get<bool>());
+  EXPECT_GT(off["field"]["features"]["constrained_faces"].get<int>(), 0);
+  EXPECT_FALSE(off["aligned_curves"]["curves"].empty());  // the boundary loop still lies on an iso-line
+  const nlohmann::json free = report("remesh", "camelhead_boundary", "off", "--align false");
+  EXPECT_FALSE(free["options"]["align_curves"].get<bool>());
+  EXPECT_TRUE(free["aligned_curves"]["curves"].empty());
+}
+
+TEST_F(FeatureAngleCli, OutOfRangeIsRefusedBeforeAnyWork) {
+  for (const std::string command : {"param", "remesh"})
+    for (const std::string angle : {"180.5", "-1", "abc", "nan", "35deg"}) {
+      SCOPED_TRACE(command + " " + angle);
+      const std::string out = path("refused.obj");
+      const auto r = run_cli(
+          command + " " + quadcover::testing::data_path("fandisk") + " -o " + out + " --feature-angle " + angle + " -q",
+          path("err.txt"));
+      EXPECT_EQ(r.code, 2);
+      EXPECT_NE(r.err.find("--feature-angle"), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out));
+    }
+  EXPECT_EQ(run_cli("param " + quadcover::testing::data_path("fandisk") + " -o " + path("ok.obj") +
+                    " --optimize none --feature-angle 180 -q")
+                .code,
+            0);
+}
+
+}  // namespace
