@@ -51,6 +51,10 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "optimize.stopped_by says whether it converged or what stopped it")
       ->check(CLI::Range(-1L, std::numeric_limits<long>::max()))
       ->capture_default_str();
+  cmd.add_option("--merge-cones", options.merge_cones,
+                 "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again "
+                 "when that leaves fewer flipped or collapsed triangles (true/false)")
+      ->capture_default_str();
   cmd.add_option("--keep-better", options.keep_better,
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
                  "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
@@ -100,6 +104,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.rounding.strategy = flag("--rounding", [&] { return parse_rounding_strategy(cli.rounding); });
   options.max_evaluations = cli.max_iterations;
   options.keep_better = cli.keep_better;
+  options.merge_coincident_cones = cli.merge_cones;
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
