@@ -8,19 +8,6 @@
 
 namespace quadcover {
 
-namespace {
-
-/// The edge between vertices a and b, or -1.
-int edge_between(const Mesh& mesh, int f, int a, int b) {
-  for (int k = 0; k < 3; ++k) {
-    const int e = mesh.FE()(f, k);
-    if ((mesh.E()(e, 0) == a && mesh.E()(e, 1) == b) || (mesh.E()(e, 0) == b && mesh.E()(e, 1) == a)) return e;
-  }
-  return -1;
-}
-
-}  // namespace
-
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map) {
   std::vector<int> quarter(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (const BranchPoint& b : map.branch_points) quarter[b.vertex] = b.quarter_index;
@@ -33,7 +20,7 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
       const int a = mesh.F()(f, c), b = mesh.F()(f, (c + 1) % 3);
       if (quarter[a] % 4 == 0 || quarter[b] % 4 == 0 || used[a] || used[b]) continue;
       const double gap = std::abs(map.uv(f, c) - map.uv(f, (c + 1) % 3));
-      const int e = edge_between(mesh, f, a, b);
+      const int e = mesh.FE()(f, (c + 2) % 3);  // corner c to c + 1: the face edge opposite corner c + 2
       if (gap > 1e-9 || e < 0 || mesh.is_boundary_edge(e)) continue;
       const int from = std::max(a, b), into = std::min(a, b);
       merges.push_back({from, into, ((quarter[from] % 4) + 4) % 4});
