@@ -29,7 +29,7 @@ namespace quadcover::cli {
 
 void add_global_options(CLI::App& cmd, GlobalOptions& global) {
   cmd.add_flag("--json", global.json, "Print the result as JSON on stdout (batch: one document for all files)");
-  cmd.add_flag("-q,--quiet", global.quiet, "Print nothing but errors (no progress, no result lines)");
+  cmd.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and warnings (no progress, no result lines)");
   cmd.add_flag("-v,--verbose", global.verbose, "Print every progress report as its own line on stderr");
   cmd.add_option("--time-limit", global.time_limit,
                  "Stop long stages after SECONDS and write the best result so far (default 0: no limit)")
@@ -177,7 +177,7 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& f
 ProgressStyle stderr_progress_style(const GlobalOptions& global) {
   ProgressStyle style;
   style.quiet = global.quiet;
-  style.warnings = !global.quiet;
+  style.warnings = true;  // a changed or degraded result is said on stderr, with -q too
   style.verbose = global.verbose;
   style.live = !global.verbose && ::isatty(STDERR_FILENO) != 0;
   if (style.live) {

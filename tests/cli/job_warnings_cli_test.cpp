@@ -63,5 +63,21 @@ TEST(JobWarningsCli, ATimeLimitStopsTheOptimizationButNotTheStagesThatMakeTheRes
   fs::remove_all(dir);
 }
 
+// Dropping unreferenced vertices changes the output's vertex numbers: -q hides progress, never that warning.
+TEST(JobWarningsCli, DroppedUnreferencedVerticesAreSaidWithQuietToo) {
+  const fs::path dir = testing::fresh_dir("warnings_cli", "unreferenced");
+  const std::string obj = (dir / "in.obj").string(), err = (dir / "err.txt").string();
+  {
+    std::ifstream src(testing::data_path("bunny_3k"));
+    std::ofstream out(obj);
+    out << src.rdbuf() << "\nv 100 100 100\n";  // used by no face
+  }
+  const auto r = testing::run_cli("remesh " + obj + " -o " + (dir / "q.obj").string() + " -q", err);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + obj + ": 1 unreferenced vertices (used by no face) dropped"), std::string::npos)
+      << r.err;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace quadcover
