@@ -177,7 +177,6 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& f
 ProgressStyle stderr_progress_style(const GlobalOptions& global) {
   ProgressStyle style;
   style.quiet = global.quiet;
-  style.warnings = true;  // a changed or degraded result is said on stderr, with -q too
   style.verbose = global.verbose;
   style.live = !global.verbose && ::isatty(STDERR_FILENO) != 0;
   if (style.live) {
@@ -252,8 +251,7 @@ std::string TerminalProgress::format_line(std::string_view stage, double fractio
 }
 
 void TerminalProgress::report(std::string_view stage, double fraction, std::string_view message) {
-  if (message.starts_with("warning: ")) {  // shown at once, on its own line, whatever the mode and the delay
-    if (!style_.warnings) return;
+  if (message.starts_with("warning: ")) {  // shown at once, on its own line, whatever the mode, the delay and -q
     std::lock_guard lock(mutex_);
     std::lock_guard err_lock(stderr_mutex());
     out_ << (live_dirty_ ? "\r\x1b[K" : "") << style_.prefix << message << '\n' << std::flush;

@@ -93,9 +93,8 @@ std::chrono::steady_clock::time_point run_start_time();
 /// How a TerminalProgress writes.
 struct ProgressStyle {
   bool live = false;      ///< redraw one line with a bar (\r) instead of printing plain lines
-  bool quiet = false;     ///< print nothing (cancellation still works)
+  bool quiet = false;     ///< print nothing but "warning: ..." reports (cancellation still works)
   bool verbose = false;   ///< plain mode: print every report
-  bool warnings = true;   ///< show "warning: ..." reports even when quiet (they say the data changed)
   std::string prefix;     ///< put in front of every line (batch mode: the file name)
   double delay = 1.0;     ///< seconds before anything is shown: quick commands stay silent
   double interval = 1.0;  ///< plain mode: at most one line per interval (live mode redraws every 0.1 s)
