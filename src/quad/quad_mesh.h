@@ -1,7 +1,8 @@
 #pragma once
 // The output of quad extraction (thesis 2.1, requirement 3: parameter lines partition the surface into quads):
 // a polygon mesh whose vertices are integer points of the map (plus boundary crossings) and whose edges follow
-// the integer iso-lines. Also a combinatorial check of the polygon mesh (manifoldness, Euler characteristic).
+// the integer iso-lines, and the clean-ups extraction applies to it. Its topology is counted by
+// mesh/surface_counts.h, the one count info, metrics, the reports and the tests use.
 #include <Eigen/Core>
 #include <complex>
 #include <vector>
@@ -21,23 +22,6 @@ struct QuadMesh {
   int num_faces() const { return static_cast<int>(faces.size()); }
   int num_quads() const;  ///< faces with exactly four corners
 };
-
-/// Combinatorial structure of a polygon mesh.
-struct PolygonTopology {
-  int vertices = 0, edges = 0, faces = 0;  ///< edges: distinct undirected vertex pairs
-  int boundary_edges = 0;                  ///< edges with a single face
-  int non_manifold_edges = 0;              ///< edges in more than two faces, or twice in the same direction
-  int non_manifold_vertices = 0;           ///< vertices whose faces form more than one fan
-  int isolated_vertices = 0;               ///< vertices in no face
-  int degenerate_faces = 0;                ///< faces with fewer than 3 corners or a repeated corner
-  int euler_characteristic = 0;            ///< V - E + F (isolated vertices excluded)
-  bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0 && degenerate_faces == 0; }
-  bool closed() const { return boundary_edges == 0; }
-};
-
-/// Counts the above for faces over `num_vertices` vertices. Linear time.
-/// \pre every face index lies in [0, num_vertices). \throw only std::bad_alloc.
-PolygonTopology polygon_topology(int num_vertices, const std::vector<std::vector<int>>& faces);
 
 /// Where two faces use the same directed edge (possible next to cut-out folds), keeps the smallest face and drops
 /// the others. Returns the number of dropped faces.

@@ -7,6 +7,7 @@
 
 #include "common/errors.h"
 #include "quad/integer_grid_map.h"
+#include "mesh/surface_counts.h"
 #include "quad/polygon_check.h"
 #include "quad/quad_test_maps.h"
 #include "quad/repair_folds.h"
@@ -49,8 +50,8 @@ TEST_P(TorusMaps, ExactQuadCountAllRegular) {
   EXPECT_EQ(res.mesh.num_quads(), c.P * c.Q);
   EXPECT_EQ(res.mesh.num_vertices(), c.P * c.Q);
   EXPECT_NEAR(parameter_area(mesh, param.uv), res.mesh.num_quads(), 1e-6);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.oriented());
   EXPECT_TRUE(t.closed());
   EXPECT_EQ(t.euler_characteristic, 0);
   for (int v : valences(res.mesh)) EXPECT_EQ(v, 4);
@@ -77,8 +78,8 @@ TEST(ExtractQuads, CubeWithBranchPointsAtGridPoints) {
     EXPECT_EQ(res.mesh.num_quads(), 6 * m * m);
     EXPECT_EQ(res.mesh.num_faces(), 6 * m * m);
     EXPECT_EQ(res.mesh.num_vertices(), 6 * m * m + 2);
-    const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-    EXPECT_TRUE(t.manifold() && t.closed());
+    const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+    EXPECT_TRUE((t.manifold() && t.oriented()) && t.closed());
     EXPECT_EQ(t.euler_characteristic, 2);
     const auto val = valences(res.mesh);
     EXPECT_EQ(std::count(val.begin(), val.end(), 3), 8);
@@ -95,8 +96,8 @@ TEST(ExtractQuads, CubeWithBranchPointsAtCellCentresGivesTriangles) {
   EXPECT_EQ(res.mesh.num_quads(), 6 * m * m - 6);  // the 8 triangles cover 8 · ¾ of the area
   EXPECT_EQ(res.report.non_quads, 8);
   for (const auto& f : res.mesh.faces) EXPECT_TRUE(f.size() == 4 || f.size() == 3);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold() && t.closed());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE((t.manifold() && t.oriented()) && t.closed());
   EXPECT_EQ(t.euler_characteristic, 2);
 }
 
@@ -122,8 +123,8 @@ TEST(ExtractQuads, SquareAlignedWithBoundary) {
   EXPECT_EQ(res.mesh.num_quads(), 36);
   EXPECT_EQ(res.mesh.num_faces(), 36);
   EXPECT_EQ(res.mesh.num_vertices(), 49);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.oriented());
   EXPECT_EQ(t.boundary_edges, 24);
   EXPECT_EQ(t.euler_characteristic, 1);
 }
@@ -145,8 +146,8 @@ TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
   const auto [mesh, param] = square_map(5, scale, theta, {0.21, 0.13});
   const ExtractionResult res = extract_quads(mesh, param);
   expect_clean(res.report);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.oriented());
   EXPECT_EQ(t.euler_characteristic, 1);
   EXPECT_GT(res.report.non_quads, 0);
   EXPECT_GT(res.report.boundary_vertices, 0);
@@ -185,8 +186,8 @@ TEST(ExtractQuads, ShiftedSquareWithBoundaryCornersOffTheGrid) {
   }
   EXPECT_NEAR(total, 36.0, 1e-9);
   EXPECT_EQ(unit, 30);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.oriented());
   EXPECT_EQ(t.euler_characteristic, 1);
 }
 
@@ -214,8 +215,8 @@ TEST(ExtractQuads, CutsOutFoldsAndReportsThem) {
   opt.repair_folds = false;
   const ExtractionResult res = extract_quads(mesh, param, opt);
   EXPECT_EQ(res.report.flipped_triangles, flipped_expected);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_EQ(t.non_manifold_edges, 0);
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(t.non_manifold_edges + t.inconsistent_edges, 0);
   EXPECT_EQ(t.degenerate_faces, 0);
   EXPECT_GT(res.mesh.num_quads(), 17 * 7 - 20);  // only a neighbourhood of the fold is affected
   // The fold's hole is larger than the small holes that get closed, and the piece cut off inside the fold is not
@@ -223,10 +224,10 @@ TEST(ExtractQuads, CutsOutFoldsAndReportsThem) {
   EXPECT_FALSE(t.closed());
   opt.quadrangulate = false;
   const ExtractionResult open = extract_quads(mesh, param, opt);
-  const PolygonTopology to = polygon_topology(open.mesh.num_vertices(), open.mesh.faces);
+  const SurfaceCounts to = surface_counts(open.mesh.num_vertices(), open.mesh.faces);
   EXPECT_EQ(open.report.filled_holes, 0);
   EXPECT_FALSE(to.closed());
-  EXPECT_EQ(to.non_manifold_edges + to.non_manifold_vertices + to.degenerate_faces, 0);
+  EXPECT_EQ(to.non_manifold_edges + to.inconsistent_edges + to.non_manifold_vertices + to.degenerate_faces, 0);
   EXPECT_EQ(t.euler_characteristic, to.euler_characteristic + res.report.filled_holes);  // one face per hole
 }
 
@@ -240,8 +241,8 @@ TEST(ExtractQuads, RepairsFoldsAtRegularVertices) {
   expect_clean(res.report);
   EXPECT_EQ(res.mesh.num_quads(), 17 * 7);
   EXPECT_EQ(res.mesh.num_faces(), 17 * 7);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_TRUE(t.manifold() && t.closed());
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE((t.manifold() && t.oriented()) && t.closed());
 }
 
 int count_bad(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
@@ -281,8 +282,8 @@ TEST(RepairFolds, KernelSweepsUntangleAFoldAtACone) {
     EXPECT_EQ(res.report.flipped_triangles + res.report.degenerate_triangles, 0);
     EXPECT_EQ(res.mesh.num_quads(), 6 * m * m);
     EXPECT_EQ(res.mesh.num_faces(), 6 * m * m);
-    const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-    EXPECT_TRUE(t.manifold() && t.closed());
+    const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+    EXPECT_TRUE((t.manifold() && t.oriented()) && t.closed());
     EXPECT_EQ(t.euler_characteristic, 2);
   }
 }
@@ -359,7 +360,7 @@ TEST(QuadMesh, RemoveUnusedVerticesKeepsDataAndOrder) {
     EXPECT_EQ(q.source_face[v], 7 * old_of[v]);
     EXPECT_EQ(q.on_grid[v], old_of[v] % 2);
   }
-  EXPECT_EQ(polygon_topology(q.num_vertices(), q.faces).isolated_vertices, 0);
+  EXPECT_EQ(surface_counts(q.num_vertices(), q.faces).isolated_vertices, 0);
 }
 
 // A broken seam (translation off the lattice) is cut open and reported instead of producing garbage.
@@ -370,8 +371,8 @@ TEST(ExtractQuads, NonSeamlessTransitionIsCutAndReported) {
       for (int c = 0; c < 3; ++c) param.uv(f, c) += Complex(0.3, 0);
   const ExtractionResult res = extract_quads(mesh, param);
   EXPECT_GT(res.report.torn_seams, 0);
-  const PolygonTopology t = polygon_topology(res.mesh.num_vertices(), res.mesh.faces);
-  EXPECT_EQ(t.non_manifold_edges, 0);
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_EQ(t.non_manifold_edges + t.inconsistent_edges, 0);
   EXPECT_EQ(t.degenerate_faces, 0);
 }
 
