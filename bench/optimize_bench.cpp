@@ -199,7 +199,6 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
     // (CurlEnergyOptions::estimate_refresh).
     if (const char* v = std::getenv("QUADCOVER_BENCH_BUDGET")) o.max_evaluations = std::atol(v);
     if (const char* v = std::getenv("QUADCOVER_BENCH_REFRESH")) o.energy.estimate_refresh = std::atoi(v);
-    if (const char* v = std::getenv("QUADCOVER_BENCH_CONFIRM")) o.energy.confirm_rings = std::atoi(v);
     const OptimizeResult r = optimize_field(mesh, field, o);
     const double t_opt = since(t);
     t = Clock::now();
@@ -224,7 +223,6 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
     state.counters["exact_smooth_s"] = x.smoothing, state.counters["exact_solve_s"] = x.solve;
     state.counters["commit_s"] = x.commit, state.counters["prepare_s"] = x.prepare;
     state.counters["backsolve_s"] = x.shares, state.counters["prepares"] = static_cast<double>(x.prepares);
-    state.counters["refined"] = static_cast<double>(r.reduction.refined_evaluations + r.balancing.refined_evaluations);
     state.counters["estimates_sum_s"] = s.smoothing + s.curl + s.update + s.solve;
   }
 }

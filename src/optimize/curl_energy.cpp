@@ -248,11 +248,6 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
   return estimate(changes, ws, options_.local_rings);
 }
 
-double CurlEnergy::refine(std::span<const MatchingChange> changes) {
-  prepare_estimates();
-  return estimate(changes, workspaces_->serial, options_.confirm_rings);
-}
-
 double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const {
   if (!estimates_ready_) throw std::logic_error("CurlEnergy::estimate before prepare_estimates");
   const int nf = mesh_->num_faces(), ne = mesh_->num_edges();

@@ -37,9 +37,6 @@ struct CurlEnergyOptions {
   /// with 𝔏̄*, one solve with A) after this many commits, not after every one (1 = always current). Affects the
   /// screening only: every accepted move is still confirmed exactly.
   int estimate_refresh = 8;
-  /// refine(): face rings of the larger patch of the second screening stage (Algorithm 6.1 re-estimates a
-  /// candidate that passed the first screening on this patch before the exact evaluation; 0 = no second stage).
-  int confirm_rings = 0;
 };
 
 /// Seconds spent per stage of evaluate() (accumulated), the columns of Table 6.1.
@@ -97,9 +94,6 @@ class CurlEnergy {
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
   /// The same estimate on a patch of `rings` face rings (estimate() uses CurlEnergyOptions::local_rings).
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const;
-  /// Second screening stage: estimate() on CurlEnergyOptions::confirm_rings rings (serial; calls
-  /// prepare_estimates()). Deterministic.
-  double refine(std::span<const MatchingChange> changes);
   const CurlEnergyOptions& options() const { return options_; }
   /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
   /// not depend on the thread count. Calls prepare_estimates().

@@ -143,10 +143,6 @@ class Reducer {
       return ed_.evaluate(path);
     }
     if (screened >= bound) return std::numeric_limits<double>::infinity();
-    if (ed_.options().confirm_rings > 0) {  // second stage on a larger patch before the full re-smoothing
-      ++res_.refined_evaluations;
-      if (ed_.refine(path) >= bound) return std::numeric_limits<double>::infinity();
-    }
     return evaluate_exact(path);
   }
   void accept(const Path& path, const char* phase) {

@@ -58,7 +58,6 @@ struct CurlReductionResult {
   int initial_branch_points = 0, final_branch_points = 0;
   long evaluations = 0, accepted = 0, cancelled_pairs = 0;
   long exact_evaluations = 0;    ///< full re-smoothed evaluations confirming screened candidates (with estimates)
-  long refined_evaluations = 0;  ///< second-stage estimates (CurlEnergyOptions::confirm_rings > 0)
   int balancing_rounds = 0;
   double seconds = 0;
   bool stopped_early = false;  ///< by max_evaluations, time_limit_seconds or progress.cancelled()
