@@ -4,12 +4,11 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "common/quarter_turn.h"
 
 namespace quadcover {
 
 namespace {
-
-int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 void check_matching(const Mesh& mesh, const Eigen::VectorXi& matching, const char* where) {
   if (matching.size() != mesh.num_edges())

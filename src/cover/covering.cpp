@@ -3,32 +3,14 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 
 #include "common/errors.h"
+#include "common/quarter_turn.h"
+#include "topology/union_find.h"
 
 namespace quadcover {
 
 namespace {
-
-class Sets {
- public:
-  explicit Sets(int n) : parent_(static_cast<std::size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
-
-int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 /// Layer of the copy of the other face glued to layer l of face f across interior edge e: t̃_s^k ~ t̃_t^{k - m_e}.
 int glued_layer(const Mesh& mesh, const Eigen::VectorXi& m, int e, int f, int l) {
@@ -58,7 +40,7 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
       for (int l = 0; l < 4; ++l) cov.FE(4 * f + l, k) = 4 * e + (ref == f ? l : glued_layer(mesh, m, e, f, l));
     }
   // Vertices: corners glued across covering edges, one class per cycle of faces (3.2.2).
-  Sets corners(12 * nf);
+  detail::UnionFind corners(12 * nf);
   auto slot = [](int f, int l, int c) { return 3 * (4 * f + l) + c; };
   for (int e = 0; e < mesh.num_edges(); ++e) {
     const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
@@ -91,7 +73,7 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
   cov.layer.resize(best.size());
   for (std::size_t i = 0; i < best.size(); ++i) cov.layer[i] = best[i].second;
   // Components through covering edges.
-  Sets faces(4 * nf);
+  detail::UnionFind faces(4 * nf);
   std::vector<int> edge_face(static_cast<std::size_t>(cov.num_edges), -1), edge_count(cov.num_edges, 0);
   for (int F = 0; F < 4 * nf; ++F)
     for (int k = 0; k < 3; ++k) {
@@ -116,7 +98,7 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
   for (int v = 0; v < cov.num_vertices(); ++v) ++nv[vertex_comp[v]];
   for (int E = 0; E < cov.num_edges; ++E) ++ne[cov.face_component[edge_face[E]]];
   // Boundary loops: boundary covering edges joined at their covering vertices.
-  Sets bverts(cov.num_vertices());
+  detail::UnionFind bverts(cov.num_vertices());
   std::vector<char> on_boundary(static_cast<std::size_t>(cov.num_vertices()), 0);
   for (int F = 0; F < 4 * nf; ++F)
     for (int k = 0; k < 3; ++k)

@@ -1,3 +1,4 @@
+#include "common/quarter_turn.h"
 #include "field/frame_field.h"
 
 #include <cmath>
@@ -19,7 +20,7 @@ Eigen::VectorXcd orthogonalized_frames(const FrameField& field) {
 }
 
 std::pair<Complex, Complex> frame_switch(Complex X, Complex Y, int k) {
-  switch (((k % 4) + 4) % 4) {
+  switch (mod4(k)) {
     case 0:
       return {X, Y};
     case 1:

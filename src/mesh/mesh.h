@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/quarter_turn.h"
 #include "io/polygon_soup.h"
 #include "mesh/validate.h"
 
@@ -17,7 +18,7 @@ using Complex = std::complex<double>;
 /// The quarter-turn power i^k for any integer k.
 inline Complex ipow(int k) {
   static const Complex table[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-  return table[((k % 4) + 4) % 4];
+  return table[mod4(k)];
 }
 
 /// Per connected component (faces connected through edges): counts and topology, χ = v - e + f (1.1),

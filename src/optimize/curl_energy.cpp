@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "common/errors.h"
+#include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
 
 namespace quadcover {
@@ -19,8 +20,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 }  // namespace
 

@@ -7,19 +7,18 @@
 #include <numeric>
 #include <queue>
 
+#include "common/quarter_turn.h"
 #include "field/indices.h"
 
 namespace quadcover {
 
 int count_branch_points(const Mesh& mesh, const Eigen::VectorXi& q) {
   int n = 0;
-  for (int v = 0; v < mesh.num_vertices(); ++v) n += !mesh.is_boundary_vertex(v) && ((q[v] % 4) + 4) % 4 != 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v) n += !mesh.is_boundary_vertex(v) && mod4(q[v]) != 0;
   return n;
 }
 
 namespace {
-
-int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 class Reducer {
  public:

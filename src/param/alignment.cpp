@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "calculus/sparse_cholesky.h"
+#include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
 
 namespace quadcover {
@@ -76,7 +77,7 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
     for (int end = 0; end < 2; ++end) {
       const int f = slots[i].face, c = corner_of(mesh, f, mesh.E()(slots[i].edge, end)), p = mesh.F()(f, c);
       if (cut.branch[p]) continue;  // pinned by the periods (integral on the rotated and coarse lattices)
-      const int s = ((slots[i].coordinate - layer(f, c)) % 4 + 4) % 4;
+      const int s = mod4(slots[i].coordinate - layer(f, c));
       uses[p].push_back({i, f, c, s % 2, (s == 0 || s == 1) ? 1 : -1});
     }
   auto known_coord = [&](const Use& w) {

@@ -4,13 +4,10 @@
 #include <algorithm>
 
 #include "common/errors.h"
+#include "common/quarter_turn.h"
 #include "field/indices.h"
 
 namespace quadcover {
-
-namespace {
-int mod4(int k) { return ((k % 4) + 4) % 4; }
-}  // namespace
 
 std::vector<FanCrossing> fan_crossings(const Mesh& mesh, int v) {
   const auto fan = mesh.fan(v);

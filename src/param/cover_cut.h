@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "common/quarter_turn.h"
 #include "field/frame_field.h"
 #include "topology/cut_graph.h"
 #include "topology/cut_mesh.h"
@@ -58,7 +59,7 @@ int symmetric_period_count(int genus, int b_even, int b_odd, int boundary_loops 
 
 /// The frame Z = (X, Y) turned by the frame-complex i^k: i(X, Y) = (-Y, X).
 inline std::pair<Complex, Complex> turn_frame(Complex X, Complex Y, int k) {
-  switch (((k % 4) + 4) % 4) {
+  switch (mod4(k)) {
     case 0: return {X, Y};
     case 1: return {-Y, X};
     case 2: return {-X, -Y};

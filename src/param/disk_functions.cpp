@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
 
 namespace quadcover {
@@ -156,7 +157,7 @@ std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut,
     D = cross(mesh, cut, c, cr, D);
     K += cross_rotation(mesh, cut, cr);
   }
-  return {((K % 4) + 4) % 4, D};
+  return {mod4(K), D};
 }
 
 Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/quarter_turn.h"
 #include "param/disk_functions.h"
 #include "param/lattice.h"
 
@@ -50,7 +51,7 @@ std::vector<int> fix_even_branch_points(const Mesh& mesh, const CoverCut& cc, st
   std::vector<std::vector<std::uint64_t>> A;
   std::vector<char> r;
   for (int q = 0; q < nv; ++q) {
-    if (!cc.branch[q] || ((cc.quarter_index[q] % 4) + 4) % 4 != 2) continue;
+    if (!cc.branch[q] || mod4(cc.quarter_index[q]) != 2) continue;
     const auto [K, D] = transition_around(mesh, cc, cr, q);
     std::vector<std::uint64_t> row(bits.empty() ? 0 : bits[0].size(), 0);
     for (const FanCrossing& x : fan_crossings(mesh, q))

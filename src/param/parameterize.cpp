@@ -11,6 +11,7 @@
 
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
+#include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
 #include "field/feature_alignment.h"
 #include "field/indices.h"
@@ -34,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 std::vector<char> trivial_holonomy(const Mesh& mesh, const CoverCut& cc) {
   std::vector<char> trivial(static_cast<std::size_t>(mesh.num_components()), 1);
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e) && ((cc.matching[e] % 4) + 4) % 4 != 0)
+    if (!mesh.is_boundary_edge(e) && mod4(cc.matching[e]) != 0)
       trivial[mesh.face_component()[mesh.EF()(e, 0)]] = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (cc.branch[v]) trivial[mesh.vertex_component()[v]] = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "common/quarter_turn.h"
 #include "field/relocation.h"
 #include "field/smoothing.h"
 
@@ -23,7 +24,7 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
       const int e = mesh.FE()(f, (c + 2) % 3);  // corner c to c + 1: the face edge opposite corner c + 2
       if (gap > 1e-9 || e < 0 || mesh.is_boundary_edge(e)) continue;
       const int from = std::max(a, b), into = std::min(a, b);
-      merges.push_back({from, into, ((quarter[from] % 4) + 4) % 4});
+      merges.push_back({from, into, mod4(quarter[from])});
       used[a] = used[b] = 1;
     }
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/quarter_turn.h"
 #include "field/feature_alignment.h"
 #include "metrics/feature_fidelity.h"
 #include "metrics/param_quality.h"
@@ -48,7 +49,7 @@ nlohmann::json field_json(const ParamJob& job) {
   nlohmann::json list = nlohmann::json::array();
   int odd = 0, even = 0;
   for (const BranchPoint& b : job.map.branch_points) {
-    (((b.quarter_index % 4) + 4) % 4 == 2 ? even : odd) += 1;
+    (mod4(b.quarter_index) == 2 ? even : odd) += 1;
     list.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
   }
   return {{"branch_points_initial", job.field_branch_points},

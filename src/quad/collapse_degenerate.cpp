@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <exception>
 
+#include "common/quarter_turn.h"
 #include "quad/integer_grid_map.h"
 #include "quad/transitions.h"
 
@@ -22,7 +23,7 @@ Change across(const Mesh& mesh, const Parameterization& p, int f, int g) {
   for (int k = 0; k < 3; ++k) {
     if (mesh.neighbor(f, k) != g) continue;
     const int e = mesh.FE()(f, k);
-    const int r = p.transition_rotation.size() ? ((p.transition_rotation[e] % 4) + 4) % 4 : 0;
+    const int r = p.transition_rotation.size() ? mod4(p.transition_rotation[e]) : 0;
     const Complex c = p.transition_translation.size() ? p.transition_translation[e] : Complex(0, 0);
     if (mesh.EF()(e, 0) == f) return {r, c};
     return {(4 - r) & 3, -(ipow(-r) * c)};  // φ_s = i^{-r}(φ_t − c)

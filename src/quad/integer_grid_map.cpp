@@ -1,3 +1,4 @@
+#include "common/quarter_turn.h"
 #include "quad/integer_grid_map.h"
 
 #include <algorithm>
@@ -12,7 +13,7 @@ namespace {
 // Raw seam transform from face f across its local edge k (valid for interior mesh edges).
 void raw_transition(const Mesh& mesh, const Parameterization& param, I64 scale, int f, int k, int& r, IPt& t) {
   const int e = mesh.FE()(f, k);
-  const int kr = ((param.transition_rotation.size() ? param.transition_rotation[e] : 0) % 4 + 4) % 4;
+  const int kr = mod4(param.transition_rotation.size() ? param.transition_rotation[e] : 0);
   const Complex c = param.transition_translation.size() ? param.transition_translation[e] : Complex(0, 0);
   const IPt cs{static_cast<I64>(std::llround(c.real())) * scale, static_cast<I64>(std::llround(c.imag())) * scale};
   if (mesh.EF()(e, 0) == f) {  // φ_t = i^k φ_s + c
