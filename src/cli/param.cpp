@@ -157,9 +157,9 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
       "30 quads per branch point of the field",
       opt->inputs);
   cmd->add_option("-o,--output", opt->output,
-                  "Output: .obj with per-corner vt, or .ply (binary) with per-corner 'texcoord' (float32, as Blender "
-                  "and MeshLab read it) (one input), or a folder (several inputs); default: next to the input as "
-                  "NAME.param.obj");
+                  "Output: .obj with per-corner vt (Blender, MeshLab and most tools read it), or .ply (binary) with "
+                  "per-corner 'texcoord' (float32, as MeshLab reads it; Blender's PLY importer ignores it) (one "
+                  "input), or a folder (several inputs); default: next to the input as NAME.param.obj");
   auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
                 ->check(CLI::PositiveNumber);
   cmd->add_option("--faces,--quads", opt->quads,

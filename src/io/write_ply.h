@@ -1,7 +1,8 @@
 #pragma once
 // PLY writer: ASCII or binary (little/big endian); `vertex` with double x, y, z and optional per-vertex scalars,
 // `face` with `list uchar int vertex_indices` (polygons up to 255 corners) and, when the soup has texture
-// coordinates, `list uchar float texcoord` (u0 v0 u1 v1 ... per corner, the wedge UVs Blender and MeshLab read).
+// coordinates, `list uchar float texcoord` (u0 v0 u1 v1 ... per corner: the wedge UVs MeshLab reads; Blender 3.4's
+// PLY importer reads only per-vertex s, t, so Blender users take the OBJ's vt).
 // Atomic (see atomic_file.h).
 #include <Eigen/Core>
 #include <string>

@@ -417,6 +417,37 @@ def _():
     assert os.path.dirname(os.path.dirname(quadcover.__file__)) == MODULE_DIR
 
 
+@check("param's OBJ imports into Blender with the map as its UV layer, corner by corner")
+def _():
+    import subprocess
+    import tempfile
+
+    cli = os.path.join(os.path.dirname(MODULE_DIR), "quadcover")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "bunny.param.obj")
+        subprocess.run([cli, "param", "-q", os.path.join(ROOT, "tests", "data", "bunny_3k.obj"), "-o", path],
+                       check=True)
+        vt, faces = [], []  # the map as written: vt lines, and per face the (vertex, vt) indices of its corners
+        with open(path) as f:
+            for line in f:
+                if line.startswith("vt "):
+                    vt.append([float(x) for x in line.split()[1:3]])
+                elif line.startswith("f "):
+                    faces.append([tuple(int(i) - 1 for i in c.split("/")[:2]) for c in line.split()[1:]])
+        vt = np.array(vt)
+        clear_scene()
+        assert bpy.ops.wm.obj_import(filepath=path) == {"FINISHED"}
+        me = bpy.context.selected_objects[0].data
+    assert len(me.uv_layers) == 1 and len(me.polygons) == len(faces), (len(me.uv_layers), len(me.polygons))
+    uv = np.array([d.uv[:] for d in me.uv_layers[0].data])
+    worst = 0.0
+    for p, corners in zip(me.polygons, faces):
+        assert [me.loops[k].vertex_index for k in p.loop_indices] == [v for v, _ in corners], p.index
+        got = uv[list(p.loop_indices)]
+        worst = max(worst, float(np.max(np.abs(got - vt[[t for _, t in corners]]) / np.maximum(1.0, np.abs(got)))))
+    assert worst < 1e-6, f"UVs differ from the vt lines by {worst} (relative to float32)"
+
+
 passed = sum(ok for _, ok, _ in results)
 failed = len(results) - passed
 print(f"blender: {passed} passed, {failed} failed")
