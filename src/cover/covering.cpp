@@ -25,21 +25,25 @@ std::vector<int> Covering::genus() const {
   return g;
 }
 
-Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
-  if (m.size() != mesh.num_edges()) throw InputError("", 0, "build_covering: matching size differs from #E");
-  const int nf = mesh.num_faces();
-  Covering cov;
-  cov.FE.resize(4 * nf, 3);
+namespace {
+
+/// Edges (3.5): the copy of e adjoining layer l of f has the layer of the adjoining reference-face copy.
+void glue_edges(const Mesh& mesh, const Eigen::VectorXi& m, Covering& cov) {
+  cov.FE.resize(4 * mesh.num_faces(), 3);
   cov.num_edges = 4 * mesh.num_edges();
-  // Edges (3.5): the copy of e adjoining layer l of f has the layer of the adjoining reference-face copy.
-  for (int f = 0; f < nf; ++f)
+  for (int f = 0; f < mesh.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int e = mesh.FE()(f, k);
       const int s = mesh.EF()(e, 0), t = mesh.EF()(e, 1);
       const int ref = s < 0 ? t : (t < 0 ? s : std::min(s, t));
       for (int l = 0; l < 4; ++l) cov.FE(4 * f + l, k) = 4 * e + (ref == f ? l : glued_layer(mesh, m, e, f, l));
     }
-  // Vertices: corners glued across covering edges, one class per cycle of faces (3.2.2).
+}
+
+/// Vertices: corners glued across covering edges, one class per cycle of faces (3.2.2), numbered in order of first
+/// corner; the layer of a covering vertex is that of its lowest-index base face.
+void glue_vertices(const Mesh& mesh, const Eigen::VectorXi& m, Covering& cov) {
+  const int nf = mesh.num_faces();
   detail::UnionFind corners(12 * nf);
   auto slot = [](int f, int l, int c) { return 3 * (4 * f + l) + c; };
   for (int e = 0; e < mesh.num_edges(); ++e) {
@@ -53,7 +57,6 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
       }
     }
   }
-  // Number the classes; the layer of a covering vertex is that of its lowest-index base face.
   std::map<int, int> id;
   cov.F.resize(4 * nf, 3);
   std::vector<std::pair<int, int>> best;  // (base face, layer) per covering vertex
@@ -72,10 +75,15 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
       }
   cov.layer.resize(best.size());
   for (std::size_t i = 0; i < best.size(); ++i) cov.layer[i] = best[i].second;
-  // Components through covering edges.
-  detail::UnionFind faces(4 * nf);
+}
+
+/// Components through covering edges, and per component χ = v − e + f (1.1) and the boundary loops (cycles of
+/// boundary covering edges joined at their covering vertices).
+void count_components(Covering& cov) {
+  const int nF = cov.num_faces();
+  detail::UnionFind faces(nF);
   std::vector<int> edge_face(static_cast<std::size_t>(cov.num_edges), -1), edge_count(cov.num_edges, 0);
-  for (int F = 0; F < 4 * nf; ++F)
+  for (int F = 0; F < nF; ++F)
     for (int k = 0; k < 3; ++k) {
       const int E = cov.FE(F, k);
       if (edge_face[E] >= 0) faces.unite(edge_face[E], F);
@@ -83,24 +91,23 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
       ++edge_count[E];
     }
   std::map<int, int> comp;
-  cov.face_component.resize(4 * nf);
-  for (int F = 0; F < 4 * nf; ++F) {
+  cov.face_component.resize(nF);
+  for (int F = 0; F < nF; ++F) {
     auto [it, inserted] = comp.try_emplace(faces.find(F), static_cast<int>(comp.size()));
     cov.face_component[F] = it->second;
   }
   cov.num_components = static_cast<int>(comp.size());
   std::vector<int> nv(cov.num_components, 0), ne(cov.num_components, 0), nfc(cov.num_components, 0);
   std::vector<int> vertex_comp(static_cast<std::size_t>(cov.num_vertices()), -1);
-  for (int F = 0; F < 4 * nf; ++F) {
+  for (int F = 0; F < nF; ++F) {
     ++nfc[cov.face_component[F]];
     for (int c = 0; c < 3; ++c) vertex_comp[cov.F(F, c)] = cov.face_component[F];
   }
   for (int v = 0; v < cov.num_vertices(); ++v) ++nv[vertex_comp[v]];
   for (int E = 0; E < cov.num_edges; ++E) ++ne[cov.face_component[edge_face[E]]];
-  // Boundary loops: boundary covering edges joined at their covering vertices.
   detail::UnionFind bverts(cov.num_vertices());
   std::vector<char> on_boundary(static_cast<std::size_t>(cov.num_vertices()), 0);
-  for (int F = 0; F < 4 * nf; ++F)
+  for (int F = 0; F < nF; ++F)
     for (int k = 0; k < 3; ++k)
       if (edge_count[cov.FE(F, k)] == 1) {
         const int a = cov.F(F, (k + 1) % 3), b = cov.F(F, (k + 2) % 3);
@@ -112,6 +119,16 @@ Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
     if (on_boundary[v] && bverts.find(v) == v) ++cov.boundary_loops[vertex_comp[v]];
   cov.euler_characteristic.resize(cov.num_components);
   for (int c = 0; c < cov.num_components; ++c) cov.euler_characteristic[c] = nv[c] - ne[c] + nfc[c];
+}
+
+}  // namespace
+
+Covering build_covering(const Mesh& mesh, const Eigen::VectorXi& m) {
+  if (m.size() != mesh.num_edges()) throw InputError("", 0, "build_covering: matching size differs from #E");
+  Covering cov;
+  glue_edges(mesh, m, cov);
+  glue_vertices(mesh, m, cov);
+  count_components(cov);
   return cov;
 }
 

@@ -33,6 +33,37 @@ std::string printable(std::string_view tok) {
   return tok.size() > 16 ? out + "..." : out;
 }
 
+/// One corner of an `f` line: `v`, `v/vt`, `v//vn` or `v/vt/vn`, as 0-based indices (texture -1: none).
+struct FaceCorner {
+  std::int64_t vertex = 0, texture = -1;
+};
+
+/// \throw InputError (file, line, the corner as written) for a bad index or a vt index not defined yet.
+FaceCorner parse_face_corner(std::string_view tok, std::int64_t num_read, std::int64_t num_uv, const std::string& name,
+                             long line) {
+  const std::size_t slash = tok.find('/');
+  FaceCorner corner;
+  if (!parse_obj_index(tok.substr(0, slash), num_read, corner.vertex))
+    throw InputError(name, line, "bad face corner '" + std::string(tok) + "' (expected a non-zero vertex index)");
+  if (corner.vertex < 0)  // a negative (relative) index reaching before the first vertex; positive ones may point ahead
+    throw InputError(name, line,
+                     "face corner '" + std::string(tok) + "' refers to vertex " + std::string(tok.substr(0, slash)) +
+                         " (counted back from this line) but only " + std::to_string(num_read) +
+                         " vertices were defined before this line");
+  if (slash == std::string_view::npos) return corner;
+  const std::string_view rest = tok.substr(slash + 1);
+  const std::string_view vt = rest.substr(0, rest.find('/'));
+  if (vt.empty()) return corner;
+  if (!parse_obj_index(vt, num_uv, corner.texture))
+    throw InputError(name, line, "bad face corner '" + std::string(tok) + "' (expected a non-zero texture index)");
+  if (corner.texture < 0 || corner.texture >= num_uv)
+    throw InputError(name, line,
+                     "face corner '" + std::string(tok) + "' refers to texture coordinate " +
+                         std::to_string(corner.texture + 1) + " but only " + std::to_string(num_uv) +
+                         " were defined before this line");
+  return corner;
+}
+
 }  // namespace
 
 PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name) {
@@ -71,35 +102,10 @@ PolygonSoup read_obj_from_memory(std::string_view bytes, const std::string& name
       const auto num_uv = static_cast<std::int64_t>(uvs.size() / 2);
       std::string_view tok;
       while (!(tok = scan.token()).empty()) {
-        // A corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`.
-        const std::size_t slash = tok.find('/');
-        std::int64_t v = 0;
-        if (!parse_obj_index(tok.substr(0, slash), num_read, v))
-          throw InputError(name, scan.line(),
-                           "bad face corner '" + std::string(tok) + "' (expected a non-zero vertex index)");
-        if (v < 0)  // a negative (relative) index reaching before the first vertex; positive ones may point ahead
-          throw InputError(name, scan.line(),
-                           "face corner '" + std::string(tok) + "' refers to vertex " +
-                               std::string(tok.substr(0, slash)) + " (counted back from this line) but only " +
-                               std::to_string(num_read) + " vertices were defined before this line");
-        corners.push_back(v);
-        std::int64_t t = -1;
-        if (slash != std::string_view::npos) {
-          const std::string_view rest = tok.substr(slash + 1);
-          const std::string_view vt = rest.substr(0, rest.find('/'));
-          if (!vt.empty()) {
-            if (!parse_obj_index(vt, num_uv, t))
-              throw InputError(name, scan.line(),
-                               "bad face corner '" + std::string(tok) + "' (expected a non-zero texture index)");
-            if (t < 0 || t >= num_uv)
-              throw InputError(name, scan.line(),
-                               "face corner '" + std::string(tok) + "' refers to texture coordinate " +
-                                   std::to_string(t + 1) + " but only " + std::to_string(num_uv) +
-                                   " were defined before this line");
-            any_uv = true;
-          }
-        }
-        uv_corners.push_back(t);
+        const FaceCorner corner = parse_face_corner(tok, num_read, num_uv, name, scan.line());
+        corners.push_back(corner.vertex);
+        uv_corners.push_back(corner.texture);
+        any_uv = any_uv || corner.texture >= 0;
       }
       if (corners.size() < 3)
         throw InputError(name, scan.line(),
