@@ -32,8 +32,9 @@ inline std::int64_t peak_resident_bytes() { return detail::proc_status_bytes("Vm
 
 /// Resets the peak to the current resident size (writes "5" to /proc/self/clear_refs, Linux ≥ 4.0), so that
 /// peak_resident_bytes() after a stage is that stage's peak. The peak it clears is kept for every open
-/// StagePeakMemory and for process_peak_resident_bytes(). \return false if the kernel refused (the peak then stays
-/// the process-wide one).
+/// StagePeakMemory and for process_peak_resident_bytes(); the kernel's own maximum (getrusage ru_maxrss,
+/// `/usr/bin/time -v`) is lowered with VmHWM, so a process that resets reports its peak itself. \return false if the
+/// kernel refused (the peak then stays the process-wide one).
 bool reset_peak_resident();
 
 /// Peak resident bytes since the process started, across resets; 0 if unknown.
