@@ -8,7 +8,8 @@ Each mesh is remeshed once with the default options (`remesh MESH -o OUT --repor
 - sub-stages of `param` (both parameterizations of --keep-better summed) from the time stamps of the -v progress
   lines: each line ends a sub-stage, the time since the previous line is charged to it;
 - peak memory per stage: /proc/PID/status VmRSS sampled every 20 ms, maximum over the stage's time window
-  (windows from the cumulative report seconds); the process peak is VmHWM at exit.
+  (windows from the cumulative report seconds); the process peak is the larger of the maximum resident size at exit
+  and the report's memory.peak_bytes (the CLI resets VmHWM at each stage, which lowers the kernel's maximum).
 
 Usage: bench/profile_stages.py [--build DIR] [--torus F1,F2,...] [--extra "ARGS"] MESH...
   --torus 1000000 generates the bumpy torus of bench/make_torus.py with about that many faces (in a temp dir).
@@ -119,7 +120,8 @@ def stage_rows(rep, lines, samples, secs, peak_kb):
     sub["period_rounding"] += sub.pop("round")
     for k, v in sub.items():
         rows["param: " + k] = (v, None)
-    rows["whole process"] = (secs, peak_kb / 1024)
+    reported_kb = rep.get("memory", {}).get("peak_bytes", 0) / 1024
+    rows["whole process"] = (secs, max(peak_kb, reported_kb) / 1024)
     return rows
 
 

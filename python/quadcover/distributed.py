@@ -3,8 +3,8 @@
 One task per mesh; each task runs the quadcover CLI in a process of its own, so a crash, an out-of-memory kill or a
 timeout costs that one file. Outputs are atomic (written in a private temporary folder, then renamed into OUT_DIR),
 and the run is resumable: a mesh whose outputs are complete (the mesh, then its JSON report, renamed last) is
-skipped. OUT_DIR/summary.csv and OUT_DIR/summary.json list every file: status, seconds, peak memory and the quality
-metrics of the CLI's --report JSON.
+skipped. OUT_DIR/summary.csv and OUT_DIR/summary.json list every file: status, seconds, peak memory (of the whole
+process, and of its largest stage from the report's "memory") and the quality metrics of the CLI's --report JSON.
 
     python3 -m quadcover.distributed [--scheduler ADDRESS] IN_DIR OUT_DIR [-- CLI OPTIONS...]
 
@@ -31,7 +31,8 @@ from ._cli import cli_path
 MESH_EXTENSIONS = (".obj", ".off", ".ply", ".stl")
 COMMANDS = {"remesh": (".quad.obj", ".remesh.json"), "param": (".param.obj", ".param.json")}
 # The columns of summary.csv: the run, then metrics from the CLI's report (blank when it has none).
-RUN_COLUMNS = ["file", "status", "exit_code", "seconds", "peak_memory_mb", "output", "error", "worker"]
+RUN_COLUMNS = ["file", "status", "exit_code", "seconds", "peak_memory_mb", "peak_stage", "peak_stage_mb", "output",
+               "error", "worker"]
 METRIC_PATHS = {
     "faces": [("quad_mesh", "faces")], "quads": [("quad_mesh", "quads")], "non_quads": [("quad_mesh", "non_quads")],
     "rsd_edge_length": [("quad_mesh", "rsd_edge_length")], "rsd_corner_angle": [("quad_mesh", "rsd_corner_angle")],
@@ -79,6 +80,24 @@ def metrics_of(report):
     return out
 
 
+def largest_stage(report):
+    """{peak_stage, peak_stage_mb}: the stage of the report's "memory" section with the largest peak resident memory
+    (None, None for a report without one)."""
+    stages = (report.get("memory") or {}).get("stages") or []
+    if not stages:
+        return dict(peak_stage=None, peak_stage_mb=None)
+    top = max(stages, key=lambda s: s["peak_bytes"])
+    return dict(peak_stage=top["stage"], peak_stage_mb=round(top["peak_bytes"] / 2**20, 1))
+
+
+def process_peak_mb(sampled_kib, report):
+    """The process's peak resident MB: the larger of the sampled VmHWM (the process resets it at each stage, so a
+    sample can miss a short stage's peak) and the process peak the report says (None if neither is known)."""
+    reported = (report.get("memory") or {}).get("peak_bytes") or 0
+    peak = max(sampled_kib * 1024, reported)
+    return round(peak / 2**20, 1) if peak else None
+
+
 def complete_row(rel, out_dir, command):
     """The summary row of an input whose outputs are complete (report renamed last and readable), else None."""
     mesh, report = output_paths(rel, out_dir, command)
@@ -92,7 +111,7 @@ def complete_row(rel, out_dir, command):
     run = r.get("distributed", {})
     return dict(file=rel, status="skipped", exit_code=0, seconds=run.get("seconds"),
                 peak_memory_mb=run.get("peak_memory_mb"), output=os.path.relpath(mesh, out_dir), error="",
-                **metrics_of(r))
+                **largest_stage(r), **metrics_of(r))
 
 
 def _peak_kib(pid):
@@ -163,6 +182,8 @@ def run_one(in_dir, rel, out_dir, command="remesh", cli=None, cli_args=(), timeo
             with open(tmp_report) as f:
                 report = json.load(f)
             row.update(metrics_of(report))
+            row.update(largest_stage(report))
+            row["peak_memory_mb"] = process_peak_mb(peak, report)
             row["status"] = "ok"
             report["distributed"] = {"seconds": row["seconds"], "peak_memory_mb": row["peak_memory_mb"]}
             with open(tmp_report, "w") as f:

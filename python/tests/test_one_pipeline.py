@@ -23,9 +23,9 @@ def mesh(name):
 
 
 def strip(report):
-    """The report without what differs between two runs or two callers: timings and file names."""
+    """The report without what differs between two runs or two callers: timings, memory peaks and file names."""
     r = json.loads(json.dumps(report))
-    for key in ("seconds", "input", "output"):
+    for key in ("seconds", "memory", "input", "output"):
         r.pop(key, None)
     r["optimize"].pop("seconds", None)
     return r
@@ -58,6 +58,21 @@ def test_remesh_report_has_the_cli_shape():
     assert abs(len(Q) - 800) <= 0.03 * 800
     with pytest.raises(ValueError, match="once"):
         quadcover.remesh(V, F, faces=800, quads=900)
+
+
+def test_remesh_dict_has_a_memory_peak_per_timed_stage():
+    V, F = mesh("bunny_3k")
+    _, _, report = quadcover.remesh(V, F, faces=800)
+    memory = report["memory"]
+    assert memory["input_faces"] == F.shape[0]
+    names = [s["stage"] for s in memory["stages"]]
+    assert sorted(names) == sorted(report["seconds"]) and len(set(names)) == len(names)
+    assert names.index("field") < names.index("extract") < names.index("metrics")  # pipeline order
+    for s in memory["stages"]:
+        if os.path.exists("/proc/self/status"):
+            assert s["peak_bytes"] > 0, s
+        assert s["peak_bytes"] <= memory["peak_bytes"], s
+        assert s["bytes_per_face"] == int(s["peak_bytes"] / F.shape[0] + 0.5), s  # rounded half up
 
 
 @pytest.mark.parametrize("bad_F,match", [

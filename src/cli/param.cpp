@@ -1,6 +1,5 @@
 // `quadcover param MESH -o OUT.obj`: the seamless QuadCover parameterization (thesis Chapters 2-4) guided by the
 // curvature frame field of Chapter 5, written as an OBJ with per-corner texture coordinates in grid units.
-#include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
@@ -104,12 +103,13 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   const std::string format = param_output_format(out.obj);
 
-  auto t = std::chrono::steady_clock::now();
+  StageMeter meter;
   FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
   const Mesh mesh = load_mesh(input, progress, file_vertices);
-  const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  const StageCost read = meter.lap();
   ParamJob job = parameterize_mesh(mesh, po, progress);
-  job.seconds.insert(job.seconds.begin(), {"read", read_seconds});
+  job.seconds.insert(job.seconds.begin(), {"read", read.seconds});
+  job.peak_bytes.insert(job.peak_bytes.begin(), {"read", read.peak_bytes});
   const Mesh& map_mesh = job.mesh(mesh);  // the input, or its refinement for the curve constraints
   Eigen::MatrixX2d UV;
   Eigen::MatrixX3i FUV;
@@ -121,7 +121,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
     throw NumericalError("param", "the parameterization is not seamless (max transition error " +
                                       std::to_string(report["parameterization"]["max_transition_error"].get<double>()) +
                                       "); nothing written");
-  t = std::chrono::steady_clock::now();
+  meter.restart();
   // The file's own vertices (unreferenced ones included, same numbers) first, then the refinement's midpoints.
   const int n_file = static_cast<int>(file_vertices.positions.rows()), n_mesh = mesh.num_vertices();
   const int n_added = map_mesh.num_vertices() - n_mesh;
@@ -138,7 +138,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
     report["texcoord_float32_rounding"] = write_param_ply(out.obj, map_mesh, UV, FUV);
   else
     write_obj_with_uv(out.obj, positions, file_faces, UV, FUV);
-  report["seconds"]["write"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  add_report_stage(report, "write", meter.lap());
   print_warnings(input, report);
   if (!out.png.empty()) write_parameterization_png(out.png, map_mesh, job.map, views, render_options);
   write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, map_mesh, job.map, nullptr, report);

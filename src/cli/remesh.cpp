@@ -1,6 +1,5 @@
 // `quadcover remesh MESH -o QUADS.obj`: the whole pipeline — frame field (thesis ch. 5) → QuadCover
 // parameterization (ch. 2-4) → quad extraction — with the Table 7.1 metrics of the result.
-#include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "cli/common.h"
@@ -75,10 +74,9 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     throw InputError(out.quads, 0, "--ply-quality needs a .ply output");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
-  using Clock = std::chrono::steady_clock;
-  auto t = Clock::now();
+  StageMeter meter;
   const Mesh mesh = load_mesh(input, progress);
-  const double read_seconds = std::chrono::duration<double>(Clock::now() - t).count();
+  const StageCost read = meter.lap();
   RemeshJob job;
   try {
     job = remesh_mesh(mesh, po, progress);
@@ -86,17 +84,18 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     if (e.file() != "density") throw;
     throw InputError(input, 0, std::string(e.what()).substr(9) + " (--faces N or --edge-length h)");
   }
-  job.param.seconds.insert(job.param.seconds.begin(), {"read", read_seconds});
+  job.param.seconds.insert(job.param.seconds.begin(), {"read", read.seconds});
+  job.param.peak_bytes.insert(job.param.peak_bytes.begin(), {"read", read.peak_bytes});
   nlohmann::json report = remesh_report(mesh, job, input);
   report["output"] = out.quads;
-  t = Clock::now();
+  meter.restart();
   const QuadMesh& quads = job.extraction.mesh;
   if (opt.ply_quality)
     write_quality_ply(out.quads, quads);
   else if (const std::size_t split = write_polygon_mesh(out.quads, quads.V, quads.faces); split > 0)
     report["warnings"].push_back(std::to_string(split) + " polygons were split into triangles for the STL output");
   if (!out.param.empty()) write_param_obj(out.param, job.param.mesh(mesh), job.param.map.uv);
-  report["seconds"]["write"] = std::chrono::duration<double>(Clock::now() - t).count();
+  add_report_stage(report, "write", meter.lap());
   print_warnings(input, report);
   if (!out.png.empty()) write_quad_mesh_png(out.png, quads, views, render_options);
   write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, job.param.mesh(mesh), job.param.map, &quads,

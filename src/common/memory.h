@@ -31,25 +31,35 @@ inline std::int64_t resident_bytes() { return detail::proc_status_bytes("VmRSS:"
 inline std::int64_t peak_resident_bytes() { return detail::proc_status_bytes("VmHWM:"); }
 
 /// Resets the peak to the current resident size (writes "5" to /proc/self/clear_refs, Linux ≥ 4.0), so that
-/// peak_resident_bytes() after a stage is that stage's peak. \return false if the kernel refused (the peak then
-/// stays the process-wide one).
-inline bool reset_peak_resident() {
-  std::ofstream out("/proc/self/clear_refs");
-  out << "5";
-  out.flush();
-  return static_cast<bool>(out);
-}
+/// peak_resident_bytes() after a stage is that stage's peak. The peak it clears is kept for every open
+/// StagePeakMemory and for process_peak_resident_bytes(); the kernel's own maximum (getrusage ru_maxrss,
+/// `/usr/bin/time -v`) is lowered with VmHWM, so a process that resets reports its peak itself. \return false if the
+/// kernel refused (the peak then stays the process-wide one).
+bool reset_peak_resident();
 
-/// Peak resident bytes of one stage: construct before the stage (resets the peak), read peak() after it.
+/// Peak resident bytes since the process started, across resets; 0 if unknown.
+std::int64_t process_peak_resident_bytes();
+
+/// Peak resident bytes of one stage: construct before the stage (resets the peak), read peak() after it. Stages may
+/// nest or run in parallel threads: a reset by one keeps the peak so far for all others, so each sees the process's
+/// peak over its own interval (parallel ones therefore include each other's memory).
 class StagePeakMemory {
  public:
-  StagePeakMemory() : reset_(reset_peak_resident()) {}
-  /// The stage's peak in bytes (the process peak so far if the reset failed, see reset_ok()).
-  std::int64_t peak() const { return peak_resident_bytes(); }
+  StagePeakMemory();
+  ~StagePeakMemory();
+  StagePeakMemory(const StagePeakMemory&) = delete;
+  StagePeakMemory& operator=(const StagePeakMemory&) = delete;
+
+  /// The stage's peak in bytes so far (the process peak so far if the reset failed, see reset_ok()).
+  std::int64_t peak() const;
+  /// Starts a new stage here: resets the peak (keeping it for the other open stages) and forgets this one's.
+  void restart();
   bool reset_ok() const { return reset_; }
 
  private:
-  bool reset_;
+  friend struct OpenStages;
+  bool reset_ = false;
+  std::int64_t kept_ = 0;  ///< the largest peak cleared by resets since this stage began
 };
 
 }  // namespace quadcover

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/stage_meter.h"
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
 
@@ -104,8 +105,9 @@ struct Parameterization {
     /// Vertices whose curve constraint was given up to unstick a face (UntangleOptions::release_curve_corners).
     std::vector<int> released_vertices;
   } untangling;
-  /// Wall-clock seconds per stage, in pipeline order.
-  std::vector<std::pair<std::string, double>> stage_seconds;
+  /// Wall-clock seconds and peak resident bytes per stage, in pipeline order (common/stage_meter.h).
+  StageSeconds stage_seconds;
+  StagePeakBytes stage_peak_bytes;
 };
 
 }  // namespace quadcover

@@ -4,7 +4,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -27,8 +26,6 @@
 namespace quadcover {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// Per component of M: true iff the gauged matching is ≡ 0 mod 4 on all its interior edges (trivial holonomy, no
 /// branch points): then covering constants are in the kernel of 𝔏̄ and 𝔏̄*, and one value per component is pinned.
@@ -161,22 +158,20 @@ constexpr double kParamSteps = 11;
 
 namespace {
 
-/// The stage clock of parameterize(): one lap per step into P.stage_seconds, and one progress bar for the whole
-/// stage, in the order of its steps (kParamSteps of them, numbered by the laps).
+/// The stage meter of parameterize(): one lap per step into P.stage_seconds and P.stage_peak_bytes, and one
+/// progress bar for the whole stage, in the order of its steps (kParamSteps of them, numbered by the laps).
 class StageLaps {
  public:
-  StageLaps(Parameterization& P, ProgressSink& progress) : P_(P), progress_(progress), t_(Clock::now()) {}
+  StageLaps(Parameterization& P, ProgressSink& progress) : P_(P), progress_(progress) {}
   void operator()(const char* stage) {
-    const auto now = Clock::now();
-    P_.stage_seconds.emplace_back(stage, std::chrono::duration<double>(now - t_).count());
-    t_ = now;
+    meter_.lap(stage, P_.stage_seconds, P_.stage_peak_bytes);
     progress_.report("param", std::min(1.0, static_cast<double>(P_.stage_seconds.size()) / kParamSteps), stage);
   }
 
  private:
   Parameterization& P_;
   ProgressSink& progress_;
-  Clock::time_point t_;
+  StageMeter meter_;
 };
 
 /// Step 1 (4.2): the cut through B and the gauge; records the cut, the gauge, the branch points and h_sym in P.

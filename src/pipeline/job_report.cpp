@@ -1,7 +1,7 @@
 #include "pipeline/job_report.h"
 
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 
 #include "common/quarter_turn.h"
 #include "field/feature_alignment.h"
@@ -106,6 +106,19 @@ nlohmann::json seconds_json(const StageSeconds& seconds) {
   return j;
 }
 
+nlohmann::json stage_memory_json(const std::string& stage, std::int64_t peak_bytes, int input_faces) {
+  return {{"stage", stage},
+          {"peak_bytes", peak_bytes},
+          {"bytes_per_face", input_faces > 0 ? std::llround(static_cast<double>(peak_bytes) / input_faces) : 0}};
+}
+
+/// The "memory" section: the process peak so far and each stage's peak, also per input face.
+nlohmann::json memory_json(const StagePeakBytes& peaks, int input_faces) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (const auto& [stage, bytes] : peaks) stages.push_back(stage_memory_json(stage, bytes, input_faces));
+  return {{"peak_bytes", process_peak_resident_bytes()}, {"input_faces", input_faces}, {"stages", stages}};
+}
+
 }  // namespace
 
 nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
@@ -144,11 +157,19 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["surface_check"] = nullptr;
   r["warnings"] = job.warnings;
   r["seconds"] = seconds_json(job.seconds);
+  r["memory"] = memory_json(job.peak_bytes, input_mesh.num_faces());
   return r;
 }
 
+void add_report_stage(nlohmann::json& report, const std::string& stage, const StageCost& cost) {
+  report["seconds"][stage] = cost.seconds;
+  nlohmann::json& memory = report["memory"];
+  memory["stages"].push_back(stage_memory_json(stage, cost.peak_bytes, memory["input_faces"].get<int>()));
+  memory["peak_bytes"] = process_peak_resident_bytes();
+}
+
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input) {
-  const auto t = std::chrono::steady_clock::now();
+  StageMeter meter;
   nlohmann::json r = param_report(mesh, job.param, job.param.map.uv, input);
   r["job"] = "remesh";
   const QuadMesh& q = job.extraction.mesh;
@@ -158,7 +179,7 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
   r["feature_fidelity"] = feature_fidelity_to_json(feature_fidelity(mesh, q.V, q.faces));
   r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
   r["surface_check"] = to_json(job.surface);
-  r["seconds"]["metrics"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  add_report_stage(r, "metrics", meter.lap());
   return r;
 }
 

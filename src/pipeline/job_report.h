@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "common/stage_meter.h"
 #include "mesh/mesh.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/remesh_mesh.h"
@@ -25,7 +26,12 @@ inline constexpr int kReportSchemaVersion = 1;
 ///          cones, seams; plus seamless, parameter_extent, cut_edges, parameter_area, flipped_faces, h_sym),
 ///   optimize, rounding, relaxation, stiffening, untangling, aligned_curves {curves, max_deviation, conflicts},
 ///   extraction, quad_mesh, surface_distance, feature_fidelity, quad_smoothing, surface_check (null for param),
-///   warnings (sentences), seconds (per stage; the only values that differ between two runs).
+///   warnings (sentences), seconds {stage: wall-clock seconds},
+///   memory {peak_bytes (the process's peak resident bytes so far), input_faces (the input's triangles),
+///           stages [{stage, peak_bytes, bytes_per_face}]}: per stage, in pipeline order, under the names of
+///           `seconds`, the peak resident bytes of the whole process during it (Linux VmHWM, reset at each stage;
+///           0 elsewhere; jobs run in parallel in one process include each other's memory), and that per input face.
+///   seconds and memory are the only values that differ between two runs.
 /// \pre uv is #F by 3.
 nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::MatrixX3cd& uv,
                             const std::string& input = "");
@@ -36,6 +42,10 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
 /// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
 /// metrics' seconds are added.
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
+
+/// Adds a stage measured after the report was made (e.g. the CLI's writing of the outputs) to its seconds and memory
+/// (common/stage_meter.h), and updates the process peak.
+void add_report_stage(nlohmann::json& report, const std::string& stage, const StageCost& cost);
 
 /// The key numbers of a report, flat (printed by the CLI, tabulated in batches): edge_length, branch_points (of the
 /// map), h_sym, flipped_triangles, seamless, E_D, E_H, arap, optimize (without its log), rounding; for param the

@@ -1,6 +1,5 @@
 #include "pipeline/parameterize_mesh.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -14,14 +13,8 @@ namespace quadcover {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-/// Appends the seconds since `t` under `stage` and restarts the clock.
-void lap(StageSeconds& seconds, Clock::time_point& t, const char* stage) {
-  const auto now = Clock::now();
-  seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
-  t = now;
-}
+/// Ends the stage `meter` measured under `stage` in the job's seconds and peak bytes.
+void lap(StageMeter& meter, ParamJob& job, const char* stage) { meter.lap(stage, job.seconds, job.peak_bytes); }
 
 /// The one-line summary of Algorithm 6.1 for the progress sink.
 std::string optimize_summary(const nlohmann::json& r, double evaluations_per_second, long budget) {
@@ -78,7 +71,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
   d.quads = d.first_quads = parameter_area(mesh, job.map.uv);
   if (param.target_quads <= 0 || d.first_quads <= 0) return d;
   const double target = param.target_quads;
-  const auto t = Clock::now();
+  StageMeter meter;
   // Quad count ≈ c / h²: re-solve the kept field (field and matching stay) at the h this predicts, interpolating in
   // log h between the closest tries below and above N once both exist (the periods round to the lattice, so the
   // count moves in steps); the closest map is kept.
@@ -106,7 +99,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
     if (progress.cancelled()) break;
   }
   param.edge_length = job.map.edge_length;
-  if (d.resolves > 0) job.seconds.emplace_back("density", std::chrono::duration<double>(Clock::now() - t).count());
+  if (d.resolves > 0) lap(meter, job, "density");
   return d;
 }
 
@@ -128,15 +121,15 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   ParamJob job;
   job.options = options;
   ParamOptions& param = job.options.param;
-  auto t = Clock::now();
+  StageMeter meter;
   if (options.refine_curve_triangles && param.align_curves) {
     job.refinement = refine_for_curves(input, param.features);
-    if (job.refinement.mesh) lap(job.seconds, t, "refinement");
+    if (job.refinement.mesh) lap(meter, job, "refinement");
   }
   const Mesh& mesh = job.mesh(input);
   const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
-  lap(job.seconds, t, "field");
+  lap(meter, job, "field");
   fix_default_density(mesh, field.field, param);  // one scale for the optimization, keep-better and the map
   OptimizeOptions oo = optimize_stage_options(options, param);
   const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
@@ -148,7 +141,7 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   if (oo.mode != OptimizeMode::None)
     progress.report("optimize", 1,
                     optimize_summary(job.optimize, optimized.evaluations_per_second, optimized.max_evaluations));
-  lap(job.seconds, t, "optimize");
+  lap(meter, job, "optimize");
   const std::string stopped_by = job.optimize.value("stopped_by", "converged");
   if (stopped_by == "cancelled" || (stopped_by == "time" && limited))
     job.warnings.push_back("the optimization was stopped early (" + stopped_by +
@@ -159,9 +152,10 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
-  t = Clock::now();
+  for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
+  meter.restart();
   if (options.merge_coincident_cones) merge_coincident_cones(mesh, field, oo.lambda, job, finishing);
-  if (job.merge_rounds > 0) lap(job.seconds, t, "cone_merging");
+  if (job.merge_rounds > 0) lap(meter, job, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   if (job.refinement.mesh)

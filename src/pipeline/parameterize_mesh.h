@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/progress.h"
+#include "common/stage_meter.h"
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
 #include "param/parameterization.h"
@@ -14,9 +15,6 @@
 #include "pipeline/pipeline_options.h"
 
 namespace quadcover {
-
-/// Wall-clock seconds per stage, in pipeline order.
-using StageSeconds = std::vector<std::pair<std::string, double>>;
 
 /// How the job met a requested quad count N (ParamOptions::target_quads): h = sqrt(area / N) gives a map whose
 /// quad count Σ|area(φ(t))| is off by the field's non-uniform scale; while the count is off by more than
@@ -45,7 +43,8 @@ struct ParamJob {
   /// (pipeline/cone_merging.h).
   int merged_cone_pairs = 0, merge_rounds = 0;
   std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
-  StageSeconds seconds;
+  StageSeconds seconds;     ///< per stage (common/stage_meter.h)
+  StagePeakBytes peak_bytes;  ///< per stage, under the names of `seconds`
 
   /// The mesh of `map`: the refined one, or `input` (the mesh given to parameterize_mesh) when none was needed.
   const Mesh& mesh(const Mesh& input) const { return refinement.mesh ? *refinement.mesh : input; }

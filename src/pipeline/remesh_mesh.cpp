@@ -1,7 +1,6 @@
 #include "pipeline/remesh_mesh.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "common/errors.h"
@@ -28,18 +27,13 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
 }  // namespace
 
 RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
-  using Clock = std::chrono::steady_clock;
   RemeshJob job;
   job.param = parameterize_mesh(input, options, progress);
   const Mesh& mesh = job.param.mesh(input);  // the map's triangulation (refined, or the input)
   const Parameterization& map = job.param.map;
   check_extractable(mesh, map);
-  auto t = Clock::now();
-  auto lap = [&](const char* stage) {
-    const auto now = Clock::now();
-    job.param.seconds.emplace_back(stage, std::chrono::duration<double>(now - t).count());
-    t = now;
-  };
+  StageMeter meter;
+  auto lap = [&](const char* stage) { meter.lap(stage, job.param.seconds, job.param.peak_bytes); };
   FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C
   job.extraction = extract_quads(mesh, map, options.extraction, finishing);
   lap("extract");

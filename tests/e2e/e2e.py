@@ -48,7 +48,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 DATA = os.path.join(ROOT, "tests", "data")
 SEAM_TOL = 1e-9      # relative to the parameter extent (issue 5)
 METRIC_RTOL = 1e-6   # metrics re-measured from a written file vs. the in-memory report (OBJ rounding)
-TIMING_KEYS = {"seconds"}
+TIMING_KEYS = {"seconds", "memory"}  # differ between runs: timings and resident memory peaks
 COMMAND_TIMEOUT = [300.0]  # seconds per command (--timeout); a hang fails the suite instead of stalling it
 # Defects accepted for now, from tests/regression/metrics.json "known_issues": mesh -> {issue key: description}.
 KNOWN = {}
@@ -410,6 +410,12 @@ def self_test():
     assert bad.max_translation_defect > 0.1, vars(bad)
     areas = objcheck.uv_signed_areas(obj_with(0))
     assert areas[0] > 0 and areas[1] > 0, areas  # a rotation keeps orientation
+    # Determinism ignores timings and memory peaks, at any depth, and nothing else.
+    run_a = {"seconds": {"field": 1.0}, "memory": {"peak_bytes": 7}, "optimize": {"seconds": {"total": 2}, "E": 1}}
+    run_b = {"seconds": {"field": 3.0}, "memory": {"peak_bytes": 9}, "optimize": {"seconds": {"total": 4}, "E": 1}}
+    assert strip_timing(run_a) == strip_timing(run_b) == {"optimize": {"E": 1}}
+    run_b["optimize"]["E"] = 2
+    assert strip_timing(run_a) != strip_timing(run_b)
     # PNG decoding: a 3x2 RGB image with Sub and Up filters round-trips.
     import struct
     import zlib

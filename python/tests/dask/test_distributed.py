@@ -67,10 +67,12 @@ def test_folder_on_two_workers_survives_a_broken_and_a_killed_file_and_resumes(t
         assert row["status"] == "ok" and row["exit_code"] == "0", row
         assert int(row["faces"]) > 300 and int(row["non_quads"]) == 0 and float(row["rsd_edge_length"]) > 0
         assert float(row["seconds"]) > 0 and float(row["peak_memory_mb"]) > 5
+        assert row["peak_stage"] != "" and 0 < float(row["peak_stage_mb"]) <= float(row["peak_memory_mb"])
         assert quadcover.read(out / (name + ".quad.obj")).vertices.shape[0] > 300
         with open(out / (name + ".remesh.json")) as f:
             report = json.load(f)
         assert report["quad_mesh"]["faces"] == int(row["faces"])
+        assert row["peak_stage"] in [s["stage"] for s in report["memory"]["stages"]]
     assert rows["broken.obj"]["status"] == "bad input" and "broken.obj" in rows["broken.obj"]["error"]
     assert rows["killme.obj"]["status"] == "killed by SIGKILL", rows["killme.obj"]
     assert doc["counts"] == {"ok": 2, "bad input": 1, "killed by SIGKILL": 1}

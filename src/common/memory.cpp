@@ -1,0 +1,72 @@
+#include "common/memory.h"
+
+#include <algorithm>
+#include <mutex>
+#include <vector>
+
+namespace quadcover {
+
+/// The stages being measured, and the process peak cleared by resets: one reset serves them all.
+struct OpenStages {
+  std::mutex mutex;
+  std::vector<StagePeakMemory*> stages;
+  std::int64_t process_peak = 0;
+
+  static OpenStages& get() {
+    static OpenStages open;
+    return open;
+  }
+
+  /// Keeps the current peak for every open stage and the process, then resets it. \pre mutex is held.
+  bool keep_and_reset() {
+    const std::int64_t peak = peak_resident_bytes();
+    process_peak = std::max(process_peak, peak);
+    for (StagePeakMemory* s : stages) s->kept_ = std::max(s->kept_, peak);
+    std::ofstream out("/proc/self/clear_refs");
+    out << "5";
+    out.flush();
+    return static_cast<bool>(out);
+  }
+
+  void open(StagePeakMemory& s) {
+    std::lock_guard lock(mutex);
+    s.reset_ = keep_and_reset();
+    s.kept_ = 0;
+    stages.push_back(&s);
+  }
+
+  void restart(StagePeakMemory& s) {
+    std::lock_guard lock(mutex);
+    s.reset_ = keep_and_reset();
+    s.kept_ = 0;
+  }
+
+  void close(StagePeakMemory& s) {
+    std::lock_guard lock(mutex);
+    stages.erase(std::remove(stages.begin(), stages.end(), &s), stages.end());
+  }
+
+  std::int64_t peak_of(const StagePeakMemory& s) {
+    std::lock_guard lock(mutex);
+    return std::max(s.kept_, peak_resident_bytes());
+  }
+};
+
+bool reset_peak_resident() {
+  OpenStages& open = OpenStages::get();
+  std::lock_guard lock(open.mutex);
+  return open.keep_and_reset();
+}
+
+std::int64_t process_peak_resident_bytes() {
+  OpenStages& open = OpenStages::get();
+  std::lock_guard lock(open.mutex);
+  return std::max(open.process_peak, peak_resident_bytes());
+}
+
+StagePeakMemory::StagePeakMemory() { OpenStages::get().open(*this); }
+StagePeakMemory::~StagePeakMemory() { OpenStages::get().close(*this); }
+std::int64_t StagePeakMemory::peak() const { return OpenStages::get().peak_of(*this); }
+void StagePeakMemory::restart() { OpenStages::get().restart(*this); }
+
+}  // namespace quadcover
