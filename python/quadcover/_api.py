@@ -125,8 +125,9 @@ def field(mesh, F=None, **kwargs):
 
 class ParamResult(tuple):
     """``(uv, report)`` of :func:`parameterize`, with ``.V`` and ``.F``: the triangulation ``uv`` lives on. That is
-    the input's, or, when the curve constraints needed it, a refinement of it: the input's vertices first (same
-    numbers), then the midpoints of ``report["refinement"]["split"]``; ``report["refinement"]`` says how many."""
+    the input's, or, when the curve constraints or the fold refinement needed it, a refinement of it: the input's
+    vertices first (same numbers), then the midpoints of ``report["refinement"]["split"]``;
+    ``report["refinement"]`` says how many, ``report["fold_refinement"]`` what the fold refinement did."""
 
     def __new__(cls, uv, report, V, F):
         result = super().__new__(cls, (uv, report))

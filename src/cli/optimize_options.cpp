@@ -55,6 +55,12 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again "
                  "when that leaves fewer flipped or collapsed triangles (true/false)")
       ->capture_default_str();
+  cmd.add_option("--refine-folds", options.refine_folds,
+                 "Rounds of edge splits around the triangles the untangling leaves flipped or collapsed, each "
+                 "followed by the untangling on the finer mesh (0 = off); the map then has more triangles (the "
+                 "input's vertices first, see the report's refinement and fold_refinement)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd.add_option("--keep-better", options.keep_better,
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
                  "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
@@ -105,6 +111,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.max_evaluations = cli.max_iterations;
   options.keep_better = cli.keep_better;
   options.merge_coincident_cones = cli.merge_cones;
+  options.fold_refinement_rounds = cli.refine_folds;
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);

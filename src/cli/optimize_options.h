@@ -21,6 +21,7 @@ struct OptimizeCliOptions {
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
   bool keep_better = true;            ///< see parameterize_best()
   bool merge_cones = true;            ///< PipelineOptions::merge_coincident_cones
+  int refine_folds = 6;               ///< PipelineOptions::fold_refinement_rounds
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h

@@ -105,6 +105,14 @@ struct Parameterization {
     /// Vertices whose curve constraint was given up to unstick a face (UntangleOptions::release_curve_corners).
     std::vector<int> released_vertices;
   } untangling;
+  /// The seamless affine subspace of the final map, the one the untangler moves in (param/untangle.h): for every
+  /// covering function δu that is 0 on the fixed components, uv − i^{layer} δu (0 at branch points) keeps every
+  /// transition, period, branch point and enforced curve of the map.
+  struct Subspace {
+    Eigen::MatrixX3i layer;   ///< #F by 3: λ per corner
+    Eigen::VectorXi branch;   ///< #V: 1 at branch points (both components held)
+    std::vector<char> fixed;  ///< 2·#V flags (x_p at p, y_p at #V + p), 1 = held
+  } subspace;
   /// Wall-clock seconds and peak resident bytes per stage, in pipeline order (common/stage_meter.h).
   StageSeconds stage_seconds;
   StagePeakBytes stage_peak_bytes;

@@ -378,18 +378,22 @@ void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInp
       P.stiffening.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic - P.relaxation.energy;
     if (P.stiffening.iterations > 0) lap("stiffening");
   }
+  // The seamless affine subspace: the kernel pins (or the curve constraints, which include them) fixed.
+  const std::vector<char> releasable = aligned ? aligned->fixed_components() : std::vector<char>{};
+  const std::vector<char> fixed = untangle_fixed_components(
+      mesh, correction.layers(), aligned ? std::vector<int>{} : correction.kernel_pins(), releasable);
+  P.subspace = {correction.layers().layer, correction.layers().branch, fixed};
   if (options.untangle.enabled) {
-    // Inside the seamless affine subspace: the kernel pins (or the curve constraints, which include them) fixed.
-    const std::vector<char> fixed =
-        untangle_fixed_components(mesh, correction.layers(), aligned ? std::vector<int>{} : correction.kernel_pins(),
-                                  aligned ? aligned->fixed_components() : std::vector<char>{});
     const double price_before = correction_energy(mesh, correction, in.Sigma, u);
-    u = untangle_map(mesh, correction, in.known, in.Z, fixed, u, options.untangle, progress, P.untangling,
-                     aligned ? aligned->fixed_components() : std::vector<char>{});
+    u = untangle_map(mesh, correction, in.known, in.Z, fixed, u, options.untangle, progress, P.untangling, releasable);
     if (P.untangling.iterations > 0) {
       P.untangling.energy = correction_energy(mesh, correction, in.Sigma, u) - price_before;
       lap("untangling");
     }
+    const int nv = mesh.num_vertices();
+    for (int p : P.untangling.released_vertices)  // curve constraints given up there
+      for (const int i : {p, nv + p})
+        if (releasable[i] && !correction.layers().branch[p]) P.subspace.fixed[i] = 0;
   }
 }
 

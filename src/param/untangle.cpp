@@ -315,12 +315,12 @@ bool newton_step(Energy& energy, Pattern& P, SparseCholesky<double>& chol, doubl
   return false;
 }
 
-Eigen::MatrixX3cd map_of(const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
+Eigen::MatrixX3cd map_of(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                          const Eigen::VectorXd& X) {
   const Eigen::Index nv = X.size() / 2;
   Eigen::VectorXcd u(nv);
   for (Eigen::Index p = 0; p < nv; ++p) u[p] = Complex(X[p], X[nv + p]);
-  return base - correction.corner_values(u);
+  return base - layered_values(mesh, layers, u);
 }
 
 /// The untangling and the polish on the faces with a component free in `region_fixed` (its pattern analysed once).
@@ -424,7 +424,31 @@ std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers
   return fixed;
 }
 
+Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u) {
+  Eigen::MatrixX3cd c(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const int p = mesh.F()(f, a);
+      c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
+    }
+  return c;
+}
+
+std::vector<int> release_stuck_corners(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                                       const FramePairs& Z, std::vector<char>& fixed,
+                                       const std::vector<char>& releasable) {
+  return release_corners(face_maps(mesh, layers, base, Z), releasable,
+                         Eigen::VectorXd::Zero(2 * mesh.num_vertices()), fixed);
+}
+
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
+                              const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
+                              const UntangleOptions& options, ProgressSink& progress,
+                              Parameterization::Untangling& result, const std::vector<char>& releasable) {
+  return untangle_map(mesh, correction.layers(), base, Z, fixed, u0, options, progress, result, releasable);
+}
+
+Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed_in, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
                               Parameterization::Untangling& result, const std::vector<char>& releasable) {
@@ -436,11 +460,11 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
   result = {};
   Eigen::VectorXd X(2 * nv);
   X << u0.real(), u0.imag();
-  const int before = flipped_triangles(mesh, map_of(correction, base, X)).non_positive;
+  const int before = flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive;
   result.non_positive_before = result.non_positive_after = before;
   if (!options.enabled || before == 0) return u0;
 
-  std::vector<FaceMap> maps = face_maps(mesh, correction.layers(), base, Z);
+  std::vector<FaceMap> maps = face_maps(mesh, layers, base, Z);
   std::vector<char> fixed = fixed_in;
   if (options.release_curve_corners && !releasable.empty())
     result.released_vertices = release_corners(maps, releasable, X, fixed);
@@ -454,7 +478,7 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
     }
   const auto left = [&](const Eigen::VectorXd& Y) {
     std::vector<int> out;
-    for (int f : flipped_triangles(mesh, map_of(correction, base, Y)).flipped_faces)
+    for (int f : flipped_triangles(mesh, map_of(mesh, layers, base, Y)).flipped_faces)
       if (!stuck[f]) out.push_back(f);
     return out;
   };
@@ -484,7 +508,7 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
     if (everything) break;
   }
   result.unresolved_faces = folds;
-  const int after = flipped_triangles(mesh, map_of(correction, base, X)).non_positive;
+  const int after = flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive;
   progress.report("param", -1, "untangling: " + std::to_string(after) + " non-positive triangles");
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Energy energy(maps, options.area_weight);

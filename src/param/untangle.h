@@ -61,5 +61,22 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
                               Parameterization::Untangling& result, const std::vector<char>& releasable = {});
+/// The same for φ = base − layered_values(mesh, layers, u): any layering of a covering function that the map's
+/// transitions preserve (i^λ_t = i^k_e i^λ_s across every edge at vertices off the branch points), e.g. the
+/// subspace of a map lifted to a refined mesh (pipeline/split_map.h).
+Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                              const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
+                              const UntangleOptions& options, ProgressSink& progress,
+                              Parameterization::Untangling& result, const std::vector<char>& releasable = {});
+
+/// What options.release_curve_corners does before an untangling, alone: for every face the components in `fixed`
+/// hold at det ≡ 0 with φ = base, frees the `releasable` components of its first corner whose release unsticks it.
+/// Returns the released vertices (ascending); `fixed` is updated. \pre sizes as for untangle_map.
+std::vector<int> release_stuck_corners(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                                       const FramePairs& Z, std::vector<char>& fixed,
+                                       const std::vector<char>& releasable);
+
+/// Per-corner values i^λ u_p of a vertex function u (0 at branch points), as HarmonicCorrection::corner_values.
+Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u);
 
 }  // namespace quadcover

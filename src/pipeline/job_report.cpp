@@ -31,7 +31,8 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
-          {"merge_coincident_cones", o.merge_coincident_cones}, {"feature_angle", o.param.features.sharp_angle_degrees}};
+          {"merge_coincident_cones", o.merge_coincident_cones},
+          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"feature_angle", o.param.features.sharp_angle_degrees}};
 }
 
 /// The curves the field stage followed (field/feature_alignment.h with the job's feature options): the faces whose
@@ -100,6 +101,19 @@ nlohmann::json refinement_json(const Mesh& input, const ParamJob& job) {
           {"split", split}};
 }
 
+/// What the fold refinement did (pipeline/fold_refinement.h).
+nlohmann::json fold_refinement_json(const FoldRefinementReport& f) {
+  return {{"rounds", f.rounds},
+          {"kept_rounds", f.kept_rounds},
+          {"split_edges", f.split_edges},
+          {"added_faces", f.added_faces},
+          {"non_positive_before", f.non_positive_before},
+          {"non_positive_after", f.non_positive_after},
+          {"untangle_iterations", f.untangle_iterations},
+          {"E_F", f.energy},
+          {"seconds", f.seconds}};
+}
+
 nlohmann::json seconds_json(const StageSeconds& seconds) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [stage, s] : seconds) j[stage] = s;
@@ -131,6 +145,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["input"] = input;
   r["mesh"] = mesh_json(input_mesh);
   r["refinement"] = refinement_json(input_mesh, job);
+  r["fold_refinement"] = fold_refinement_json(job.fold_refinement);
   r["options"] = options_json(job.options);
   r["edge_length"] = map.edge_length;
   r["density"] = {{"target_quads", job.density.target_quads},

@@ -62,6 +62,48 @@ void merge_coincident_cones(const Mesh& mesh, const FrameFieldResult& stage, dou
   }
 }
 
+/// The fold refinement stage (pipeline/fold_refinement.h) on the map's mesh; a kept result replaces the job's mesh,
+/// field and map, its splits appended to job.refinement. `mesh` (job.mesh(input)) may be gone afterwards.
+void refine_job_folds(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
+  const FoldRefinementOptions options{job.options.fold_refinement_rounds, job.options.param.untangle};
+  FoldRefinement r = refine_folds(mesh, job.field, job.map, options, progress);
+  job.fold_refinement = r.report;
+  if (!r.mesh) return;
+  job.refinement.mesh = std::move(r.mesh);
+  job.refinement.split.insert(job.refinement.split.end(), r.split.begin(), r.split.end());
+  job.refinement.added_faces += r.report.added_faces;
+  job.field = std::move(r.field);
+  job.map = std::move(r.map);
+}
+
+/// The sentences for a refined triangulation (`curve_splits` of job.refinement.split by the curve refinement, the
+/// rest by the fold refinement) and for triangles left non-positive.
+std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t curve_splits) {
+  std::vector<std::string> w;
+  const std::size_t splits = job.refinement.split.size(), fold_splits = splits - curve_splits;
+  if (job.refinement.mesh) {
+    std::string why;
+    if (curve_splits > 0)
+      why = std::to_string(curve_splits) + " where a triangle had its three corners on boundary or feature curves";
+    if (fold_splits > 0)
+      why += (why.empty() ? "" : ", ") + std::to_string(fold_splits) +
+             " around triangles the untangling could not make positive on the coarser triangulation";
+    w.push_back("the map is on a refined triangulation: " + std::to_string(splits) + " edges split at their midpoints (" +
+                why + "; " + std::to_string(job.refinement.added_faces) +
+                " triangles added; the input's vertices keep their numbers, see the report's refinement)");
+  }
+  const Parameterization::Untangling& u = job.map.untangling;
+  if (u.non_positive_after > 0)
+    w.push_back(std::to_string(u.non_positive_after) + " triangles of the map stay flipped or collapsed (" +
+                std::to_string(u.stuck_faces.size()) + " held at zero area by the seams, cones and curve constraints, " +
+                std::to_string(u.unresolved_faces.size()) + " the untangling could not unfold" +
+                (job.fold_refinement.rounds > 0
+                     ? ", after " + std::to_string(job.fold_refinement.rounds) + " rounds of fold refinement"
+                     : std::string()) +
+                "); the quad mesh may fold there (see the report's untangling and fold_refinement)");
+  return w;
+}
+
 }  // namespace
 
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
@@ -157,12 +199,12 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   if (options.merge_coincident_cones) merge_coincident_cones(mesh, field, oo.lambda, job, finishing);
   if (job.merge_rounds > 0) lap(meter, job, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);
+  meter.restart();
+  const std::size_t curve_splits = job.refinement.split.size();
+  refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
+  if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
-  if (job.refinement.mesh)
-    job.warnings.push_back("the map is on a refined triangulation: " + std::to_string(job.refinement.split.size()) +
-                           " edges split at their midpoints where a triangle had its three corners on boundary or "
-                           "feature curves (" + std::to_string(job.refinement.added_faces) +
-                           " triangles added; the input's vertices keep their numbers, see the report's refinement)");
+  for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
   return job;
 }
 

@@ -12,6 +12,7 @@
 #include "mesh/mesh.h"
 #include "param/parameterization.h"
 #include "pipeline/curve_refinement.h"
+#include "pipeline/fold_refinement.h"
 #include "pipeline/pipeline_options.h"
 
 namespace quadcover {
@@ -32,8 +33,10 @@ inline constexpr int kDensityResolves = 4;
 struct ParamJob {
   PipelineOptions options;      ///< as given, with the default density fixed to an explicit edge length
   /// The triangulation the map lives on: the input's, or a refinement of it (more triangles, the input's vertices
-  /// first) when the curve constraints needed one. Use mesh(input) for it.
+  /// first) when the curve constraints or the fold refinement needed one; `split` lists the curve refinement's
+  /// splits, then the fold refinement's. Use mesh(input) for it.
   CurveRefinement refinement;
+  FoldRefinementReport fold_refinement;  ///< what the fold refinement did (pipeline/fold_refinement.h)
   FrameField field;             ///< the field the map was made from (optimized or original, see optimize["kept"])
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
   Parameterization map;

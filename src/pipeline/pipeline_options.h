@@ -27,6 +27,9 @@ struct PipelineOptions {
   /// Merge branch point pairs that the map puts on one lattice point into one cone and solve the map again
   /// (pipeline/cone_merging.h).
   bool merge_coincident_cones = true;
+  /// Rounds of the refinement around the triangles the untangling leaves non-positive (pipeline/fold_refinement.h;
+  /// 0 = off); the map then lives on a finer triangulation (ParamJob::mesh).
+  int fold_refinement_rounds = 6;
   /// Density, lattice, rounding, relaxation, stiffening, curve alignment (param/parameterize.h). Its `features`
   /// (the feature angle: sharp_angle_degrees, 0 = no sharp features; boundaries) are the curves of both the field
   /// stage (field_stage_options) and the alignment of the map, so the two always follow the same curves.

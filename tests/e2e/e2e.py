@@ -138,9 +138,26 @@ def check_param(binary, mesh_path, name, out, info, src):
     report = json.load(open(rep_path))
     rep = report["parameterization"]
     obj = objcheck.read_obj(obj_path)
-    check(len(obj.faces) == info["faces"] and len(obj.v) == len(src.v), f"{name}: param OBJ counts differ from the input")
     check(all(len(f) == 3 for f in obj.faces), f"{name}: param OBJ has non-triangles")
-    check(obj.faces == src.faces, f"{name}: param OBJ changed the connectivity")
+    refinement = report["refinement"]
+    if refinement["added_faces"] == 0:
+        check(len(obj.faces) == info["faces"] and len(obj.v) == len(src.v), f"{name}: param OBJ counts differ from the input")
+        check(obj.faces == src.faces, f"{name}: param OBJ changed the connectivity")
+    else:  # a midpoint refinement (curve or fold refinement): the input's vertices first, then the split midpoints
+        check(len(obj.faces) == refinement["faces"] == info["faces"] + refinement["added_faces"],
+              f"{name}: param OBJ has {len(obj.faces)} faces, the report's refinement {refinement['faces']}")
+        same = all(abs(x - y) <= 1e-6 * (1 + abs(y)) for p, q in zip(obj.v, src.v) for x, y in zip(p, q))
+        check(len(obj.v) == len(src.v) + refinement["added_vertices"] and same,
+              f"{name}: param OBJ does not keep the input's vertices first")
+        for k, (a, b) in enumerate(refinement["split"]):
+            m, pa, pb = obj.v[len(src.v) + k], obj.v[a], obj.v[b]
+            check(all(abs(m[i] - 0.5 * (pa[i] + pb[i])) <= 1e-6 * (1 + abs(m[i])) for i in range(3)),
+                  f"{name}: refined vertex {len(src.v) + k} is not the midpoint of {a}-{b}")
+        topo = objcheck.polygon_topology(len(obj.v), obj.faces)
+        check(topo.manifold and topo.euler_characteristic == info["euler_characteristic"] and
+              topo.components == info["components"], f"{name}: the refined triangulation changed the surface")
+        area, area_src = sum(objcheck.face_areas(obj)), sum(objcheck.face_areas(src))
+        check(abs(area - area_src) <= 1e-6 * area_src, f"{name}: the refined triangulation has area {area}, not {area_src}")
     check(all(t is not None for ts in obj.face_vt for t in ts), f"{name}: a face corner has no vt")
     seams = objcheck.seam_check(obj)
     tol = SEAM_TOL * max(1.0, seams.extent)

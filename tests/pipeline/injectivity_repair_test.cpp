@@ -61,13 +61,15 @@ TEST(CurveRefinement, NoTriangleKeepsThreeCurveCornersAndANonCurveEdge) {
 
 TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
-  PipelineOptions plain;
+  PipelineOptions plain;  // the fold refinement off: it removes these faces too (fold_refinement_test.cpp)
   plain.refine_curve_triangles = false;
+  plain.fold_refinement_rounds = 0;
   const ParamJob without = parameterize_mesh(mesh, plain);
   ASSERT_GT(faces_on_one_iso_line(without.map), 0) << "the case this test is about no longer occurs on bunny_3k";
   EXPECT_EQ(without.map.uv.rows(), mesh.num_faces());
   PipelineOptions refine;
   refine.refine_curve_triangles = true;
+  refine.fold_refinement_rounds = 0;
   const ParamJob with = parameterize_mesh(mesh, refine);
   ASSERT_TRUE(with.refinement.mesh);
   EXPECT_EQ(&with.mesh(mesh), with.refinement.mesh.get());
@@ -78,8 +80,9 @@ TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
 
 TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles) {
   const Mesh mesh = testing::load_test_mesh("cow");
-  PipelineOptions plain;
+  PipelineOptions plain;  // the fold refinement off: it would clean both maps
   plain.merge_coincident_cones = false;
+  plain.fold_refinement_rounds = 0;
   const ParamJob without = parameterize_mesh(mesh, plain);
   const Mesh& m0 = without.mesh(mesh);
   ASSERT_GT(faces_with_coincident_cones(m0, without.map), 0) << "the case this test is about no longer occurs";
@@ -89,7 +92,9 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
     EXPECT_GT(c.from, c.into);
     EXPECT_TRUE(c.quarters >= 1 && c.quarters <= 3);
   }
-  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  PipelineOptions merge;
+  merge.fold_refinement_rounds = 0;
+  const ParamJob with = parameterize_mesh(mesh, merge);
   EXPECT_GT(with.merged_cone_pairs, 0);
   EXPECT_LT(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
   // Each merge turns at least one branch point into a regular vertex.
