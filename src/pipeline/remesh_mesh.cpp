@@ -29,16 +29,31 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
 RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   RemeshJob job;
   job.param = parameterize_mesh(input, options, progress);
-  const Mesh& mesh = job.param.mesh(input);  // the map's triangulation (refined, or the input)
-  const Parameterization& map = job.param.map;
-  check_extractable(mesh, map);
   StageMeter meter;
   auto lap = [&](const char* stage) { meter.lap(stage, job.param.seconds, job.param.peak_bytes); };
   FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C
-  job.extraction = extract_quads(mesh, map, options.extraction, finishing);
+  check_extractable(job.param.mesh(input), job.param.map);
+  job.extraction = extract_quads(job.param.mesh(input), job.param.map, options.extraction, finishing);
   lap("extract");
+  if (job.extraction.mesh.num_faces() == 0 && job.param.fold_refinement.kept_rounds > 0) {
+    // The refined map gave no quad mesh (seen on triangulations too coarse for the density): the map of the
+    // input's own triangulation, folds and all, is the better result; said on stderr.
+    PipelineOptions unrefined = options;
+    unrefined.fold_refinement_rounds = 0;
+    const int added = job.param.fold_refinement.added_faces;
+    job.param = parameterize_mesh(input, unrefined, finishing);
+    job.param.warnings.push_back("the fold-refined map (" + std::to_string(added) +
+                                 " triangles added) gave no quad mesh; remeshed from the map without the fold "
+                                 "refinement instead, which keeps its flipped or collapsed triangles");
+    meter.restart();
+    check_extractable(job.param.mesh(input), job.param.map);
+    job.extraction = extract_quads(job.param.mesh(input), job.param.map, options.extraction, finishing);
+    lap("extract");
+  }
   if (job.extraction.mesh.num_faces() == 0)
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
+  const Mesh& mesh = job.param.mesh(input);  // the map's triangulation (refined, or the input)
+  const Parameterization& map = job.param.map;
   job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
   lap("smooth");
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
