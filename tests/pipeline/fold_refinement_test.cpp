@@ -9,6 +9,7 @@
 #include "param/seams.h"
 #include "param/untangle.h"
 #include "pipeline/parameterize_mesh.h"
+#include "pipeline/remesh_mesh.h"
 #include "pipeline/split_map.h"
 #include "support/test_meshes.h"
 
@@ -146,6 +147,34 @@ TEST(FoldRefinement, DISABLED_CowEndsWithoutNonPositiveTriangles) {
   const Mesh mesh = testing::load_test_mesh("cow");
   const ParamJob job = parameterize_mesh(mesh, PipelineOptions{});
   EXPECT_EQ(non_positive(job.mesh(mesh), job.map.uv), 0);
+}
+
+/// A 40 x 20 torus with slivers: ring 5 moved 99.99 % of the way to ring 6 (1 : 10^4 triangles), and every fourth
+/// vertex of ring 5 on the segment between two neighbours up to 1e-6 of its offset (needles).
+Mesh sliver_torus(bool needles) {
+  const Mesh torus = testing::make_torus(40, 20);
+  Eigen::MatrixX3d V = torus.V();
+  auto id = [](int i, int j) { return ((i + 40) % 40) * 20 + (j + 20) % 20; };
+  for (int j = 0; j < 20; ++j) {
+    if (!needles) {
+      V.row(id(5, j)) += 0.9999 * (V.row(id(6, j)) - V.row(id(5, j)));
+    } else if (j % 4 == 0) {
+      const Eigen::RowVector3d mid = 0.5 * (V.row(id(4, j)) + V.row(id(5, j + 1)));
+      V.row(id(5, j)) = mid + 1e-6 * (V.row(id(5, j)) - mid);
+    }
+  }
+  return Mesh::from_triangles(V, torus.F());
+}
+
+TEST(FoldRefinement, SliversAndNeedlesGiveAnInjectiveMapAndTheSameSurfaceAsQuads) {
+  for (const bool needles : {false, true}) {
+    SCOPED_TRACE(needles ? "needles" : "slivers");
+    const Mesh mesh = sliver_torus(needles);
+    const RemeshJob job = remesh_mesh(mesh, PipelineOptions{});
+    EXPECT_EQ(non_positive(job.param.mesh(mesh), job.param.map.uv), 0);
+    EXPECT_TRUE(job.surface.same_topology);
+    EXPECT_TRUE(job.surface.closed_all_quads);
+  }
 }
 
 }  // namespace
