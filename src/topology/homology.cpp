@@ -104,125 +104,153 @@ Complex edge_midpoint(const Mesh& mesh, int f, int e) {
   return 0.5 * (mesh.corner_local()(f, (k + 1) % 3) + mesh.corner_local()(f, (k + 2) % 3));
 }
 
-}  // namespace
+/// Nodes of the cut graph's root structure: every interior source is a node, all boundary vertices of a component
+/// are one node (the identification of [KNP10]).
+struct RootNodes {
+  std::vector<int> of_vertex;        ///< #V: node of a source, -1 elsewhere
+  std::vector<char> is_boundary;     ///< per node
+  int size() const { return static_cast<int>(is_boundary.size()); }
+};
 
-HomologyBasis homology_basis(const Mesh& mesh, const CutGraph& graph) {
-  const int nv = mesh.num_vertices();
-  HomologyBasis basis;
-
-  // Nodes of the cut graph's root structure: every interior source is a node, all boundary vertices of a component
-  // are one node (the identification of [KNP10]).
-  std::vector<int> node(static_cast<std::size_t>(nv), -1);
-  int num_nodes = 0;
+RootNodes root_nodes(const Mesh& mesh, const CutGraph& graph) {
+  RootNodes nodes;
+  nodes.of_vertex.assign(static_cast<std::size_t>(mesh.num_vertices()), -1);
   std::vector<int> boundary_node(static_cast<std::size_t>(mesh.num_components()), -1);
+  int count = 0;
   for (const int s : graph.sources) {
     if (mesh.is_boundary_vertex(s)) {
       int& b = boundary_node[mesh.vertex_component()[s]];
-      if (b < 0) b = num_nodes++;
-      node[s] = b;
+      if (b < 0) b = count++;
+      nodes.of_vertex[s] = b;
     } else {
-      node[s] = num_nodes++;
+      nodes.of_vertex[s] = count++;
     }
   }
-  std::vector<char> is_boundary_node(static_cast<std::size_t>(num_nodes), 0);
+  nodes.is_boundary.assign(static_cast<std::size_t>(count), 0);
   for (const int b : boundary_node)
-    if (b >= 0) is_boundary_node[b] = 1;
+    if (b >= 0) nodes.is_boundary[b] = 1;
+  return nodes;
+}
 
-  // Spanning forest of the node graph whose edges are the cut paths, shortest paths first; the other paths each
-  // close one fundamental cycle.
-  const int np = static_cast<int>(graph.paths.size());
-  std::vector<int> order(static_cast<std::size_t>(np));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const CutPath &pa = graph.paths[a], &pb = graph.paths[b];
-    return pa.length != pb.length ? pa.length < pb.length : pa.leftover_edge < pb.leftover_edge;
-  });
-  detail::UnionFind forest(num_nodes);
-  struct Link {
-    int node, path;
-    bool forward;  // traversing the path from its first to its last vertex leads to `node`
-  };
-  std::vector<std::vector<Link>> links(static_cast<std::size_t>(num_nodes));
+/// A cut path traversed towards `node`: forward = from its first to its last vertex.
+struct Link {
+  int node, path;
+  bool forward;
+};
+
+/// Spanning forest of the node graph whose edges are the cut paths, shortest paths first; each other path (in
+/// `closing`, ascending) closes one fundamental cycle.
+struct PathForest {
+  std::vector<std::vector<Link>> links;  ///< per node: the forest's paths at it
   std::vector<int> closing;
-  for (const int i : order) {
-    const CutPath& p = graph.paths[i];
-    const int a = node[p.vertices.front()], b = node[p.vertices.back()];
-    if (forest.unite(a, b)) {
-      links[a].push_back({b, i, true});
-      links[b].push_back({a, i, false});
-    } else {
-      closing.push_back(i);
-    }
-  }
-  std::sort(closing.begin(), closing.end());
 
-  // Node path in the forest from `from` to `to` (BFS; the forest has at most |B| + #components nodes).
-  auto forest_path = [&](int from, int to) {
-    std::vector<int> via(static_cast<std::size_t>(num_nodes), -2), via_link(static_cast<std::size_t>(num_nodes), -1);
+  PathForest(const CutGraph& graph, const RootNodes& nodes) : links(static_cast<std::size_t>(nodes.size())) {
+    const int np = static_cast<int>(graph.paths.size());
+    std::vector<int> order(static_cast<std::size_t>(np));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const CutPath &pa = graph.paths[a], &pb = graph.paths[b];
+      return pa.length != pb.length ? pa.length < pb.length : pa.leftover_edge < pb.leftover_edge;
+    });
+    detail::UnionFind forest(nodes.size());
+    for (const int i : order) {
+      const CutPath& p = graph.paths[i];
+      const int a = nodes.of_vertex[p.vertices.front()], b = nodes.of_vertex[p.vertices.back()];
+      if (forest.unite(a, b)) {
+        links[a].push_back({b, i, true});
+        links[b].push_back({a, i, false});
+      } else {
+        closing.push_back(i);
+      }
+    }
+    std::sort(closing.begin(), closing.end());
+  }
+
+  /// The links from node `from` to node `to` in the forest (BFS; at most |B| + #components nodes).
+  std::vector<Link> path(int from, int to) const {
+    const std::size_t n = links.size();
+    std::vector<int> via(n, -2), via_link(n, -1);
     std::vector<int> queue{from};
     via[from] = -1;
     for (std::size_t q = 0; q < queue.size() && via[to] == -2; ++q)
       for (int l = 0; l < static_cast<int>(links[queue[q]].size()); ++l) {
-        const int n = links[queue[q]][l].node;
-        if (via[n] != -2) continue;
-        via[n] = queue[q];
-        via_link[n] = l;
-        queue.push_back(n);
+        const int next = links[queue[q]][l].node;
+        if (via[next] != -2) continue;
+        via[next] = queue[q];
+        via_link[next] = l;
+        queue.push_back(next);
       }
     std::vector<Link> steps;
-    for (int n = to; n != from; n = via[n]) steps.push_back(links[via[n]][via_link[n]]);
+    for (int k = to; k != from; k = via[k]) steps.push_back(links[via[k]][via_link[k]]);
     std::reverse(steps.begin(), steps.end());
     return steps;
-  };
+  }
+};
 
-  const RootedCotree cotree(mesh, graph);
-  std::vector<Eigen::Triplet<Complex>> period_entries;
-  for (const int i : closing) {
-    const CutPath& p = graph.paths[i];
-    // The fundamental cycle as a sequence of oriented cut paths: p itself, then back through the forest.
-    std::vector<Link> segments{{node[p.vertices.back()], i, true}};
-    for (const Link& l : forest_path(node[p.vertices.back()], node[p.vertices.front()])) segments.push_back(l);
-    // Open the cycle where it passes through a boundary node (at most once: the node cycle is simple).
-    std::size_t first = 0;
-    bool open = false;
-    for (std::size_t s = 0; s < segments.size(); ++s)
-      if (is_boundary_node[segments[s].node]) {
-        first = (s + 1) % segments.size();
-        open = true;
-      }
-    Walk walk;
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-      const Link& l = segments[(first + s) % segments.size()];
-      const CutPath& q = graph.paths[l.path];
-      if (s == 0) walk.start(l.forward ? q.vertices.front() : q.vertices.back());
-      walk.append(q, l.forward);
+/// The generator closed by path i: p itself, then back through the forest, opened where it passes through a
+/// boundary node (at most once: the node cycle is simple).
+HomologyGenerator generator_of(const CutGraph& graph, const RootNodes& nodes, const PathForest& forest, int i) {
+  const CutPath& p = graph.paths[i];
+  const int end = nodes.of_vertex[p.vertices.back()], start = nodes.of_vertex[p.vertices.front()];
+  std::vector<Link> segments{{end, i, true}};
+  for (const Link& l : forest.path(end, start)) segments.push_back(l);
+  std::size_t first = 0;
+  bool open = false;
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    if (nodes.is_boundary[segments[s].node]) {
+      first = (s + 1) % segments.size();
+      open = true;
     }
-    if (!open) walk.reduce_cyclically();
-    HomologyGenerator gen;
-    gen.vertices = std::move(walk.vertices);
-    gen.edges = std::move(walk.edges);
-    gen.closed = !open;
-    gen.crossing_edge = p.leftover_edge;
-    if (gen.closed && gen.vertices.front() != gen.vertices.back())
-      throw TopologyError("homology_basis: generator through edge " + std::to_string(p.leftover_edge) +
-                          " does not close");
+  Walk walk;
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const Link& l = segments[(first + s) % segments.size()];
+    const CutPath& q = graph.paths[l.path];
+    if (s == 0) walk.start(l.forward ? q.vertices.front() : q.vertices.back());
+    walk.append(q, l.forward);
+  }
+  if (!open) walk.reduce_cyclically();
+  HomologyGenerator gen;
+  gen.vertices = std::move(walk.vertices);
+  gen.edges = std::move(walk.edges);
+  gen.closed = !open;
+  gen.crossing_edge = p.leftover_edge;
+  if (gen.closed && gen.vertices.front() != gen.vertices.back())
+    throw TopologyError("homology_basis: generator through edge " + std::to_string(p.leftover_edge) +
+                        " does not close");
+  return gen;
+}
 
-    // Dual cycle: from the face left of e_j (as γ_j traverses it) to the right one, back through T*.
-    const int e = p.leftover_edge;
-    std::size_t at = 0;
-    while (at < gen.edges.size() && gen.edges[at] != e) ++at;
-    if (at == gen.edges.size())
-      throw TopologyError("homology_basis: leftover edge " + std::to_string(e) + " cancelled from its generator");
-    const bool positive = gen.vertices[at] == mesh.E()(e, 0);  // traversed along the edge's orientation
-    const int left = mesh.EF()(e, positive ? 0 : 1), right = mesh.EF()(e, positive ? 1 : 0);
-    DualCycle dual;
-    std::vector<int> back_faces, back_edges;
-    cotree.path(right, left, back_faces, back_edges);
-    dual.faces.push_back(left);
-    dual.faces.insert(dual.faces.end(), back_faces.begin(), back_faces.end() - 1);
-    dual.edges.push_back(e);
-    dual.edges.insert(dual.edges.end(), back_edges.begin(), back_edges.end());
+/// Dual cycle of a generator: from the face left of its crossing edge e_j (as γ_j traverses it) to the right one,
+/// back through T*.
+DualCycle dual_cycle_of(const Mesh& mesh, const RootedCotree& cotree, const HomologyGenerator& gen) {
+  const int e = gen.crossing_edge;
+  std::size_t at = 0;
+  while (at < gen.edges.size() && gen.edges[at] != e) ++at;
+  if (at == gen.edges.size())
+    throw TopologyError("homology_basis: leftover edge " + std::to_string(e) + " cancelled from its generator");
+  const bool positive = gen.vertices[at] == mesh.E()(e, 0);  // traversed along the edge's orientation
+  const int left = mesh.EF()(e, positive ? 0 : 1), right = mesh.EF()(e, positive ? 1 : 0);
+  DualCycle dual;
+  std::vector<int> back_faces, back_edges;
+  cotree.path(right, left, back_faces, back_edges);
+  dual.faces.push_back(left);
+  dual.faces.insert(dual.faces.end(), back_faces.begin(), back_faces.end() - 1);
+  dual.edges.push_back(e);
+  dual.edges.insert(dual.edges.end(), back_edges.begin(), back_edges.end());
+  return dual;
+}
 
+}  // namespace
+
+HomologyBasis homology_basis(const Mesh& mesh, const CutGraph& graph) {
+  const RootNodes nodes = root_nodes(mesh, graph);
+  const PathForest forest(graph, nodes);
+  const RootedCotree cotree(mesh, graph);
+  HomologyBasis basis;
+  std::vector<Eigen::Triplet<Complex>> period_entries;
+  for (const int i : forest.closing) {
+    HomologyGenerator gen = generator_of(graph, nodes, forest, i);
+    DualCycle dual = dual_cycle_of(mesh, cotree, gen);
     // Period operator row: segment from the entry to the exit midpoint in every face of γ_j*.
     const int row = static_cast<int>(basis.generators.size());
     const std::size_t n = dual.faces.size();
