@@ -60,14 +60,9 @@ void path_to_root(const Mesh& mesh, const CutGraph& g, int v, std::vector<int>& 
   }
 }
 
-}  // namespace
-
-CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOptions& options) {
-  const int nv = mesh.num_vertices(), ne = mesh.num_edges(), nf = mesh.num_faces();
-  const Eigen::VectorXd w = checked_weights(mesh, options);
-  CutGraph g;
-
-  // Sources: B ∪ ∂M, plus a root for each closed component without base vertices ([KNP10]).
+/// Sources: B ∪ ∂M, plus a root (the lowest vertex) for each component without base or boundary vertices ([KNP10]).
+std::vector<int> cut_sources(const Mesh& mesh, std::span<const int> base) {
+  const int nv = mesh.num_vertices();
   std::vector<char> is_source(static_cast<std::size_t>(nv), 0);
   for (const int v : base) {
     if (v < 0 || v >= nv)
@@ -84,10 +79,16 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
     const int c = mesh.vertex_component()[v];
     if (!component_has_source[c]) component_has_source[c] = is_source[v] = 1;
   }
+  std::vector<int> sources;
   for (int v = 0; v < nv; ++v)
-    if (is_source[v]) g.sources.push_back(v);
+    if (is_source[v]) sources.push_back(v);
+  return sources;
+}
 
-  // Step 1: shortest-path forest T from all sources at once (Dijkstra; ties resolved by vertex index).
+/// Step 1: shortest-path forest T from all sources at once (Dijkstra; ties resolved by vertex index): parent_edge,
+/// root, distance.
+void shortest_path_forest(const Mesh& mesh, const Eigen::VectorXd& w, CutGraph& g) {
+  const int nv = mesh.num_vertices();
   const VertexEdges adjacency(mesh);
   g.parent_edge = Eigen::VectorXi::Constant(nv, -1);
   g.root = Eigen::VectorXi::Constant(nv, -1);
@@ -117,22 +118,25 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
       }
     }
   }
-  std::vector<char> in_tree(static_cast<std::size_t>(ne), 0);
-  for (int v = 0; v < nv; ++v)
-    if (g.parent_edge[v] >= 0) in_tree[g.parent_edge[v]] = 1;
+}
 
-  // Step 2: maximum spanning tree T* of the dual of G \ T, weighted by |σ(e)| (Kruskal; ties by edge index).
-  // Boundary edges are collapsed by the identification and have no dual edge.
-  auto loop_length = [&](int e) { return g.distance[mesh.E()(e, 0)] + g.distance[mesh.E()(e, 1)] + w[e]; };
+/// Step 2: maximum spanning tree T* of the dual of G \ T, weighted by |σ(e)| (Kruskal; ties by edge index): the
+/// cotree flags. Boundary edges are collapsed by the identification and have no dual edge. Returns the edges
+/// neither in T nor crossed by T* (ascending); sigma gets |σ(e)| of every candidate edge.
+std::vector<int> cotree_leftovers(const Mesh& mesh, const Eigen::VectorXd& w, CutGraph& g, std::vector<double>& sigma) {
+  const int ne = mesh.num_edges();
+  std::vector<char> in_tree(static_cast<std::size_t>(ne), 0);
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (g.parent_edge[v] >= 0) in_tree[g.parent_edge[v]] = 1;
   std::vector<int> candidates;
   for (int e = 0; e < ne; ++e)
     if (!in_tree[e] && !mesh.is_boundary_edge(e)) candidates.push_back(e);
-  std::vector<double> sigma(static_cast<std::size_t>(ne), 0.0);
-  for (const int e : candidates) sigma[e] = loop_length(e);
+  sigma.assign(static_cast<std::size_t>(ne), 0.0);
+  for (const int e : candidates) sigma[e] = g.distance[mesh.E()(e, 0)] + g.distance[mesh.E()(e, 1)] + w[e];
   std::sort(candidates.begin(), candidates.end(),
             [&](int a, int b) { return sigma[a] != sigma[b] ? sigma[a] > sigma[b] : a < b; });
   g.cotree = Eigen::VectorXi::Zero(ne);
-  detail::UnionFind faces(nf);
+  detail::UnionFind faces(mesh.num_faces());
   std::vector<int> leftover;
   for (const int e : candidates) {
     if (faces.unite(mesh.EF()(e, 0), mesh.EF()(e, 1)))
@@ -141,10 +145,37 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
       leftover.push_back(e);
   }
   std::sort(leftover.begin(), leftover.end());
+  return leftover;
+}
 
-  // Step 3: σ(e) for every edge neither in T nor crossed by T*; undoing the identification makes it a path
-  // between two sources.
-  g.cut = Eigen::VectorXi::Zero(ne);
+/// Each component's source nodes (interior sources, plus one node for the whole boundary) are joined by
+/// nodes - 1 of its paths; every further path closes a loop.
+int count_loops(const Mesh& mesh, const CutGraph& g) {
+  std::vector<int> nodes(static_cast<std::size_t>(mesh.num_components()), 0);
+  std::vector<char> boundary_counted(static_cast<std::size_t>(mesh.num_components()), 0);
+  for (const int s : g.sources) {
+    const int c = mesh.vertex_component()[s];
+    if (!mesh.is_boundary_vertex(s))
+      ++nodes[c];
+    else if (!boundary_counted[c])
+      boundary_counted[c] = 1, ++nodes[c];
+  }
+  int loops = static_cast<int>(g.paths.size());
+  for (const int n : nodes) loops -= n - 1;
+  return loops;
+}
+
+}  // namespace
+
+CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOptions& options) {
+  const Eigen::VectorXd w = checked_weights(mesh, options);
+  CutGraph g;
+  g.sources = cut_sources(mesh, base);
+  shortest_path_forest(mesh, w, g);
+  std::vector<double> sigma;
+  const std::vector<int> leftover = cotree_leftovers(mesh, w, g, sigma);
+  // Step 3: σ(e) for every leftover edge; undoing the identification makes it a path between two sources.
+  g.cut = Eigen::VectorXi::Zero(mesh.num_edges());
   std::vector<int> up0, up0_edges, up1, up1_edges;
   for (const int e : leftover) {
     path_to_root(mesh, g, mesh.E()(e, 0), up0, up0_edges);
@@ -160,21 +191,9 @@ CutGraph cut_graph(const Mesh& mesh, std::span<const int> base, const CutGraphOp
     for (const int c : p.edges) g.cut[c] = 1;
     g.paths.push_back(std::move(p));
   }
-  for (int e = 0; e < ne; ++e)
+  for (int e = 0; e < mesh.num_edges(); ++e)
     if (g.cut[e]) g.total_length += w[e];
-  // Each component's source nodes (interior sources, plus one node for the whole boundary) are joined by
-  // nodes - 1 of its paths; every further path closes a loop.
-  std::vector<int> nodes(static_cast<std::size_t>(mesh.num_components()), 0);
-  std::vector<char> boundary_counted(static_cast<std::size_t>(mesh.num_components()), 0);
-  for (const int s : g.sources) {
-    const int c = mesh.vertex_component()[s];
-    if (!mesh.is_boundary_vertex(s))
-      ++nodes[c];
-    else if (!boundary_counted[c])
-      boundary_counted[c] = 1, ++nodes[c];
-  }
-  g.num_loops = static_cast<int>(g.paths.size());
-  for (const int n : nodes) g.num_loops -= n - 1;
+  g.num_loops = count_loops(mesh, g);
   return g;
 }
 
