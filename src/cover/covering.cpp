@@ -6,7 +6,7 @@
 
 #include "common/errors.h"
 #include "common/quarter_turn.h"
-#include "topology/union_find.h"
+#include "common/union_find.h"
 
 namespace quadcover {
 

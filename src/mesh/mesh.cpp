@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "common/errors.h"
+#include "common/union_find.h"
 #include "mesh/edge_table.h"
 
 namespace quadcover {
@@ -106,6 +107,91 @@ double Mesh::bounding_box_diagonal() const {
   return (V_.colwise().maxCoeff() - V_.colwise().minCoeff()).norm();
 }
 
+namespace {
+
+/// Ordered fans (counter-clockwise, a boundary fan from its start). Around vertex v = corner k of face f, the next
+/// face counter-clockwise is the one across the face edge opposite corner k+1 (the edge {v, corner k+2}); the
+/// previous is across the edge opposite corner k+2. \pre F, FE, EF built.
+void ordered_fans(const Mesh& m, std::vector<int>& offsets, std::vector<Mesh::FanCorner>& fan) {
+  const int nv = m.num_vertices(), nf = m.num_faces();
+  std::vector<int> first_corner(static_cast<std::size_t>(nv), -1);  // some (f,k) at v, preferring a fan start
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = m.F()(f, k);
+      const bool starts = m.neighbor(f, (k + 2) % 3) < 0;  // nothing clockwise of this face: a boundary fan start
+      if (first_corner[static_cast<std::size_t>(v)] < 0 || starts) first_corner[static_cast<std::size_t>(v)] = 3 * f + k;
+    }
+  offsets.assign(static_cast<std::size_t>(nv) + 1, 0);
+  fan.clear();
+  fan.reserve(static_cast<std::size_t>(3 * nf));
+  for (int v = 0; v < nv; ++v) {
+    offsets[static_cast<std::size_t>(v)] = static_cast<int>(fan.size());
+    const int start = first_corner[static_cast<std::size_t>(v)];
+    int f = start / 3, k = start % 3;
+    do {
+      fan.push_back({f, k});
+      const int next = m.neighbor(f, (k + 1) % 3);
+      if (next < 0) break;
+      int nk = 0;
+      while (m.F()(next, nk) != v) ++nk;
+      f = next;
+      k = nk;
+    } while (f != start / 3);
+  }
+  offsets[static_cast<std::size_t>(nv)] = static_cast<int>(fan.size());
+}
+
+/// Boundary loops: boundary half-edges a -> b (face to the left) followed from vertex to vertex, each loop from its
+/// lowest edge. \pre E, EF built.
+void trace_boundary_loops(const Mesh& m, std::vector<std::vector<int>>& loops,
+                          std::vector<std::vector<int>>& loop_edges) {
+  const int nv = m.num_vertices(), ne = m.num_edges();
+  const Eigen::MatrixX2i &E = m.E(), &EF = m.EF();
+  std::vector<int> next_boundary_edge(static_cast<std::size_t>(nv), -1);
+  for (int e = 0; e < ne; ++e) {
+    if (!m.is_boundary_edge(e)) continue;
+    const bool positive = EF(e, 0) >= 0;  // the face traverses E0 -> E1
+    next_boundary_edge[static_cast<std::size_t>(positive ? E(e, 0) : E(e, 1))] = e;
+  }
+  loops.clear();
+  loop_edges.clear();
+  std::vector<char> visited(static_cast<std::size_t>(ne), 0);
+  for (int e0 = 0; e0 < ne; ++e0) {
+    if (!m.is_boundary_edge(e0) || visited[static_cast<std::size_t>(e0)]) continue;
+    std::vector<int> loop, edges;
+    int e = e0;
+    while (!visited[static_cast<std::size_t>(e)]) {
+      visited[static_cast<std::size_t>(e)] = 1;
+      const bool positive = EF(e, 0) >= 0;
+      const int from = positive ? E(e, 0) : E(e, 1), to = positive ? E(e, 1) : E(e, 0);
+      loop.push_back(from);
+      edges.push_back(e);
+      e = next_boundary_edge[static_cast<std::size_t>(to)];
+    }
+    loops.push_back(std::move(loop));
+    loop_edges.push_back(std::move(edges));
+  }
+}
+
+/// Component of each face (faces joined through interior edges), numbered in order of their lowest face.
+Eigen::VectorXi face_components(const Mesh& m) {
+  const int nf = m.num_faces();
+  detail::UnionFind faces(nf);
+  for (int e = 0; e < m.num_edges(); ++e)
+    if (!m.is_boundary_edge(e)) faces.unite(m.EF()(e, 0), m.EF()(e, 1));
+  Eigen::VectorXi component(nf);
+  std::vector<int> label(static_cast<std::size_t>(nf), -1);
+  int nc = 0;
+  for (int f = 0; f < nf; ++f) {
+    const int r = faces.find(f);
+    if (label[static_cast<std::size_t>(r)] < 0) label[static_cast<std::size_t>(r)] = nc++;
+    component[f] = label[static_cast<std::size_t>(r)];
+  }
+  return component;
+}
+
+}  // namespace
+
 void Mesh::build_connectivity() {
   const int nv = num_vertices(), nf = num_faces();
   std::vector<std::array<std::int64_t, 3>> tris(static_cast<std::size_t>(nf));
@@ -138,80 +224,10 @@ void Mesh::build_connectivity() {
   for (int e = 0; e < ne; ++e)
     if (is_boundary_edge(e)) boundary_vertex_[E_(e, 0)] = boundary_vertex_[E_(e, 1)] = 1;
 
-  // Ordered fans. Around vertex v = corner k of face f, the next face counter-clockwise is the one across the
-  // face edge opposite corner k+1 (the edge {v, corner k+2}); the previous is across the edge opposite corner k+2.
-  std::vector<int> first_corner(static_cast<std::size_t>(nv), -1);  // some (f,k) at v, preferring a fan start
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int v = F_(f, k);
-      const bool starts = neighbor(f, (k + 2) % 3) < 0;  // nothing clockwise of this face: a boundary fan start
-      if (first_corner[static_cast<std::size_t>(v)] < 0 || starts) first_corner[static_cast<std::size_t>(v)] = 3 * f + k;
-    }
-  fan_offsets_.assign(static_cast<std::size_t>(nv) + 1, 0);
-  fan_.clear();
-  fan_.reserve(static_cast<std::size_t>(3 * nf));
-  for (int v = 0; v < nv; ++v) {
-    fan_offsets_[static_cast<std::size_t>(v)] = static_cast<int>(fan_.size());
-    const int start = first_corner[static_cast<std::size_t>(v)];
-    int f = start / 3, k = start % 3;
-    do {
-      fan_.push_back({f, k});
-      const int next = neighbor(f, (k + 1) % 3);
-      if (next < 0) break;
-      int nk = 0;
-      while (F_(next, nk) != v) ++nk;
-      f = next;
-      k = nk;
-    } while (f != start / 3);
-  }
-  fan_offsets_[static_cast<std::size_t>(nv)] = static_cast<int>(fan_.size());
-
-  // Boundary loops: follow boundary half-edges a -> b (face to the left) from vertex to vertex.
-  std::vector<int> next_boundary_edge(static_cast<std::size_t>(nv), -1);
-  for (int e = 0; e < ne; ++e) {
-    if (!is_boundary_edge(e)) continue;
-    const bool positive = EF_(e, 0) >= 0;  // the face traverses E0 -> E1
-    next_boundary_edge[static_cast<std::size_t>(positive ? E_(e, 0) : E_(e, 1))] = e;
-  }
-  boundary_loops_.clear();
-  boundary_loop_edges_.clear();
-  std::vector<char> visited(static_cast<std::size_t>(ne), 0);
-  for (int e0 = 0; e0 < ne; ++e0) {
-    if (!is_boundary_edge(e0) || visited[static_cast<std::size_t>(e0)]) continue;
-    std::vector<int> loop, loop_edges;
-    int e = e0;
-    while (!visited[static_cast<std::size_t>(e)]) {
-      visited[static_cast<std::size_t>(e)] = 1;
-      const bool positive = EF_(e, 0) >= 0;
-      const int from = positive ? E_(e, 0) : E_(e, 1), to = positive ? E_(e, 1) : E_(e, 0);
-      loop.push_back(from);
-      loop_edges.push_back(e);
-      e = next_boundary_edge[static_cast<std::size_t>(to)];
-    }
-    boundary_loops_.push_back(std::move(loop));
-    boundary_loop_edges_.push_back(std::move(loop_edges));
-  }
-
-  // Components: union-find on faces through edges.
-  std::vector<int> parent(static_cast<std::size_t>(nf));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-  };
-  for (int e = 0; e < ne; ++e)
-    if (!is_boundary_edge(e)) {
-      const int a = find(EF_(e, 0)), b = find(EF_(e, 1));
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-  face_component_.resize(nf);
-  std::vector<int> label(static_cast<std::size_t>(nf), -1);
-  int nc = 0;
-  for (int f = 0; f < nf; ++f) {
-    const int r = find(f);
-    if (label[static_cast<std::size_t>(r)] < 0) label[static_cast<std::size_t>(r)] = nc++;
-    face_component_[f] = label[static_cast<std::size_t>(r)];
-  }
+  ordered_fans(*this, fan_offsets_, fan_);
+  trace_boundary_loops(*this, boundary_loops_, boundary_loop_edges_);
+  face_component_ = face_components(*this);
+  const int nc = nf == 0 ? 0 : face_component_.maxCoeff() + 1;
   components_.assign(static_cast<std::size_t>(nc), ComponentInfo{});
   vertex_component_.resize(nv);
   for (int v = 0; v < nv; ++v) {

@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "topology/union_find.h"
+#include "common/union_find.h"
 
 namespace quadcover {
 

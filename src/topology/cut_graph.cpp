@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "common/errors.h"
-#include "topology/union_find.h"
+#include "common/union_find.h"
 
 namespace quadcover {
 namespace {

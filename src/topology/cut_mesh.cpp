@@ -3,7 +3,7 @@
 #include <string>
 
 #include "common/errors.h"
-#include "topology/union_find.h"
+#include "common/union_find.h"
 
 namespace quadcover {
 

@@ -12,7 +12,7 @@
 #include "common/errors.h"
 #include "support/test_meshes.h"
 #include "topology/base_sets.h"
-#include "topology/union_find.h"
+#include "common/union_find.h"
 
 namespace quadcover {
 namespace {

@@ -1,5 +1,6 @@
 #pragma once
-// Disjoint sets with path halving and union by size (helper of the topology stage, also used by later stages).
+// Disjoint sets with path halving and union by size: the one union-find of every stage (mesh connectivity, cut
+// graphs, coverings, extraction).
 #include <numeric>
 #include <utility>
 #include <vector>
