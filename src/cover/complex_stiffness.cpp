@@ -150,4 +150,14 @@ Eigen::VectorXcd complex_curl_star(const Mesh& mesh, const FrameField& field) {
   return curl;
 }
 
+Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u) {
+  Eigen::MatrixX3cd c(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int a = 0; a < 3; ++a) {
+      const int p = mesh.F()(f, a);
+      c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
+    }
+  return c;
+}
+
 }  // namespace quadcover

@@ -27,6 +27,9 @@ struct VertexLayers {
 };
 /// \throw InputError if matching does not have #E entries.
 VertexLayers vertex_layers(const Mesh& mesh, const Eigen::VectorXi& matching);
+/// Per-corner values i^λ u_p of a vertex function u (0 at branch points): the covering function ũ of u on M.
+/// \pre layers fit mesh, u has #V entries.
+Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u);
 
 /// 𝔏̄* (3.8): #E by #E Hermitian, (i,j) = i^l 𝔏*_ij where ẽ_i^l ~ ẽ_j^0 under the matching, (i,i) = 𝔏*_ii.
 /// Its sparsity pattern equals that of 𝔏* for every matching (zero-valued entries are stored explicitly).

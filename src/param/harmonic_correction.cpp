@@ -62,14 +62,7 @@ Eigen::MatrixXcd HarmonicCorrection::solve(const Eigen::MatrixXcd& B) const {
 }
 
 Eigen::MatrixX3cd HarmonicCorrection::corner_values(const Eigen::VectorXcd& u) const {
-  const Mesh& mesh = *mesh_;
-  Eigen::MatrixX3cd c(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      const int p = mesh.F()(f, a);
-      c(f, a) = layers_.branch[p] ? Complex(0) : ipow(layers_.layer(f, a)) * u[p];
-    }
-  return c;
+  return layered_values(*mesh_, layers_, u);
 }
 
 FramePairs HarmonicCorrection::harmonic_part(const FramePairs& Sigma) const {

@@ -424,16 +424,6 @@ std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers
   return fixed;
 }
 
-Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u) {
-  Eigen::MatrixX3cd c(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      const int p = mesh.F()(f, a);
-      c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
-    }
-  return c;
-}
-
 std::vector<int> release_stuck_corners(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                                        const FramePairs& Z, std::vector<char>& fixed,
                                        const std::vector<char>& releasable) {

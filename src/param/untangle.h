@@ -76,7 +76,4 @@ std::vector<int> release_stuck_corners(const Mesh& mesh, const VertexLayers& lay
                                        const FramePairs& Z, std::vector<char>& fixed,
                                        const std::vector<char>& releasable);
 
-/// Per-corner values i^λ u_p of a vertex function u (0 at branch points), as HarmonicCorrection::corner_values.
-Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u);
-
 }  // namespace quadcover
