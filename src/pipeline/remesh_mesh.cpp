@@ -32,9 +32,12 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
   StageMeter meter;
   auto lap = [&](const char* stage) { meter.lap(stage, job.param.seconds, job.param.peak_bytes); };
   FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C
-  check_extractable(job.param.mesh(input), job.param.map);
-  job.extraction = extract_quads(job.param.mesh(input), job.param.map, options.extraction, finishing);
-  lap("extract");
+  auto extract = [&] {
+    check_extractable(job.param.mesh(input), job.param.map);
+    job.extraction = extract_quads(job.param.mesh(input), job.param.map, options.extraction, finishing);
+    lap("extract");
+  };
+  extract();
   if (job.extraction.mesh.num_faces() == 0 && job.param.fold_refinement.kept_rounds > 0) {
     // The refined map gave no quad mesh (seen on triangulations too coarse for the density): the map of the
     // input's own triangulation, folds and all, is the better result; said on stderr.
@@ -46,9 +49,7 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
                                  " triangles added) gave no quad mesh; remeshed from the map without the fold "
                                  "refinement instead, which keeps its flipped or collapsed triangles");
     meter.restart();
-    check_extractable(job.param.mesh(input), job.param.map);
-    job.extraction = extract_quads(job.param.mesh(input), job.param.map, options.extraction, finishing);
-    lap("extract");
+    extract();
   }
   if (job.extraction.mesh.num_faces() == 0)
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");

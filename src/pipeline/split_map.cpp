@@ -3,13 +3,12 @@
 
 #include <unordered_map>
 
+#include "common/quarter_turn.h"
 #include "mesh/split_edges.h"
 
 namespace quadcover {
 
 namespace {
-
-int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 /// φ_to = i^rotation φ_from + translation across an edge (4.2.2).
 struct Transition {
