@@ -173,18 +173,18 @@ def run_one(in_dir, rel, out_dir, command="remesh", cli=None, cli_args=(), timeo
         elif code < 0:
             row["status"] = "killed by " + signal.Signals(-code).name
             row["error"] = lines[-1] if lines else "no message (the process was killed)"
-        elif code != 0:
+        elif code not in (0, 3):  # 3: partial result written (a --time-limit skipped improving stages)
             row["status"] = "bad input" if code == 2 else "failed"
             row["error"] = next((line for line in lines if line.startswith("error")), lines[-1] if lines else "")
         elif not (os.path.isfile(tmp_mesh) and os.path.isfile(tmp_report)):
-            row["status"], row["error"] = "failed", "the CLI exited 0 without writing its outputs"
+            row["status"], row["error"] = "failed", f"the CLI exited {code} without writing its outputs"
         else:
             with open(tmp_report) as f:
                 report = json.load(f)
             row.update(metrics_of(report))
             row.update(largest_stage(report))
             row["peak_memory_mb"] = process_peak_mb(peak, report)
-            row["status"] = "ok"
+            row["status"] = "partial" if code == 3 else "ok"
             report["distributed"] = {"seconds": row["seconds"], "peak_memory_mb": row["peak_memory_mb"]}
             with open(tmp_report, "w") as f:
                 json.dump(report, f, indent=1)
@@ -303,7 +303,9 @@ def main(argv=None):
     finally:
         if client is not None:
             client.close()
-    return 0 if all(r["status"] in ("ok", "skipped") for r in rows) else 1
+    if not all(r["status"] in ("ok", "skipped", "partial") for r in rows):
+        return 1
+    return 3 if any(r["status"] == "partial" for r in rows) else 0
 
 
 if __name__ == "__main__":

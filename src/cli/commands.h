@@ -3,6 +3,7 @@
 // The shared machinery every command uses (global options, progress, Ctrl-C, batch, atomic outputs) is in
 // cli/common.h, which has a short guide at its top.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 namespace quadcover::cli {
 
@@ -35,7 +36,13 @@ inline constexpr const char* kRelaxationHelp =
     "lowers the energy. The price E_R and the ARAP distortion before and after are reported "
     "(E_D + E_H + E_R + E_K = 1/2 |X - grad phi|^2). 0 = off";
 
-/// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage.
-enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2 };
+/// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage, 3 partial result written (a Ctrl-C
+/// or --time-limit skipped or cut short an improving stage: the outputs are complete and checked, not fully improved).
+enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2, kPartial = 3 };
+
+/// The exit code of a job's result: kPartial if its summary says "partial", else kOk.
+inline int result_exit_code(const nlohmann::json& result) {
+  return result.is_object() && result.value("partial", false) ? kPartial : kOk;
+}
 
 }  // namespace quadcover::cli

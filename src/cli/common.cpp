@@ -32,7 +32,10 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global) {
   cmd.add_flag("-q,--quiet", global.quiet, "Print nothing but errors and warnings (no progress, no result lines)");
   cmd.add_flag("-v,--verbose", global.verbose, "Print every progress report as its own line on stderr");
   cmd.add_option("--time-limit", global.time_limit,
-                 "Stop long stages after SECONDS and write the best result so far (default 0: no limit)")
+                 "Whole-command time budget in SECONDS (default 0: no limit): Algorithm 6.1 stops early enough to "
+                 "leave the later stages their estimated time; past the limit the stages that only improve a valid "
+                 "result are skipped or cut short, the stages a valid result needs still finish, and the command "
+                 "exits with 3 (partial result written) if anything was skipped")
       ->check(CLI::NonNegativeNumber);
   cmd.add_option("-j,--jobs", global.jobs, "Files processed at once in batch mode (default 0: all cores)")
       ->check(CLI::NonNegativeNumber);
@@ -505,6 +508,7 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
     } else {
       try {
         r.result = job(files[i], progress);
+        r.exit_code = result_exit_code(r.result);
       } catch (const SkippedExisting& e) {
         r.skipped = true;
         r.error = e.what();
@@ -518,11 +522,12 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
       std::lock_guard lock(stderr_mutex());
       log << '[' << n << '/' << files.size() << "] " << std::left << std::setw(static_cast<int>(width)) << files[i]
           << std::right
-          << (r.skipped            ? "  skipped  "
-              : r.exit_code == kOk ? "  ok  "
-                                   : "  FAILED  ")
+          << (r.skipped                 ? "  skipped  "
+              : r.exit_code == kOk      ? "  ok  "
+              : r.exit_code == kPartial ? "  partial  "
+                                        : "  FAILED  ")
           << std::fixed << std::setprecision(2) << r.seconds << " s" << std::defaultfloat << '\n';
-      if (r.exit_code != kOk) log << "  error: " << r.error << '\n';
+      if (r.exit_code != kOk && r.exit_code != kPartial) log << "  error: " << r.error << '\n';
       if (r.skipped) log << "  " << r.error << '\n';
       log << std::flush;
     }
@@ -550,9 +555,10 @@ std::string cell(const nlohmann::json& v) {
 
 void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
                    const GlobalOptions& global, std::ostream& out) {
-  int failed = 0, skipped = 0;
+  int failed = 0, skipped = 0, partial = 0;
   for (const auto& r : results) {
-    failed += r.exit_code != kOk;
+    failed += r.exit_code != kOk && r.exit_code != kPartial;
+    partial += r.exit_code == kPartial;
     skipped += r.skipped;
   }
   if (global.json) {
@@ -562,7 +568,7 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
           {"file", r.input}, {"ok", r.exit_code == kOk}, {"exit_code", r.exit_code}, {"seconds", r.seconds}};
       if (r.skipped) {
         j["skipped"] = r.error;
-      } else if (r.exit_code == kOk) {
+      } else if (r.exit_code == kOk || r.exit_code == kPartial) {
         j["result"] = r.result;
       } else {
         j["error"] = r.error;
@@ -570,8 +576,9 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
       files.push_back(std::move(j));
     }
     out << nlohmann::json{{"files", files},
-                          {"succeeded", static_cast<int>(results.size()) - failed - skipped},
+                          {"succeeded", static_cast<int>(results.size()) - failed - skipped - partial},
                           {"skipped", skipped},
+                          {"partial", partial},
                           {"failed", failed}}
                .dump(2)
         << '\n';
@@ -586,11 +593,12 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
     secs << std::fixed << std::setprecision(2) << r.seconds;
     std::vector<std::string> row{r.input,
                                  r.skipped            ? "skipped"
-                                 : r.exit_code == kOk ? "ok"
-                                                      : (r.exit_code == kBadInput ? "bad input" : "failed"),
+                                 : r.exit_code == kOk      ? "ok"
+                                 : r.exit_code == kPartial ? "partial"
+                                                           : (r.exit_code == kBadInput ? "bad input" : "failed"),
                                  secs.str()};
     for (const auto& c : columns)
-      row.push_back(r.exit_code == kOk && r.result.is_object() && r.result.contains(c) ? cell(r.result[c]) : "-");
+      row.push_back(r.result.is_object() && r.result.contains(c) ? cell(r.result[c]) : "-");
     rows.push_back(std::move(row));
   }
   std::vector<std::size_t> w(header.size());
@@ -613,8 +621,9 @@ void print_summary(const std::vector<FileResult>& results, const std::vector<std
   for (auto x : w) total += x;
   out << std::string(total, '-') << '\n';
   for (const auto& row : rows) print_row(row);
-  out << results.size() - failed - skipped << " of " << results.size() << " files succeeded";
+  out << results.size() - failed - skipped - partial << " of " << results.size() << " files succeeded";
   if (skipped) out << ", " << skipped << " skipped (--skip-existing)";
+  if (partial) out << ", " << partial << " partial (stopped by Ctrl-C or --time-limit)";
   if (failed) out << ", " << failed << " failed";
   out << '\n';
 }
@@ -623,7 +632,7 @@ int batch_exit_code(const std::vector<FileResult>& results) {
   int code = kOk;
   for (const auto& r : results) {
     if (r.exit_code == kBadInput) return kBadInput;
-    if (r.exit_code != kOk) code = r.exit_code;
+    if (r.exit_code == kInternal || code == kOk) code = r.exit_code;
   }
   return code;
 }
@@ -755,7 +764,7 @@ int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob&
       out << result.dump(2) << '\n';
     else if (!global.quiet)
       print_key_values(result, out);
-    return kOk;
+    return result_exit_code(result);
   }
   prepare_outputs(files, true, global);
   const std::vector<FileResult> results = process_files(files, global, job, std::cerr);

@@ -204,7 +204,7 @@ void prepare_outputs(const std::vector<std::string>& files, bool batch, const Gl
 /// What one file of a batch produced.
 struct FileResult {
   std::string input;
-  int exit_code = kOk;   ///< 0 ok, 1 internal, 2 bad input
+  int exit_code = kOk;   ///< 0 ok, 1 internal, 2 bad input, 3 partial result (stopped; outputs written)
   bool skipped = false;  ///< --skip-existing found an output of it (exit_code stays 0)
   std::string error;     ///< empty on success; otherwise the message main() would print (several lines allowed)
   double seconds = 0;
@@ -225,11 +225,12 @@ struct BatchSpec {
 std::vector<FileResult> process_files(const std::vector<std::string>& files, const GlobalOptions& global,
                                       const FileJob& job, std::ostream& log);
 
-/// The summary table (text) or, with --json, {"files": [...], "succeeded": n, "failed": m} on `out`.
+/// The summary table (text) or, with --json, {"files": [...], "succeeded": n, "skipped": s, "partial": p, "failed": m}
+/// on `out`.
 void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
                    const GlobalOptions& global, std::ostream& out);
 
-/// Worst exit code of a batch: 0 if all ok, else 2 if any bad input, else 1.
+/// Worst exit code of a batch: 2 if any bad input, else 1 if any other failure, else 3 if any partial result, else 0.
 int batch_exit_code(const std::vector<FileResult>& results);
 
 /// One input: runs the job with a TerminalProgress on stderr (exceptions propagate) and prints its result

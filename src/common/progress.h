@@ -13,19 +13,25 @@ class ProgressSink {
   /// `stage` names the pipeline stage, `fraction` is in [0,1] or negative when unknown, `message` is free text.
   virtual void report(std::string_view stage, double fraction, std::string_view message) = 0;
   virtual bool cancelled() const { return false; }
+  /// True once the stages that only improve a valid result (relaxation, period-rounding search, keep-better,
+  /// density re-solves, cone merging, fold refinement, quad smoothing) should be skipped or end early: after a
+  /// Ctrl-C or past a time limit. Those stages test this, the stages a valid result needs test cancelled().
+  virtual bool skip_improvements() const { return cancelled(); }
   /// Seconds until a time limit makes cancelled() true (infinity without one): lets a job leave its later, not
   /// interruptible stages their time.
   virtual double seconds_left() const;
 };
 
 /// Forwards reports to `inner` but never cancels: for the stages that make a result valid, which run to the end
-/// even after a Ctrl-C or a time limit stopped the optimization (a second Ctrl-C still ends the process).
+/// even after a Ctrl-C or a time limit stopped the optimization (a second Ctrl-C still ends the process). The
+/// improving stages still stop then (skip_improvements() is inner's cancelled()).
 class FinishingProgress final : public ProgressSink {
  public:
   explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}
   void report(std::string_view stage, double fraction, std::string_view message) override {
     inner_.report(stage, fraction, message);
   }
+  bool skip_improvements() const override { return inner_.cancelled(); }
 
  private:
   ProgressSink& inner_;

@@ -153,7 +153,7 @@ Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& or
   Parameterization p = parameterize(mesh, optimized, param, progress);
   if (mode == OptimizeMode::None) return p;
   report["kept"] = "optimized";
-  if (!keep_better) return p;
+  if (!keep_better || progress.skip_improvements()) return p;
   progress.report("optimize", -1, "parameterizing the original field for comparison (keep better)");
   Parameterization q = parameterize(mesh, original, param, progress);
   const double total = p.energy_curl + p.energy_harmonic, total_original = q.energy_curl + q.energy_harmonic;

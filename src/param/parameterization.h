@@ -80,6 +80,7 @@ struct Parameterization {
   /// the grid scale before and after, and its price E_R = ½‖X̃ − ∇φ̃‖² − E_D − E_H of the relaxed map.
   struct Relaxation {
     int iterations = 0;
+    bool stopped_early = false;  ///< ended by a stop (ProgressSink::skip_improvements) before it converged
     double rigidity_before = 0, rigidity_after = 0;
     double energy = 0;
   } relaxation;

@@ -100,9 +100,9 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   PeriodRounding r;
   r.variable_of_path.assign(static_cast<std::size_t>(cc.num_paths()), -1);
   if (options.rounding.strategy == RoundingStrategy::Direct) return r;
-  const std::function<bool()> stop = [&progress] { return progress.cancelled(); };
+  const std::function<bool()> stop = [&progress] { return progress.skip_improvements(); };
   r.pm = period_matrix(mesh, cc, correction, 32, stop);
-  P.rounding.stopped_early = progress.cancelled();
+  P.rounding.stopped_early = progress.skip_improvements();
   const int m = static_cast<int>(r.pm.paths.size());
   if (m == 0) return r;
   r.active = true;

@@ -69,7 +69,10 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
                                               std::max(2, options.iterations));
   Eigen::SparseMatrix<Complex> Lw;
   for (int it = 0; it < options.iterations && alpha < 1; ++it) {
-    if (progress.cancelled()) break;
+    if (progress.skip_improvements()) {
+      result.stopped_early = true;
+      break;
+    }
     FramePairs target = base_gradient - G;  // ∇u ≈ ∇base − G  ⇔  ∇φ ≈ G
     Eigen::VectorXcd u;
     if (weighted) {

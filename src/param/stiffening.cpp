@@ -43,7 +43,7 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
   Eigen::VectorXd w = Eigen::VectorXd::Ones(nf);
   int since_better = 0;
   for (int it = 0; it < options.max_iterations && best_flips > 0 && since_better < options.patience; ++it) {
-    if (progress.cancelled()) break;
+    if (progress.skip_improvements()) break;
     const Eigen::VectorXd d = frame_distortion(mesh, uv, Z);
     for (int f = 0; f < nf; ++f) w[f] += options.strength * std::min(d[f], options.max_distortion);
     FramePairs weighted = target;

@@ -182,7 +182,7 @@ FoldRefinement refine_folds(const Mesh& mesh, const FrameField& field, const Par
   const Parameterization* current_map = &map;
   // Escalation after a round without progress: the faces' 1-ring as well, then also the curve pins of their corners.
   int escalation = 0;
-  while (rep.rounds < options.max_rounds && rep.non_positive_after > 0 && !progress.cancelled()) {
+  while (rep.rounds < options.max_rounds && rep.non_positive_after > 0 && !progress.skip_improvements()) {
     ++rep.rounds;
     const std::vector<int> bad = flipped_triangles(*current_mesh, current_map->uv).flipped_faces;
     const std::vector<int> edges = edges_of_faces(*current_mesh, grow_faces(*current_mesh, bad, escalation > 0));

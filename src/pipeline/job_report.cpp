@@ -171,6 +171,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["quad_smoothing"] = nullptr;
   r["surface_check"] = nullptr;
   r["warnings"] = job.warnings;
+  r["cut_short"] = job.cut_short;
   r["seconds"] = seconds_json(job.seconds);
   r["memory"] = memory_json(job.peak_bytes, input_mesh.num_faces());
   return r;
@@ -212,7 +213,8 @@ nlohmann::json report_summary(const nlohmann::json& r) {
                       {"E_H", p["energy_harmonic"]},
                       {"arap", p["arap"]},
                       {"optimize", optimize},
-                      {"rounding", r["rounding"]}};
+                      {"rounding", r["rounding"]},
+                      {"partial", !r["cut_short"].empty()}};
   if (r["quad_mesh"].is_null()) {  // param: the numbers of the input mesh
     for (const char* key : {"vertices", "faces", "genus", "boundary_loops"}) s[key] = r["mesh"][key];
     return s;

@@ -44,14 +44,24 @@ bool leave_time_for_later_stages(const Mesh& mesh, double field_seconds, double 
   return own <= 0 || budget < own;
 }
 
+/// Records `stage` in job.cut_short when a stop (Ctrl-C, time limit: progress.skip_improvements()) had come by its end while
+/// it still had work to do (`unfinished`).
+void note_cut_short(const ProgressSink& progress, bool unfinished, ParamJob& job, const char* stage) {
+  if (unfinished && progress.skip_improvements()) job.cut_short.emplace_back(stage);
+}
+
 /// Merges the branch point pairs the map puts on one point (pipeline/cone_merging.h) and solves the map again, at
 /// most kMergeRounds times and only while that leaves fewer non-positive triangles.
 void merge_coincident_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, ParamJob& job,
                             ProgressSink& progress) {
   constexpr int kMergeRounds = 3;
-  for (int round = 0; round < kMergeRounds && !progress.cancelled(); ++round) {
+  for (int round = 0; round < kMergeRounds; ++round) {
     const std::vector<ConeMerge> merges = coincident_cone_merges(mesh, job.map);
     if (merges.empty()) break;
+    if (progress.skip_improvements()) {
+      job.cut_short.emplace_back("cone merging");
+      break;
+    }
     FrameField field = merge_cones(mesh, stage, job.field, lambda, merges);
     Parameterization map = parameterize(mesh, field, job.options.param, progress);
     ++job.merge_rounds;
@@ -138,11 +148,20 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
       job.map = std::move(map);
       d.quads = count;
     }
-    if (progress.cancelled()) break;
+    if (progress.skip_improvements()) break;
   }
   param.edge_length = job.map.edge_length;
+  note_cut_short(progress, std::abs(d.quads / target - 1) > kDensityTolerance && d.resolves < kDensityResolves, job,
+                 "density re-solves");
   if (d.resolves > 0) lap(meter, job, "density");
   return d;
+}
+
+std::string cut_short_warning(const std::vector<std::string>& stages) {
+  std::string list;
+  for (const std::string& s : stages) list += (list.empty() ? "" : ", ") + s;
+  return "stopped (Ctrl-C or time limit) before the job finished: skipped or cut short: " + list +
+         "; the result is complete and checked, a run without the limit would improve it";
 }
 
 std::vector<std::string> map_warnings(const Parameterization& map) {
@@ -193,6 +212,10 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
+  note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
+                 job, "keep-better");
+  if (job.map.rounding.stopped_early) job.cut_short.emplace_back("rounding search");
+  if (job.map.relaxation.stopped_early) job.cut_short.emplace_back("relaxation");
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
   meter.restart();
@@ -202,9 +225,11 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   meter.restart();
   const std::size_t curve_splits = job.refinement.split.size();
   refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
+  note_cut_short(progress, job.map.untangling.non_positive_after > 0, job, "fold refinement");
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
+  if (!job.cut_short.empty()) job.warnings.push_back(cut_short_warning(job.cut_short));
   return job;
 }
 

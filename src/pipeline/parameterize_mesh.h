@@ -46,6 +46,9 @@ struct ParamJob {
   /// (pipeline/cone_merging.h).
   int merged_cone_pairs = 0, merge_rounds = 0;
   std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
+  /// The improving stages (ProgressSink::skip_improvements) a Ctrl-C or time limit skipped or cut short, in job
+  /// order; the result is complete and checked, but a full run would improve it (the CLI exits with 3 then).
+  std::vector<std::string> cut_short;
   StageSeconds seconds;     ///< per stage (common/stage_meter.h)
   StagePeakBytes peak_bytes;  ///< per stage, under the names of `seconds`
 
@@ -57,11 +60,16 @@ struct ParamJob {
 /// \pre mesh is a valid triangle mesh (build_mesh).
 /// \throw InputError for invalid options (validate()) or a density the memory cannot hold (check_memory_budget),
 /// NumericalError if a factorization fails.
-/// Honours progress.cancelled(): Algorithm 6.1 stops with its best field; the map is still completed.
+/// Honours progress.cancelled(): Algorithm 6.1 stops with its best field; the map is still completed, the
+/// improving stages after it are skipped or cut short (listed in ParamJob::cut_short, with a warning).
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
 
 /// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
+
+/// The warning for the improving stages a stop skipped or cut short (ParamJob::cut_short), in the words the CLI prints.
+/// \pre stages is not empty.
+std::string cut_short_warning(const std::vector<std::string>& stages);
 
 /// The warnings a map deserves (handles whose field has holonomy but no branch points, even branch points left on
 /// half-integers), in the words the CLI prints.

@@ -57,6 +57,13 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
   const Parameterization& map = job.param.map;
   job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
   lap("smooth");
+  if (job.smoothing.iterations < options.smoothing.iterations && finishing.skip_improvements()) {
+    std::vector<std::string>& cut = job.param.cut_short;
+    std::vector<std::string>& w = job.param.warnings;
+    if (!cut.empty()) w.erase(std::find(w.begin(), w.end(), cut_short_warning(cut)));
+    cut.emplace_back("quad smoothing");
+    w.push_back(cut_short_warning(cut));
+  }
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
   for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
   return job;

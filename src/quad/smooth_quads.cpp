@@ -327,7 +327,7 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   SmoothingRound round{q, mesh, options, h, fixed, corners, feature_edges, feature_grid, tree, feature_segment};
   std::vector<SquareFit> fits(nf);
   std::vector<int> bad_before(nf, 0);
-  for (int it = 0; it < options.iterations && !progress.cancelled(); ++it) {
+  for (int it = 0; it < options.iterations && !progress.skip_improvements(); ++it) {
     report.rejected_moves += round.run(fits, bad_before);
     ++report.iterations;
     progress.report("smooth quads", static_cast<double>(it + 1) / options.iterations,

@@ -177,7 +177,10 @@ def fuzz(work):
             problems.append(f"killed by signal {-r.returncode}")
         elif r.returncode not in (0, 1, 2, 3):
             problems.append(f"exit code {r.returncode}")
-        if r.returncode != 0:
+        if r.returncode == 3 and "partial" not in r.stderr.decode(errors="replace") + r.stdout.decode(errors="replace") \
+                and "cut short" not in r.stderr.decode(errors="replace"):
+            problems.append("exit 3 (partial result) without saying what was cut short")
+        if r.returncode not in (0, 3):  # 3 = partial result written: its outputs are complete
             left = sorted(set(os.listdir(out_dir)) - before - {"new"})
             left += [os.path.join("new", f) for f in os.listdir(os.path.join(out_dir, "new"))] \
                 if os.path.isdir(os.path.join(out_dir, "new")) else []

@@ -2,6 +2,7 @@
 // and the report's surface_check agrees with an independent count of the written quad mesh.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -44,22 +45,54 @@ TEST(JobWarningsCli, EveryReportWarningIsOnStderrAndTheSurfaceCheckMatchesTheFil
   fs::remove_all(dir);
 }
 
-// A time limit stops only Algorithm 6.1; the stages that make the result valid (relaxation, stiffening, the density,
-// extraction, quad smoothing) still run, the run says so on stderr, and the whole command stays near the limit.
-TEST(JobWarningsCli, ATimeLimitStopsTheOptimizationButNotTheStagesThatMakeTheResultValid) {
+// A time limit already passed when the job starts: Algorithm 6.1 stops at once, the stages a valid result needs
+// (the map with its untangling, the extraction, the checks) still run, every improving stage is skipped or cut short
+// and named, the run says so on stderr and exits with 3 (partial result written), and the outputs are complete.
+TEST(JobWarningsCli, APassedTimeLimitSkipsTheImprovingStagesAndExitsThree) {
   const fs::path dir = testing::fresh_dir("warnings_cli", "time");
-  const std::string json = (dir / "q.json").string(), err = (dir / "err.txt").string();
-  const auto r = testing::run_cli("remesh " + testing::data_path("bunny_3k") + " -o " + (dir / "q.obj").string() +
-                                      " --optimize full --max-iterations 0 --time-limit 1 --report " + json + " -q",
+  const std::string json = (dir / "q.json").string(), err = (dir / "err.txt").string(), obj = (dir / "q.obj").string();
+  const auto r = testing::run_cli("remesh " + testing::data_path("bunny_3k") + " -o " + obj +
+                                      " --optimize full --time-limit 0.001 --report " + json + " -q",
                                   err);
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.code, 3) << r.err;
   std::ifstream in(json);
   const nlohmann::json report = nlohmann::json::parse(in);
   EXPECT_TRUE(report["optimize"]["stopped_early"].get<bool>());
-  EXPECT_GT(report["relaxation"]["iterations"].get<int>(), 0);
-  EXPECT_GT(report["quad_smoothing"]["iterations"].get<int>(), 0);
-  EXPECT_NE(r.err.find("the optimization was stopped early"), std::string::npos) << r.err;
+  const std::vector<std::string> cut = report["cut_short"].get<std::vector<std::string>>();
+  for (const char* stage : {"keep-better", "relaxation", "quad smoothing"})
+    EXPECT_NE(std::find(cut.begin(), cut.end(), stage), cut.end()) << stage << " not in cut_short";
+  EXPECT_EQ(report["relaxation"]["iterations"].get<int>(), 0);
+  EXPECT_EQ(report["quad_smoothing"]["iterations"].get<int>(), 0);
+  EXPECT_NE(r.err.find("warning: "), std::string::npos);
+  EXPECT_NE(r.err.find("skipped or cut short: keep-better"), std::string::npos) << r.err;
   EXPECT_TRUE(report["parameterization"]["seamless"].get<bool>());
+  // The written quad mesh is the complete result the report describes.
+  const PolygonSoup soup = read_mesh(obj);
+  EXPECT_EQ(static_cast<int>(soup.num_faces()), report["quad_mesh"]["faces"].get<int>());
+  EXPECT_GT(soup.num_faces(), 100u);
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// Without a stop nothing is cut short and the exit code is 0; a batch with a partial file exits 3 and names it.
+TEST(JobWarningsCli, AGenerousTimeLimitCutsNothingAndABatchSaysPartial) {
+  const fs::path dir = testing::fresh_dir("warnings_cli", "time_batch");
+  const std::string json = (dir / "q.json").string();
+  const auto ok = testing::run_cli("remesh " + testing::data_path("bunny_3k") + " -o " + (dir / "q.obj").string() +
+                                   " --time-limit 600 --report " + json + " -q");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  std::ifstream in(json);
+  EXPECT_TRUE(nlohmann::json::parse(in)["cut_short"].empty());
+  const auto batch = testing::run_cli("remesh " + testing::data_path("bunny_3k") + " " + testing::data_path("torus_5k") +
+                                      " -o " + (dir / "out").string() + " --time-limit 0.001 --json");
+  EXPECT_EQ(batch.code, 3) << batch.err;
+  const nlohmann::json summary = nlohmann::json::parse(batch.out);
+  EXPECT_EQ(summary["partial"].get<int>(), 2);
+  EXPECT_EQ(summary["failed"].get<int>(), 0);
+  for (const auto& f : summary["files"]) {
+    EXPECT_EQ(f["exit_code"].get<int>(), 3);
+    EXPECT_TRUE(f["result"]["partial"].get<bool>());
+  }
   fs::remove_all(dir);
 }
 
