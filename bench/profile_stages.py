@@ -2,14 +2,12 @@
 """Stage profile of `quadcover remesh` (issue 16): one table of stages x mesh sizes with wall time and peak resident
 memory per stage, and the growth exponent k of time ~ F^k fitted over the sizes (least squares on log t, log F).
 
-Each mesh is remeshed once with the default options (`remesh MESH -o OUT --report R.json -v`, under `nice`):
-- top-level stage times come from the report's "seconds" (read, field, optimize, param, extract, smooth, metrics,
-  write) and the optimize report (set-up, exact confirmations, estimates summed over threads);
-- sub-stages of `param` (both parameterizations of --keep-better summed) from the time stamps of the -v progress
-  lines: each line ends a sub-stage, the time since the previous line is charged to it;
-- peak memory per stage: /proc/PID/status VmRSS sampled every 20 ms, maximum over the stage's time window
-  (windows from the cumulative report seconds); the process peak is the larger of the maximum resident size at exit
-  and the report's memory.peak_bytes (the CLI resets VmHWM at each stage, which lowers the kernel's maximum).
+Each mesh is remeshed once with the default options (`remesh MESH -o OUT --report R.json -q`, under `nice`). The
+stages are the report's own, in the order they ran (`memory.stages`: every stage the job timed, e.g. field, optimize,
+param_curl_removal, ..., param_untangling, cone_merging, fold_refinement, extract, smooth, metrics, write), each with
+its `seconds` and its peak resident bytes; Algorithm 6.1's set-up, exact evaluations and estimates come from the
+optimize report. The whole-process row is the wall time of the command and the larger of /usr/bin/time's maximum
+resident size and the report's `memory.peak_bytes` (the CLI resets VmHWM at each stage, which lowers the kernel's).
 
 Usage: bench/profile_stages.py [--build DIR] [--torus F1,F2,...] [--extra "ARGS"] MESH...
   --torus 1000000 generates the bumpy torus of bench/make_torus.py with about that many faces (in a temp dir).
@@ -19,17 +17,12 @@ import argparse
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-TOP_STAGES = ["read", "field", "optimize", "param", "extract", "smooth", "metrics", "write"]
-PARAM_SUB = ["cut", "curl_removal", "integrate", "harmonic_factor", "period_rounding", "round", "harmonic",
-             "relaxation", "stiffening", "assemble"]
 
 
 def count_faces(path):
@@ -41,68 +34,25 @@ def count_faces(path):
     return n
 
 
-def rss_kb(pid):
-    try:
-        with open("/proc/%d/status" % pid) as f:
-            for line in f:
-                if line.startswith("VmRSS:"):
-                    return int(line.split()[1])
-    except OSError:
-        pass
-    return None
-
-
 def run_one(binary, mesh, extra, work):
     out = os.path.join(work, "out.obj")
     report = os.path.join(work, "report.json")
     cmd = ["nice", "/usr/bin/time", "-f", "%e %M", "-o", os.path.join(work, "time.txt"), binary, "remesh", mesh,
-           "-o", out, "--report", report, "-v"] + extra
-    t0 = time.monotonic()
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, bufsize=1)
-    lines = []
-
-    def reader():
-        for line in proc.stderr:
-            lines.append((time.monotonic() - t0, line.rstrip("\n")))
-
-    th = threading.Thread(target=reader)
-    th.start()
-    samples = []
-    child = None
-    while proc.poll() is None:
-        if child is None:  # the quadcover process under nice + time
-            try:
-                kids = open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)).read().split()
-                while kids:
-                    child = int(kids[0])
-                    kids = open("/proc/%d/task/%d/children" % (child, child)).read().split()
-            except OSError:
-                child = None
-        if child is not None:
-            kb = rss_kb(child)
-            if kb is not None:
-                samples.append((time.monotonic() - t0, kb))
-        time.sleep(0.02)
-    th.join()
-    wall = time.monotonic() - t0
+           "-o", out, "--report", report, "-q"] + extra
+    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if proc.returncode != 0:
-        sys.exit("remesh failed on %s (exit %d):\n%s" % (mesh, proc.returncode, "\n".join(l for _, l in lines[-5:])))
+        sys.exit("remesh failed on %s (exit %d):\n%s" % (mesh, proc.returncode, proc.stderr[-2000:]))
     secs, peak_kb = open(os.path.join(work, "time.txt")).read().split()[-2:]
-    rep = json.load(open(report))
-    return rep, lines, samples, float(secs), int(peak_kb), wall
+    return json.load(open(report)), float(secs), int(peak_kb)
 
 
-def stage_rows(rep, lines, samples, secs, peak_kb):
-    """{stage: (seconds, peak MB or None)} for one run."""
+def stage_rows(rep, secs, peak_kb):
+    """{stage: (seconds, peak MB or None)} for one run, stages in the order the job ran them."""
     rows = {}
-    s = rep["seconds"]
-    # windows: cumulative report seconds from the first RSS sample (the process start; CLI parsing takes ms).
-    t = samples[0][0] if samples else 0.0
-    for k in TOP_STAGES:
-        d = s.get(k, 0.0)
-        window = [kb for (ts, kb) in samples if t - 0.02 <= ts <= t + d + 0.02]
-        rows[k] = (d, max(window) / 1024 if window else None)
-        t += d
+    seconds = rep["seconds"]
+    for st in rep.get("memory", {}).get("stages", []):
+        name = st["stage"]
+        rows[name] = (seconds.get(name, float("nan")), st["peak_bytes"] / 2**20)
     o = rep.get("optimize", {}).get("seconds", {})
     if o:
         ex = o.get("exact", {})
@@ -110,16 +60,6 @@ def stage_rows(rep, lines, samples, secs, peak_kb):
         rows["optimize: exact evaluations"] = (sum(v for v in ex.values()), None)
         es = o.get("estimates", {})
         rows["optimize: estimates (Σ threads)"] = (sum(v for k, v in es.items() if k != "count"), None)
-    sub = {k: 0.0 for k in PARAM_SUB}
-    prev = None
-    for ts, line in lines:
-        m = re.match(r"param\s+([a-z_]+)", line)
-        if m and prev is not None and m.group(1) in sub:
-            sub[m.group(1)] += ts - prev
-        prev = ts
-    sub["period_rounding"] += sub.pop("round")
-    for k, v in sub.items():
-        rows["param: " + k] = (v, None)
     reported_kb = rep.get("memory", {}).get("peak_bytes", 0) / 1024
     rows["whole process"] = (secs, max(peak_kb, reported_kb) / 1024)
     return rows
@@ -156,10 +96,14 @@ def main():
         for m in meshes:
             F = count_faces(m)
             print("running %s (%d faces)" % (os.path.basename(m), F), file=sys.stderr, flush=True)
-            rep, lines, samples, secs, peak_kb, _ = run_one(binary, m, a.extra.split(), work)
-            runs.append((os.path.basename(m), F, stage_rows(rep, lines, samples, secs, peak_kb)))
+            rep, secs, peak_kb = run_one(binary, m, a.extra.split(), work)
+            runs.append((os.path.basename(m), F, stage_rows(rep, secs, peak_kb)))
     runs.sort(key=lambda r: r[1])
-    names = list(runs[0][2].keys())
+    tail = ["optimize: set-up", "optimize: exact evaluations", "optimize: estimates (Σ threads)", "whole process"]
+    names = []  # the stages of every run, in the order of the first run that has them; the summary rows last
+    for _, _, rows in runs:
+        names += [st for st in rows if st not in names and st not in tail]
+    names += tail
     print("| stage | " + " | ".join("%s (%.0fk F)" % (n, F / 1000) for n, F, _ in runs) + " | k |")
     print("|---|" + "---:|" * (len(runs) + 1))
     for st in names:
