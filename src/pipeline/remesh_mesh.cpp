@@ -65,6 +65,7 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
     w.push_back(cut_short_warning(cut));
   }
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
+  locate_surface_problems(job.extraction.mesh.V, job.extraction.mesh.faces, job.surface);
   for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
   return job;
 }

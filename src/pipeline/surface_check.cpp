@@ -1,6 +1,11 @@
 #include "pipeline/surface_check.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <map>
 #include <utility>
+
+#include "common/union_find.h"
 
 namespace quadcover {
 
@@ -32,12 +37,63 @@ SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vecto
   return s;
 }
 
+namespace {
+
+Eigen::Vector3d centroid(const Eigen::MatrixX3d& V, const std::vector<int>& vertices) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : vertices) c += V.row(v).transpose();
+  return c / static_cast<double>(std::max<std::size_t>(1, vertices.size()));
+}
+
+/// The boundary loops of a polygon mesh as places: boundary edges (used once) grouped by shared vertices.
+std::vector<SurfacePlace> boundary_loop_places(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces) {
+  std::map<std::pair<int, int>, int> uses;  // undirected edge -> number of faces
+  for (const auto& f : faces)
+    for (std::size_t k = 0; k < f.size(); ++k) ++uses[std::minmax(f[k], f[(k + 1) % f.size()])];
+  detail::UnionFind sets(static_cast<int>(V.rows()));
+  for (const auto& [e, n] : uses)
+    if (n == 1) sets.unite(e.first, e.second);
+  std::map<int, std::pair<int, std::vector<int>>> loops;  // root -> (edges, vertices)
+  for (const auto& [e, n] : uses) {
+    if (n != 1) continue;
+    auto& [edges, vertices] = loops[sets.find(e.first)];
+    ++edges;
+    vertices.push_back(e.first);
+    vertices.push_back(e.second);
+  }
+  std::vector<SurfacePlace> places;
+  for (auto& [root, loop] : loops) {
+    std::vector<int>& vertices = loop.second;
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    places.push_back({"boundary loop", -1, loop.first, centroid(V, vertices)});
+  }
+  return places;
+}
+
+}  // namespace
+
+void locate_surface_problems(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces,
+                             SurfaceCheck& check) {
+  check.places.clear();
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (faces[f].size() != 4)
+      check.places.push_back(
+          {"non-quad face", static_cast<int>(f) + 1, static_cast<int>(faces[f].size()), centroid(V, faces[f])});
+  if (check.output.boundary_loops > check.input.boundary_loops)
+    for (SurfacePlace& p : boundary_loop_places(V, faces)) check.places.push_back(std::move(p));
+}
+
 nlohmann::json to_json(const SurfaceCheck& s) {
+  nlohmann::json places = nlohmann::json::array();
+  for (const SurfacePlace& p : s.places)
+    places.push_back({{"kind", p.kind}, {"face", p.face}, {"size", p.size}, {"at", {p.at.x(), p.at.y(), p.at.z()}}});
   return {{"input", to_json(s.input)},
           {"output", to_json(s.output)},
           {"same_topology", s.same_topology},
           {"closed_all_quads", s.closed_all_quads},
-          {"problems", s.problems}};
+          {"problems", s.problems},
+          {"places", places}};
 }
 
 namespace {
@@ -67,11 +123,28 @@ std::vector<std::string> extraction_repairs(const ExtractionReport& r) {
   return {line + "): the quad mesh is not the exact integer grid of the map there"};
 }
 
+/// "where: non-quad face 12 (5 sides) at (x, y, z); ...": the first few places, the rest counted.
+std::string places_sentence(const std::vector<SurfacePlace>& places) {
+  constexpr std::size_t kShown = 5;
+  std::string line = "where: ";
+  char at[96];
+  for (std::size_t i = 0; i < std::min(kShown, places.size()); ++i) {
+    const SurfacePlace& p = places[i];
+    std::snprintf(at, sizeof at, " at (%.6g, %.6g, %.6g)", p.at.x(), p.at.y(), p.at.z());
+    line += (i ? "; " : "") + p.kind + (p.face > 0 ? " " + std::to_string(p.face) : std::string()) + " (" +
+            std::to_string(p.size) + (p.face > 0 ? " sides)" : " edges)") + at;
+  }
+  if (places.size() > kShown)
+    line += "; and " + std::to_string(places.size() - kShown) + " more in the report's surface_check.places";
+  return line;
+}
+
 }  // namespace
 
 std::vector<std::string> remesh_warnings(const SurfaceCheck& check, const ExtractionReport& extraction) {
   std::vector<std::string> warnings;
   for (const std::string& p : check.problems) warnings.push_back("remesh changed the surface: " + p);
+  if (!check.problems.empty() && !check.places.empty()) warnings.push_back(places_sentence(check.places));
   for (std::string& w : extraction_repairs(extraction)) warnings.push_back(std::move(w));
   if (check.input.boundary_loops > 0 && check.output.non_quads > 0)  // a closed input's are a problem above
     warnings.push_back(std::to_string(check.output.non_quads) + " of the " + std::to_string(check.output.faces) +

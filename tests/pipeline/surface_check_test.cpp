@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "support/test_meshes.h"
 
@@ -65,6 +66,44 @@ TEST(SurfaceCheck, SameTopologyPassesAndEveryChangeIsNamed) {
   EXPECT_TRUE(hex.same_topology) << (hex.problems.empty() ? "" : hex.problems[0]);
   EXPECT_FALSE(hex.closed_all_quads);
   EXPECT_EQ(hex.output.non_quads, 1);
+}
+
+// The places of the differences: the hexagon by its 1-based number and centroid, the cut-out face's hole as a
+// boundary loop of 4 edges around that face's centroid; the warnings name them.
+TEST(SurfaceCheck, PlacesNameTheNonQuadFacesAndTheNewHoles) {
+  const Mesh torus = testing::make_torus(16, 8);
+  Eigen::MatrixX3d V(48, 3);
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const double a = 2 * M_PI * i / 8, b = 2 * M_PI * j / 6, r = 2 + 0.7 * std::cos(b);
+      V.row(j * 8 + i) << r * std::cos(a), r * std::sin(a), 0.7 * std::sin(b);
+    }
+  auto faces = quad_grid(8, 6, true);
+  const std::vector<int> cut = faces[20];
+  faces.erase(faces.begin() + 20);
+  faces[0] = {0, 1, 2, 10, 9, 8};
+  faces.erase(faces.begin() + 1);
+  SurfaceCheck check = check_surface(torus, 48, faces);
+  locate_surface_problems(V, faces, check);
+  ASSERT_EQ(check.places.size(), 2u);
+  EXPECT_EQ(check.places[0].kind, "non-quad face");
+  EXPECT_EQ(check.places[0].face, 1);
+  EXPECT_EQ(check.places[0].size, 6);
+  Eigen::Vector3d hexagon = Eigen::Vector3d::Zero(), hole = Eigen::Vector3d::Zero();
+  for (int v : faces[0]) hexagon += V.row(v).transpose() / 6;
+  for (int v : cut) hole += V.row(v).transpose() / 4;
+  EXPECT_LT((check.places[0].at - hexagon).norm(), 1e-12);
+  EXPECT_EQ(check.places[1].kind, "boundary loop");
+  EXPECT_EQ(check.places[1].size, 4);
+  EXPECT_LT((check.places[1].at - hole).norm(), 1e-12);
+  const auto w = remesh_warnings(check, ExtractionReport{});
+  EXPECT_TRUE(std::any_of(w.begin(), w.end(), [](const std::string& s) {
+    return s.rfind("where: non-quad face 1 (6 sides) at (", 0) == 0 && s.find("boundary loop (4 edges)") != std::string::npos;
+  }));
+  // A clean result has no places and no such sentence.
+  SurfaceCheck same = check_surface(torus, 48, quad_grid(8, 6, true));
+  locate_surface_problems(V, quad_grid(8, 6, true), same);
+  EXPECT_TRUE(same.places.empty());
 }
 
 TEST(SurfaceCheck, PinchedVerticesInconsistentFacesAndPolygons) {
