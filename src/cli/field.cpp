@@ -172,13 +172,9 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
           {"constrained_faces", constrained}};
 }
 
-void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<FieldCmdOptions>();
-  CLI::App* cmd = add_mesh_command(app, "field",
-                                   "Compute the guiding cross field (principal curvature, trusted regions, smoothing; "
-                                   "thesis ch. 5), its matching and branch points, and write them as JSON",
-                                   opt->inputs);
-  cmd->add_option("-o,--output", opt->output,
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
                   "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
                   "NAME.field.json");
   cmd->add_option("--method", opt->method,
@@ -230,7 +226,9 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
                 });
 }
 
-const CommandRegistrar registrar{30, "field", register_field};
+const CommandRegistrar registrar{30, "field", register_field,
+                                 "Compute the guiding cross field (principal curvature, trusted regions, smoothing; "
+                                 "thesis ch. 5), its matching and branch points, and write them as JSON"};
 
 }  // namespace
 

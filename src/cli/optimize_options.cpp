@@ -117,6 +117,9 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
       throw InputError(name, 0, e.what());
     }
   };
+  options.param.lattice = parse_lattice(cli.lattice);
+  options.param.edge_length = cli.edge_length;
+  options.param.target_quads = cli.quads;
   options.field_style = flag("--field", [&] { return parse_field_style(cli.field); });
   options.fill = parse_fill_option(cli.fill);
   options.optimize = flag("--optimize", [&] { return parse_optimize_mode(cli.optimize); });

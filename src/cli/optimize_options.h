@@ -16,6 +16,11 @@
 namespace quadcover::cli {
 
 struct OptimizeCliOptions {
+  std::string lattice = "rotated";  ///< see param/lattice.h
+  double edge_length = 0;           ///< density: quad edge length h (0: from `quads` or the default)
+  /// Density: target quad count (remesh --faces/--vertices: a closed quad mesh has about as many vertices as faces,
+  /// V - F = χ + F - E with E = 2F).
+  int quads = 0;
   std::string optimize = "relocate";  ///< see optimize/optimize_field.h
   std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
@@ -39,7 +44,7 @@ Fill parse_fill_option(const std::string& text);
 /// apply_optimize_options).
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
-/// Sets the field, feature, optimization, rounding, relaxation and stiffening options of the
+/// Sets the lattice, density, field, feature, optimization, rounding, relaxation and stiffening options of the
 /// pipeline from the command line. \throw InputError (naming the flag) for an unknown field style, fill, mode or
 /// rounding strategy, or a feature angle that is neither 'off' nor a number of degrees in [0, 180].
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options);
