@@ -1,7 +1,8 @@
-// Thesis Table 7.1 on the Stanford bunny (tests/data/bunny_3k.obj) at about 6500 output vertices: the QuadCover
-// pipeline (frame field → parameterization → [optimization] → extraction) and the regularity metrics of the
-// result. `bench_table71 --table` prints the Markdown table of BENCHMARKS.md (section "Table 7.1"); without it the
-// Google Benchmark timings of the stages run. Mesh: argv after --mesh, $QUADCOVER_BENCH_MESH, or bunny_3k.
+// Thesis Table 7.1 on the Stanford bunny (tests/data/bunny_3k.obj) at about 6500 output vertices: the library's
+// remesh job (pipeline/remesh_mesh.h: frame field → [optimization] → parameterization → extraction → [smoothing],
+// the job of `quadcover remesh`) and the regularity metrics of the result. `bench_table71 --table` prints the Markdown
+// table of BENCHMARKS.md (section "Table 7.1"); without it the Google Benchmark timings of the stages run. Mesh: argv
+// after --mesh, $QUADCOVER_BENCH_MESH, or bunny_3k.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -11,13 +12,11 @@
 #include <cstring>
 #include <string>
 
-#include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "metrics/report.h"
-#include "optimize/optimize_field.h"
-#include "param/parameterize.h"
+#include "pipeline/parameterize_mesh.h"
+#include "pipeline/remesh_mesh.h"
 #include "quad/extract_quads.h"
-#include "quad/smooth_quads.h"
 
 namespace qc = quadcover;
 
@@ -40,7 +39,7 @@ struct Column {
   std::string name;
   bool available = true;
   std::string note;
-  qc::OptimizeResult optimize;
+  nlohmann::json optimize;  ///< the job's "optimize" object (optimize/optimize_field.h to_json)
   qc::QuadQuality quads;
   qc::ParamQuality param;
   qc::ExtractionReport extraction;
@@ -50,27 +49,17 @@ struct Column {
 
 qc::Mesh load() { return qc::build_mesh(qc::read_mesh(mesh_path)).mesh; }
 
-// field → [optimization] → parameterization at density `quads` → extraction. The optimization depends on the
-// density only through Δ_EH of `full` (E_H is measured in grid units), so it is re-run for each density.
-qc::ExtractionResult pipeline(const qc::Mesh& mesh, const Setup& setup, int quads, qc::Parameterization& P,
-                              qc::OptimizeResult& opt) {
-  const qc::FieldOptions fo = qc::field_options(setup.field);
-  const qc::FrameFieldResult field = qc::compute_frame_field_detailed(mesh, fo);
-  qc::ParamOptions po;
-  po.target_quads = quads;
-  po.rounding.strategy = setup.rounding;
-  qc::OptimizeOptions oo;
-  oo.mode = setup.mode;
-  oo.lambda = fo.lambda;
-  oo.max_evaluations = setup.max_evaluations;
-  oo.param = po;
-  opt = qc::optimize_field(mesh, field, oo);
-  P = qc::parameterize(mesh, opt.field, po);
-  qc::ExtractionResult ex = qc::extract_quads(mesh, P);
-  qc::QuadSmoothingOptions so;
-  so.iterations = setup.smooth_rounds;
-  qc::smooth_quads(ex.mesh, mesh, P, so);
-  return ex;
+// The remesh job with the column's field, optimization, rounding and smoothing, at the target quad count `quads`;
+// everything else as the CLI's defaults.
+qc::RemeshJob pipeline(const qc::Mesh& mesh, const Setup& setup, int quads) {
+  qc::PipelineOptions po;
+  po.field_style = setup.field;
+  po.optimize = setup.mode;
+  po.max_evaluations = setup.max_evaluations;
+  po.param.target_quads = quads;
+  po.param.rounding.strategy = setup.rounding;
+  po.smoothing.iterations = setup.smooth_rounds;
+  return qc::remesh_mesh(mesh, po);
 }
 
 // One column of Table 7.1. The density is calibrated once so that the output has about `target_vertices`
@@ -78,16 +67,17 @@ qc::ExtractionResult pipeline(const qc::Mesh& mesh, const Setup& setup, int quad
 Column run_column(const qc::Mesh& mesh, const Setup& setup) {
   Column c;
   c.name = setup.name;
-  qc::Parameterization P;
   const auto t0 = std::chrono::steady_clock::now();
-  qc::ExtractionResult ex = pipeline(mesh, setup, target_vertices, P, c.optimize);
+  qc::RemeshJob job = pipeline(mesh, setup, target_vertices);
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const int first = ex.mesh.num_vertices();
+  const int first = job.extraction.mesh.num_vertices();
   if (first > 0) {
     const int calibrated = static_cast<int>(std::lround(double(target_vertices) * target_vertices / first));
-    ex = pipeline(mesh, setup, calibrated, P, c.optimize);
+    job = pipeline(mesh, setup, calibrated);
   }
-  c.param = qc::param_quality(mesh, P);
+  const qc::ExtractionResult& ex = job.extraction;
+  c.optimize = job.param.optimize;
+  c.param = qc::param_quality(job.param.mesh(mesh), job.param.map);
   c.extraction = ex.report;
   c.quads = qc::quad_quality(ex.mesh);
   c.distance = qc::surface_distance(ex.mesh.V, ex.mesh.faces, mesh.V(), mesh.F());
@@ -119,16 +109,14 @@ void print_table(const std::vector<Column>& cols) {
   row("E_D / E_H of the map (grid units)", "– | – | –",
       [](const Column& c) { return fmt("%.0f", c.param.energy_curl) + " / " + fmt("%.0f", c.param.energy_harmonic); });
   row("field branch points before → after Alg. 6.1", "– | – | –", [](const Column& c) {
-    return c.optimize.reduction.log.empty() ? std::string("–")
-                                            : std::to_string(c.optimize.reduction.initial_branch_points) + " → " +
-                                                  std::to_string((c.optimize.balancing.log.empty()
-                                                                      ? c.optimize.reduction
-                                                                      : c.optimize.balancing)
-                                                                     .final_branch_points);
+    return c.optimize.value("log", nlohmann::json::array()).empty()
+               ? std::string("–")
+               : std::to_string(c.optimize["branch_points_before"].get<int>()) + " → " +
+                     std::to_string(c.optimize["branch_points_after"].get<int>());
   });
   row("E_D evaluations (pairs cancelled by balancing)", "– | – | –", [](const Column& c) {
-    return std::to_string(c.optimize.reduction.evaluations + c.optimize.balancing.evaluations) + " (" +
-           std::to_string(c.optimize.balancing.cancelled_pairs) + ")";
+    return std::to_string(c.optimize.value("evaluations", 0L)) + " (" +
+           std::to_string(c.optimize.value("cancelled_pairs", 0)) + ")";
   });
   row("ARAP (normalized, see below)", "– | – | –", [](const Column& c) { return fmt("%.4f", c.param.arap); });
   row("flipped triangles of the map", "– | – | –",
@@ -174,13 +162,12 @@ void print_table(const std::vector<Column>& cols) {
 
 void BM_Extract(benchmark::State& state) {
   const qc::Mesh mesh = load();
-  const qc::FrameField field = qc::compute_frame_field(mesh);
-  qc::ParamOptions po;
-  po.target_quads = static_cast<int>(state.range(0));
-  const qc::Parameterization P = qc::parameterize(mesh, field, po);
+  qc::PipelineOptions po;  // the map of the library's parameterization job, then extraction alone is timed
+  po.param.target_quads = static_cast<int>(state.range(0));
+  const qc::ParamJob job = qc::parameterize_mesh(mesh, po);
   int quads = 0;
   for (auto _ : state) {
-    const qc::ExtractionResult ex = qc::extract_quads(mesh, P);
+    const qc::ExtractionResult ex = qc::extract_quads(job.mesh(mesh), job.map);
     quads = ex.mesh.num_faces();
     benchmark::DoNotOptimize(quads);
   }

@@ -136,7 +136,7 @@ double feature_angle_degrees(const py::object& value) {
 struct JobArgs {
   double edge_length = 0;
   int quads = 0, faces = 0;
-  std::string lattice, optimize, rounding, field;
+  std::string lattice, optimize, rounding, field, fill;
   long max_iterations = kAutoBudget;
   bool keep_better = true;
   int stiffening = 0, relaxation = 0;
@@ -153,6 +153,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.lattice = parse_lattice(a.lattice);
   o.param.rounding.strategy = parse_rounding_strategy(a.rounding);
   o.field_style = parse_field_style(a.field);
+  o.fill = parse_fill(a.fill);
   o.optimize = parse_optimize_mode(a.optimize);
   o.max_evaluations = a.max_iterations;
   o.keep_better = a.keep_better;
@@ -312,11 +313,8 @@ py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args,
   return py::make_tuple(RowMatrixX3d(q.V), face_list(q.faces), to_python(report));
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_quadcover, m) {
-  m.doc() = "quadcover: seamless quad-aligned parameterization (QuadCover) and quad remeshing";
-  m.attr("__version__") = QUADCOVER_PY_VERSION;
+/// Errors of the library as Python exceptions: bad input or options ValueError, numerical failures RuntimeError.
+void register_exceptions() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -330,6 +328,95 @@ PYBIND11_MODULE(_quadcover, m) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
     }
   });
+}
+
+constexpr const char* kParameterizeDoc =
+    "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
+    "units (integer iso-lines are quad edges) and the report dict: the same document as the CLI's `param --report` "
+    "JSON (schema_version, parameterization, field, optimize, rounding, relaxation, stiffening, ...). "
+    "Density: edge_length h, or faces N (target quad count; quads is its old name), or by default twice the mean "
+    "edge length (finer where needed for 30 quads per branch point). optimize: none, relocate (Algorithm 6.1 "
+    "moving/cancelling branch points) or full (with creation and balancing, 6.4), at most max_iterations E_D "
+    "evaluations (-1 = auto, 0 = until converged). rounding of the periods (6.3): direct, greedy, search1, "
+    "search2, search3 or exact. keep_better: also parameterize the original field and keep the map with the lower "
+    "E_D + E_H. stiffening: re-solves of the final correction against flipped triangles (0 = off). relaxation: "
+    "ARAP local/global rounds of the final map (0 = off). field: 'curvature' (the trusted principal curvature "
+    "directions, filled and smoothed, thesis ch. 5) or 'smooth' (the "
+    "smoothest cross field, weakly pulled to them). "
+    "fill: frames of the untrusted faces, 'smooth' (power-field solve) or 'propagate' (the thesis's trusted "
+    "propagation, 5.1.2). "
+    "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
+    "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
+    "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
+    "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
+    "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
+    "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
+
+constexpr const char* kRemeshDoc =
+    "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing), the same job as the "
+    "CLI's `remesh`: returns (QV #Q×3, faces, report) where faces is a #faces×4 int array when every face is a "
+    "quad, else a list of polygons, and report the same document as `remesh --report`. Options as in "
+    "parameterize(); smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the "
+    "integer points) with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size "
+    "(0). Raises ValueError for invalid input or options (the CLI's checks), RuntimeError if the job fails.";
+
+JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
+                 const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
+                 const std::string& field, const std::string& fill, const py::object& feature_angle,
+                 bool align_curves) {
+  const double angle = feature_angle_degrees(feature_angle);
+  return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding, field,
+                 fill,        max_iterations, keep_better, stiffening, relaxation, angle,    align_curves};
+}
+
+/// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
+void def_jobs(py::module_& m) {
+  m.def(
+      "parameterize",
+      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
+         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
+         int stiffening, int relaxation, const std::string& field, const std::string& fill,
+         const py::object& feature_angle, bool align_curves, py::object progress) {
+        return parameterize_py(V, F,
+                               job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
+                                        keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves),
+                               std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
+      py::arg("align_curves") = true, py::arg("progress") = py::none(), kParameterizeDoc);
+  m.def(
+      "remesh",
+      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
+         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
+         int stiffening, int relaxation, const std::string& field, const std::string& fill,
+         const py::object& feature_angle, bool align_curves, int smooth_quads, double smooth_rigidity,
+         py::object progress) {
+        return remesh_py(V, F,
+                         job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
+                                  stiffening, relaxation, field, fill, feature_angle, align_curves),
+                         smooth_quads, smooth_rigidity, std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
+      py::arg("align_curves") = true, py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
+      py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(), kRemeshDoc);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_quadcover, m) {
+  m.doc() = "quadcover: seamless quad-aligned parameterization (QuadCover) and quad remeshing";
+  m.attr("__version__") = QUADCOVER_PY_VERSION;
+  register_exceptions();
   m.def("info", &info, py::arg("V"), py::arg("F"),
         "Counts and topology of a triangle mesh: dict with vertices, edges, faces, components, boundary_loops, genus, "
         "euler_characteristic, area, mean_edge_length, bounding_box_diagonal. Raises ValueError (listing every "
@@ -341,73 +428,5 @@ PYBIND11_MODULE(_quadcover, m) {
         py::arg("smoothing_rounds") = 2,
         "Curvature-guided cross field (thesis Chapter 5): dict with X, Y (#F complex, face basis basis1/basis2), "
         "matching (#E int, on edges `edges`), branch_points [(vertex, quarter_index)], energy_smooth, energy_align.");
-  const auto job_args = [](double edge_length, int quads, int faces, const std::string& lattice,
-                           const std::string& optimize, const std::string& rounding, long max_iterations,
-                           bool keep_better, int stiffening, int relaxation, const std::string& field,
-                           const py::object& feature_angle, bool align_curves) {
-    return JobArgs{edge_length, quads,      faces,      lattice,
-                   optimize,    rounding,   field,      max_iterations,
-                   keep_better, stiffening, relaxation, feature_angle_degrees(feature_angle),
-                   align_curves};
-  };
-  m.def(
-      "parameterize",
-      [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
-                 const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                 long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 const py::object& feature_angle, bool align_curves, py::object progress) {
-        return parameterize_py(V, F,
-                               job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
-                                        keep_better, stiffening, relaxation, field, feature_angle, align_curves),
-                               std::move(progress));
-      },
-      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
-      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
-      py::arg("progress") = py::none(),
-      "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
-      "units (integer iso-lines are quad edges) and the report dict: the same document as the CLI's `param --report` "
-      "JSON (schema_version, parameterization, field, optimize, rounding, relaxation, stiffening, ...). "
-      "Density: edge_length h, or faces N (target quad count; quads is its old name), or by default twice the mean "
-      "edge length (finer where needed for 30 quads per branch point). optimize: none, relocate (Algorithm 6.1 "
-      "moving/cancelling branch points) or full (with creation and balancing, 6.4), at most max_iterations E_D "
-      "evaluations (-1 = auto, 0 = until converged). rounding of the periods (6.3): direct, greedy, search1, "
-      "search2, search3 or exact. keep_better: also parameterize the original field and keep the map with the lower "
-      "E_D + E_H. stiffening: re-solves of the final correction against flipped triangles (0 = off). relaxation: "
-      "ARAP local/global rounds of the final map (0 = off). field: 'curvature' (thesis ch. 5) or 'smooth'. "
-      "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
-      "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
-      "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
-      "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
-      "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
-      "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.");
-  m.def(
-      "remesh",
-      [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
-                 const std::string& lattice, const std::string& optimize, const std::string& rounding,
-                 long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 const py::object& feature_angle, bool align_curves, int smooth_quads, double smooth_rigidity,
-                 py::object progress) {
-        return remesh_py(V, F,
-                         job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
-                                  stiffening, relaxation, field, feature_angle, align_curves),
-                         smooth_quads, smooth_rigidity, std::move(progress));
-      },
-      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
-      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
-      py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
-      py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(),
-      "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing), the same job as the "
-      "CLI's `remesh`: returns (QV #Q×3, faces, report) where faces is a #faces×4 int array when every face is a "
-      "quad, else a list of polygons, and report the same document as `remesh --report`. Options as in "
-      "parameterize(); smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the "
-      "integer points) with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size "
-      "(0). Raises ValueError for invalid input or options (the CLI's checks), RuntimeError if the job fails.");
+  def_jobs(m);
 }

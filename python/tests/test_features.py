@@ -68,3 +68,14 @@ def test_same_result_as_the_cli(tmp_path):
     cli = json.loads(rep.read_text())
     assert cli["options"] == report["options"] and cli["field"]["features"] == report["field"]["features"]
     assert np.allclose(quadcover.read(str(out)).vertices, QV, atol=1e-6)
+
+
+def test_fill_propagate_reaches_the_field_stage():
+    """fill= picks the thesis's trusted propagation (5.1.2) or the smooth fill (the default)."""
+    bunny = mesh("bunny_3k")
+    _, smooth = quadcover.parameterize(bunny, optimize="none")
+    _, propagate = quadcover.parameterize(bunny, optimize="none", fill="propagate")
+    assert smooth["options"]["fill"] == "smooth" and propagate["options"]["fill"] == "propagate"
+    assert propagate["field"]["branch_points_initial"] > smooth["field"]["branch_points_initial"]
+    with pytest.raises(ValueError):
+        quadcover.parameterize(bunny, optimize="none", fill="flood")

@@ -26,42 +26,34 @@ Eigen::SparseMatrix<double> edge_vertex_incidence(const Mesh& mesh) {
 // clockwise): ∫_t ⟨∇ψ_a, ∇ψ_b⟩ = ⟨e_a, e_b⟩ / A_t because ∇ψ_a|t = -(1/A_t) J e_a, and ∇φ_a = -½ ∇ψ_a on t
 // (φ_a = ½(1 - ψ_a) there), so the conforming entries are a quarter of that. For a ≠ b, ⟨e_a, e_b⟩ / A_t =
 // -2 cot of the angle between them, which is (1.5); the diagonal is minus the row sum since Σ_a e_a = 0.
-Eigen::SparseMatrix<double> conforming_stiffness(const Mesh& mesh) {
+namespace {
+
+// Σ_t (scale / A_t) ⟨e_a, e_b⟩ at (index(t,a), index(t,b)): the face-by-face assembly of both matrices.
+Eigen::SparseMatrix<double> gram_assembly(const Mesh& mesh, const Eigen::MatrixX3i& index, int n, double scale) {
   const int nf = mesh.num_faces();
   std::vector<Triplet> t;
   t.reserve(9 * static_cast<std::size_t>(nf));
   for (int f = 0; f < nf; ++f) {
-    const double scale = 0.25 / mesh.face_areas()[f];
+    const double c = scale / mesh.face_areas()[f];
     for (int a = 0; a < 3; ++a) {
       const Complex ea = mesh.edge_vector_local(f, a);
-      for (int b = 0; b < 3; ++b) {
-        const Complex eb = mesh.edge_vector_local(f, b);
-        t.emplace_back(mesh.F()(f, a), mesh.F()(f, b), scale * (std::conj(ea) * eb).real());
-      }
+      for (int b = 0; b < 3; ++b)
+        t.emplace_back(index(f, a), index(f, b), c * (std::conj(ea) * mesh.edge_vector_local(f, b)).real());
     }
   }
-  Eigen::SparseMatrix<double> L(mesh.num_vertices(), mesh.num_vertices());
+  Eigen::SparseMatrix<double> L(n, n);
   L.setFromTriplets(t.begin(), t.end());
   return L;
 }
 
+}  // namespace
+
+Eigen::SparseMatrix<double> conforming_stiffness(const Mesh& mesh) {
+  return gram_assembly(mesh, mesh.F(), mesh.num_vertices(), 0.25);
+}
+
 Eigen::SparseMatrix<double> nonconforming_stiffness(const Mesh& mesh) {
-  const int nf = mesh.num_faces();
-  std::vector<Triplet> t;
-  t.reserve(9 * static_cast<std::size_t>(nf));
-  for (int f = 0; f < nf; ++f) {
-    const double scale = 1.0 / mesh.face_areas()[f];
-    for (int a = 0; a < 3; ++a) {
-      const Complex ea = mesh.edge_vector_local(f, a);
-      for (int b = 0; b < 3; ++b) {
-        const Complex eb = mesh.edge_vector_local(f, b);
-        t.emplace_back(mesh.FE()(f, a), mesh.FE()(f, b), scale * (std::conj(ea) * eb).real());  // (1.5)
-      }
-    }
-  }
-  Eigen::SparseMatrix<double> L(mesh.num_edges(), mesh.num_edges());
-  L.setFromTriplets(t.begin(), t.end());
-  return L;
+  return gram_assembly(mesh, mesh.FE(), mesh.num_edges(), 1.0);  // (1.5)
 }
 
 Eigen::VectorXd vertex_areas(const Mesh& mesh) {

@@ -36,6 +36,12 @@ inline constexpr const char* kRelaxationHelp =
     "lowers the energy. The price E_R and the ARAP distortion before and after are reported "
     "(E_D + E_H + E_R + E_K = 1/2 |X - grad phi|^2). 0 = off";
 
+/// --fill of the commands that compute a field (field, param, remesh): see FieldOptions::fill.
+inline constexpr const char* kFillHelp =
+    "Frames of the faces whose curvature frames are not trusted: smooth (global power-field solve, few branch "
+    "points) or propagate (the thesis's trusted propagation, 5.1.2: breadth-first parallel transport from the "
+    "trusted faces); the smoothing (5.3) runs after either";
+
 /// Exit codes: 0 success, 1 internal/numerical failure, 2 bad input or usage, 3 partial result written (a Ctrl-C
 /// or --time-limit skipped or cut short an improving stage: the outputs are complete and checked, not fully improved).
 enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2, kPartial = 3 };

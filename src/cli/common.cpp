@@ -67,11 +67,10 @@ void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std
       ->check(path_or_stdin);
 }
 
-CLI::App* add_mesh_command(CLI::App& app, const std::string& name, const std::string& description,
-                           std::vector<std::string>& inputs, const std::string& input_help) {
-  CLI::App* cmd = app.add_subcommand(name, description);
-  add_input_option(*cmd, inputs, input_help);
-  return cmd;
+void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::string& output,
+                     const std::string& output_help, const std::string& input_help) {
+  add_input_option(cmd, inputs, input_help);
+  cmd.add_option("-o,--output", output, output_help);
 }
 
 // ---- cancellation -------------------------------------------------------------------------------------------

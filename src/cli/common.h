@@ -68,11 +68,11 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global);
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
                       const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
-/// Adds the subcommand `name` with its positional mesh inputs (add_input_option) bound to `inputs`.
-/// \return the subcommand, owned by `app`.
-CLI::App* add_mesh_command(CLI::App& app, const std::string& name, const std::string& description,
-                           std::vector<std::string>& inputs,
-                           const std::string& input_help = "Input mesh files (.obj .off .ply .stl) or folders of them");
+/// Adds the positional mesh inputs (add_input_option) bound to `inputs` and -o/--output bound to `output` (a file
+/// for one input, a folder for several), described by `output_help`.
+void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::string& output,
+                     const std::string& output_help,
+                     const std::string& input_help = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
 // ---- cancellation -------------------------------------------------------------------------------------------
 

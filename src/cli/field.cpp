@@ -4,7 +4,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "cli/commands.h"
 #include "cli/common.h"
+#include "cli/optimize_options.h"
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
@@ -43,12 +45,7 @@ FieldOptions to_field_options(const FieldCmdOptions& opt) {
   o.trusted_fraction = opt.trusted;
   o.lambda = opt.lambda;
   o.smoothing_rounds = opt.rounds;
-  if (opt.fill == "propagate")
-    o.fill = Fill::Propagate;
-  else if (opt.fill == "smooth")
-    o.fill = Fill::Smooth;
-  else
-    throw InputError("--fill", 0, "expected propagate or smooth, got '" + opt.fill + "'");
+  o.fill = parse_fill_option(opt.fill);
   o.fill_alignment = opt.fill_alignment;
   o.fill_unit_weight = opt.fill_unit_weight;
   o.fill_iterations = opt.fill_iterations;
@@ -106,7 +103,7 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
                   {"trusted_fraction", o.trusted_fraction},
                   {"lambda", o.lambda},
                   {"smoothing_rounds", o.smoothing_rounds},
-                  {"fill", o.fill == Fill::Propagate ? "propagate" : "smooth"},
+                  {"fill", to_string(o.fill)},
                   {"fill_alignment", o.fill_alignment},
                   {"fill_unit_weight", o.fill_unit_weight},
                   {"fill_iterations", o.fill_iterations},
@@ -175,13 +172,9 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
           {"constrained_faces", constrained}};
 }
 
-void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<FieldCmdOptions>();
-  CLI::App* cmd = add_mesh_command(app, "field",
-                                   "Compute the guiding cross field (principal curvature, trusted regions, smoothing; "
-                                   "thesis ch. 5), its matching and branch points, and write them as JSON",
-                                   opt->inputs);
-  cmd->add_option("-o,--output", opt->output,
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
                   "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
                   "NAME.field.json");
   cmd->add_option("--method", opt->method,
@@ -212,10 +205,7 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--features", opt->features,
                   "Align to boundaries and to sharp edges above DEG degrees, or 'off' to align to nothing")
       ->capture_default_str();
-  cmd->add_option("--fill", opt->fill,
-                  "Frames of the untrusted faces: smooth (global power-field solve, few branch points) or "
-                  "propagate (thesis 5.1.2 breadth-first parallel transport)")
-      ->capture_default_str();
+  cmd->add_option("--fill", opt->fill, kFillHelp)->capture_default_str();
   cmd->add_option("--fill-alignment", opt->fill_alignment,
                   "Smooth fill: strength mu of the alignment to the trusted curvature frames")
       ->check(CLI::NonNegativeNumber)
@@ -236,7 +226,9 @@ void register_field(CLI::App& app, GlobalOptions& global, int& exit_code) {
                 });
 }
 
-const CommandRegistrar registrar{30, "field", register_field};
+const CommandRegistrar registrar{30, "field", register_field,
+                                 "Compute the guiding cross field (principal curvature, trusted regions, smoothing; "
+                                 "thesis ch. 5), its matching and branch points, and write them as JSON"};
 
 }  // namespace
 

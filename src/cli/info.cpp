@@ -91,11 +91,10 @@ int run_single(const std::string& input, const InfoOptions& opt, const GlobalOpt
   return r.report.valid() ? kOk : kBadInput;
 }
 
-void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_info(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<InfoOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "info", "Print counts, topology (genus, boundaries, components) and every validation problem of mesh files",
-      opt->inputs,
+  add_input_option(
+      *cmd, opt->inputs,
       "Input meshes (.obj, .off, .ply, .stl) or folders of them; several are checked in parallel and summarized in "
       "a table");
   cmd->add_flag("--triangulate", opt->triangulate,
@@ -126,7 +125,9 @@ void register_info(CLI::App& app, GlobalOptions& global, int& exit_code) {
   });
 }
 
-const CommandRegistrar registrar{10, "info", register_info};
+const CommandRegistrar registrar{
+    10, "info", register_info,
+    "Print counts, topology (genus, boundaries, components) and every validation problem of mesh files"};
 
 }  // namespace
 

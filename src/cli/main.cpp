@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   int exit_code = cli::kOk;
   auto& commands = cli::command_registry();
   std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
-  for (const auto& c : commands) c.fn(app, global, exit_code);
+  for (const auto& c : commands) c.fn(app.add_subcommand(c.name, c.description), global, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

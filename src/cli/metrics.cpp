@@ -117,13 +117,9 @@ nlohmann::json run_metrics(const std::string& input, const std::string& report_p
   return full_json ? full : brief;
 }
 
-void register_metrics(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_metrics(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<MetricsOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "metrics",
-      "Quality numbers of a parameterized OBJ (per-corner vt: normalized ARAP, flips, cones, seamlessness, and the "
-      "extracted quad mesh) or of a quad mesh (RSD of edge lengths and angles, valences, non-quads, Table 7.1)",
-      opt->inputs, "Parameterized OBJ (triangles with vt) or polygon mesh files, or folders");
+  add_input_option(*cmd, opt->inputs, "Parameterized OBJ (triangles with vt) or polygon mesh files, or folders");
   cmd->add_option("--ref", opt->ref, "Reference triangle mesh for the surface distance and the feature fidelity")
       ->check(CLI::ExistingFile);
   cmd->add_option("--report", opt->report, "Write the full JSON report (one input) or a folder for NAME.metrics.json");
@@ -138,7 +134,10 @@ void register_metrics(CLI::App& app, GlobalOptions& global, int& exit_code) {
                 });
 }
 
-const CommandRegistrar registrar{70, "metrics", register_metrics};
+const CommandRegistrar registrar{
+    70, "metrics", register_metrics,
+    "Quality numbers of a parameterized OBJ (per-corner vt: normalized ARAP, flips, cones, seamlessness, and the "
+    "extracted quad mesh) or of a quad mesh (RSD of edge lengths and angles, valences, non-quads, Table 7.1)"};
 
 }  // namespace
 

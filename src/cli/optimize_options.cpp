@@ -13,10 +13,14 @@ namespace quadcover::cli {
 
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--field", options.field,
-                 "Guiding cross field: curvature = aligned to the principal curvature directions where they are "
-                 "reliable (thesis ch. 5); smooth = the smoothest cross field with a weak pull to them (as MIQ), "
+                 "Guiding cross field: curvature = the principal curvature directions on the faces where they are "
+                 "reliable (5.1.2), filled in by --fill and smoothed (5.3) with a pull towards them; smooth = the "
+                 "smoothest cross field with a weak pull to them (as MIQ), "
                  "lower distortion on organic shapes (Table 7.1 in BENCHMARKS.md). Features are followed by both")
       ->check(CLI::IsMember({"curvature", "smooth"}))
+      ->capture_default_str();
+  cmd.add_option("--fill", options.fill, kFillHelp)
+      ->check(CLI::IsMember({"smooth", "propagate"}))
       ->capture_default_str();
   cmd.add_option("--feature-angle", options.feature_angle,
                  "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
@@ -97,6 +101,14 @@ double parse_feature_angle(const std::string& text) {
 
 }  // namespace
 
+Fill parse_fill_option(const std::string& text) {
+  try {
+    return parse_fill(text);
+  } catch (const InputError&) {
+    throw InputError("--fill", 0, "expected propagate or smooth, got '" + text + "'");
+  }
+}
+
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options) {
   auto flag = [](const char* name, auto parse) {
     try {
@@ -105,7 +117,11 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
       throw InputError(name, 0, e.what());
     }
   };
+  options.param.lattice = parse_lattice(cli.lattice);
+  options.param.edge_length = cli.edge_length;
+  options.param.target_quads = cli.quads;
   options.field_style = flag("--field", [&] { return parse_field_style(cli.field); });
+  options.fill = parse_fill_option(cli.fill);
   options.optimize = flag("--optimize", [&] { return parse_optimize_mode(cli.optimize); });
   options.param.rounding.strategy = flag("--rounding", [&] { return parse_rounding_strategy(cli.rounding); });
   options.max_evaluations = cli.max_iterations;

@@ -16,6 +16,11 @@
 namespace quadcover::cli {
 
 struct OptimizeCliOptions {
+  std::string lattice = "rotated";  ///< see param/lattice.h
+  double edge_length = 0;           ///< density: quad edge length h (0: from `quads` or the default)
+  /// Density: target quad count (remesh --faces/--vertices: a closed quad mesh has about as many vertices as faces,
+  /// V - F = χ + F - E with E = 2F).
+  int quads = 0;
   std::string optimize = "relocate";  ///< see optimize/optimize_field.h
   std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
@@ -23,6 +28,7 @@ struct OptimizeCliOptions {
   bool merge_cones = true;            ///< PipelineOptions::merge_coincident_cones
   int refine_folds = 6;               ///< PipelineOptions::fold_refinement_rounds
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
+  std::string fill = "smooth";        ///< FieldOptions::fill: smooth or propagate (thesis 5.1.2)
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
@@ -30,13 +36,17 @@ struct OptimizeCliOptions {
   bool align = true;                 ///< see ParamOptions::align_curves
 };
 
-/// Adds --field, --feature-angle, --align, --optimize, --rounding, --max-iterations, --keep-better, --relaxation,
-/// --stiffening and --max-memory to `cmd` (validated by CLI11, --feature-angle by apply_optimize_options).
+/// --fill as FieldOptions::fill. \throw InputError naming --fill for another word.
+Fill parse_fill_option(const std::string& text);
+
+/// Adds --field, --fill, --feature-angle, --align, --optimize, --rounding, --max-iterations, --keep-better,
+/// --relaxation, --stiffening and --max-memory to `cmd` (validated by CLI11, --feature-angle by
+/// apply_optimize_options).
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
-/// Sets the field, feature, optimization, rounding, relaxation and stiffening options of the pipeline from the
-/// command line. \throw InputError (naming the flag) for an unknown field style, mode or rounding strategy, or a
-/// feature angle that is neither 'off' nor a number of degrees in [0, 180].
+/// Sets the lattice, density, field, feature, optimization, rounding, relaxation and stiffening options of the
+/// pipeline from the command line. \throw InputError (naming the flag) for an unknown field style, fill, mode or
+/// rounding strategy, or a feature angle that is neither 'off' nor a number of degrees in [0, 180].
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations

@@ -24,16 +24,14 @@ struct ParamCmdOptions {
   std::vector<std::string> inputs;
   std::string output;
   std::string report;
-  double edge_length = 0;
-  int quads = 0;
-  std::string lattice = "rotated";
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
 struct ParamOutputs {
-  std::string obj, report, png, html, plot;
+  std::string obj;
+  JobExtras extras;
 };
 
 /// Per-corner coordinates as OBJ texture vertices: corners of one mesh vertex with the same coordinates share a vt.
@@ -92,13 +90,9 @@ double write_param_ply(const std::string& path, const Mesh& mesh, const Eigen::M
 nlohmann::json run_param(const std::string& input, const ParamOutputs& out, const ParamCmdOptions& opt,
                          ProgressSink& progress) {
   PipelineOptions po;
-  po.param.lattice = parse_lattice(opt.lattice);
-  po.param.edge_length = opt.edge_length;
-  po.param.target_quads = opt.quads;
   apply_optimize_options(opt.optimize, po);
   validate(po);
-  if (!out.plot.empty() && po.optimize == OptimizeMode::None)
-    throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
+  check_plot_request(out.extras, po.optimize);
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   const std::string format = param_output_format(out.obj);
@@ -139,35 +133,25 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   else
     write_obj_with_uv(out.obj, positions, file_faces, UV, FUV);
   add_report_stage(report, "write", meter.lap());
-  print_warnings(input, report);
-  if (!out.png.empty()) write_parameterization_png(out.png, map_mesh, job.map, views, render_options);
-  write_job_extras({out.report, out.plot, out.html}, "quadcover param: " + input, map_mesh, job.map, nullptr, report);
-  nlohmann::json summary = report_summary(report);
-  summary["output"] = out.obj;
-  return summary;
+  return finish_job(
+      "param", input, out.obj, out.extras, map_mesh, job.map, nullptr, report,
+      [&](const std::string& png) { write_parameterization_png(png, map_mesh, job.map, views, render_options); });
 }
 
-void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_param(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<ParamCmdOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "param",
-      "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
-      "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
-      "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
-      "30 quads per branch point of the field",
-      opt->inputs);
-  cmd->add_option("-o,--output", opt->output,
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
                   "Output: .obj with per-corner vt (Blender, MeshLab and most tools read it), or .ply (binary) with "
                   "per-corner 'texcoord' (float32, as MeshLab reads it; Blender's PLY importer ignores it) (one "
                   "input), or a folder (several inputs); default: next to the input as NAME.param.obj");
-  auto* h = cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length h in model units")
+  auto* h = cmd->add_option("--edge-length", opt->optimize.edge_length, "Target quad edge length h in model units")
                 ->check(CLI::PositiveNumber);
-  cmd->add_option("--faces,--quads", opt->quads,
+  cmd->add_option("--faces,--quads", opt->optimize.quads,
                   "Target number of quads N, hit within 2 % of the map's quad count (h = sqrt(area / N), solved once "
                   "more at the corrected h when missed); --quads is its old name")
       ->check(CLI::PositiveNumber)
       ->excludes(h);
-  cmd->add_option("--lattice", opt->lattice,
+  cmd->add_option("--lattice", opt->optimize.lattice,
                   "Period lattice (4.2.2): unit = Z[i]; coarse = 2Z[i] (all branch points integral); rotated = "
                   "(1+i)Z[i] (odd branch points integral, even ones fixed up)")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
@@ -179,19 +163,18 @@ void register_param(CLI::App& app, GlobalOptions& global, int& exit_code) {
   run_on_inputs(*cmd, global, exit_code, opt->inputs,
                 {"faces", "branch_points", "h_sym", "E_D", "E_H", "flipped_triangles", "seamless"},
                 [opt](const std::string& input, bool batch, ProgressSink& progress) {
-                  const std::string output = output_path(input, opt->output, batch, ".param.obj");
-                  auto path = [&](const std::string& o, const char* suffix) {
-                    return optional_output_path(input, o, batch, suffix);
-                  };
-                  const ParamOutputs out{output, path(opt->report, ".param.json"),
-                                         path(opt->pictures.png, ".param.png"),
-                                         path(opt->pictures.report_html, ".param.html"),
-                                         path(opt->pictures.plot, ".optimize.png")};
+                  const ParamOutputs out{output_path(input, opt->output, batch, ".param.obj"),
+                                         job_extras(input, batch, opt->report, opt->pictures, ".param", ".param.png")};
                   return run_param(input, out, *opt, progress);
                 });
 }
 
-const CommandRegistrar registrar{40, "param", register_param};
+const CommandRegistrar registrar{
+    40, "param", register_param,
+    "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
+    "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
+    "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
+    "30 quads per branch point of the field"};
 
 }  // namespace
 

@@ -10,12 +10,14 @@
 
 namespace quadcover::cli {
 
-using RegisterFn = std::function<void(CLI::App& app, GlobalOptions& global, int& exit_code)>;
+/// Adds the options and the callback of the subcommand `cmd` (created by main with the entry's name and description).
+using RegisterFn = std::function<void(CLI::App* cmd, GlobalOptions& global, int& exit_code)>;
 
 struct CommandEntry {
   int order;
   std::string name;
   RegisterFn fn;
+  std::string description;  ///< the subcommand's line in --help
 };
 
 inline std::vector<CommandEntry>& command_registry() {
@@ -23,10 +25,10 @@ inline std::vector<CommandEntry>& command_registry() {
   return registry;
 }
 
-/// Place `static const CommandRegistrar reg{10, "info", register_info};` in the command's source file.
+/// Place `static const CommandRegistrar reg{10, "info", register_info, "DESCRIPTION"};` in the command's source file.
 struct CommandRegistrar {
-  CommandRegistrar(int order, std::string name, RegisterFn fn) {
-    command_registry().push_back({order, std::move(name), std::move(fn)});
+  CommandRegistrar(int order, std::string name, RegisterFn fn, std::string description) {
+    command_registry().push_back({order, std::move(name), std::move(fn), std::move(description)});
   }
 };
 

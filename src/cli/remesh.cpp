@@ -25,9 +25,6 @@ struct RemeshOptions {
   std::string output;
   std::string report;
   std::string param_output;
-  int vertices = 0;
-  double edge_length = 0;
-  std::string lattice = "rotated";
   bool ply_quality = false;
   QuadSmoothingOptions smoothing;
   OptimizeCliOptions optimize;
@@ -36,7 +33,8 @@ struct RemeshOptions {
 
 /// Where the outputs of one input go (batch: folders + suffixes; empty = not asked for).
 struct RemeshOutputs {
-  std::string quads, report, param, png, html, plot;
+  std::string quads, param;
+  JobExtras extras;
 };
 
 void write_param_obj(const std::string& path, const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
@@ -61,15 +59,10 @@ void write_quality_ply(const std::string& path, const QuadMesh& quads) {
 nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, const RemeshOptions& opt,
                           ProgressSink& progress) {
   PipelineOptions po;
-  po.param.lattice = parse_lattice(opt.lattice);
-  po.param.edge_length = opt.edge_length;
-  // A closed quad mesh has about as many vertices as faces (V - F = χ - E + 2F ... = χ + F - E, E = 2F).
-  po.param.target_quads = opt.vertices;
   po.smoothing = opt.smoothing;
   apply_optimize_options(opt.optimize, po);
   validate(po);
-  if (!out.plot.empty() && po.optimize == OptimizeMode::None)
-    throw InputError("--plot", 0, "the optimization plot needs --optimize relocate or full");
+  check_plot_request(out.extras, po.optimize);
   if (mesh_output_format(out.quads) != "ply" && opt.ply_quality)  // an unknown extension fails before any work
     throw InputError(out.quads, 0, "--ply-quality needs a .ply output");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
@@ -96,37 +89,27 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     report["warnings"].push_back(std::to_string(split) + " polygons were split into triangles for the STL output");
   if (!out.param.empty()) write_param_obj(out.param, job.param.mesh(mesh), job.param.map.uv);
   add_report_stage(report, "write", meter.lap());
-  print_warnings(input, report);
-  if (!out.png.empty()) write_quad_mesh_png(out.png, quads, views, render_options);
-  write_job_extras({out.report, out.plot, out.html}, "quadcover remesh: " + input, job.param.mesh(mesh), job.param.map, &quads,
-                   report);
-  nlohmann::json summary = report_summary(report);
-  summary["output"] = out.quads;
-  return summary;
+  return finish_job("remesh", input, out.quads, out.extras, job.param.mesh(mesh), job.param.map, &quads, report,
+                    [&](const std::string& png) { write_quad_mesh_png(png, quads, views, render_options); });
 }
 
-void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_remesh(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RemeshOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "remesh",
-      "Quad remeshing: frame field -> QuadCover parameterization -> quad extraction along the integer iso-lines; "
-      "writes the quad mesh (OBJ) and optionally a JSON report with the Table 7.1 metrics",
-      opt->inputs);
-  cmd->add_option("-o,--output", opt->output,
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
                   "Output mesh, format by extension: .obj, .off, .ply (binary), .stl (triangulated) (one input), or "
                   "a folder (several inputs); default: next to the input as NAME.quad.obj");
   cmd->add_flag("--ply-quality", opt->ply_quality,
                 "Write the quad mesh as binary PLY (.ply output; NAME.quad.ply in batches) with per-vertex "
                 "'quality' = the worst corner angle deviation from 90 degrees at the vertex (degrees; for a non-quad "
                 "n-gon from its regular angle) and 'valence' = the vertex's edge count");
-  auto* nv = cmd->add_option("--faces,--vertices", opt->vertices,
+  auto* nv = cmd->add_option("--faces,--vertices", opt->optimize.quads,
                              "Target number of quads N, hit within 2 % of the map's quad count (on a closed mesh the "
                              "quad mesh has about as many vertices); --vertices is its old name")
                  ->check(CLI::PositiveNumber);
-  cmd->add_option("--edge-length", opt->edge_length, "Target quad edge length in model units")
+  cmd->add_option("--edge-length", opt->optimize.edge_length, "Target quad edge length in model units")
       ->check(CLI::PositiveNumber)
       ->excludes(nv);
-  cmd->add_option("--lattice", opt->lattice, "Period lattice (4.2.2): unit, coarse or rotated")
+  cmd->add_option("--lattice", opt->optimize.lattice, "Period lattice (4.2.2): unit, coarse or rotated")
       ->check(CLI::IsMember({"unit", "coarse", "rotated"}))
       ->capture_default_str();
   add_optimize_options(*cmd, opt->optimize);
@@ -144,24 +127,22 @@ void register_remesh(CLI::App& app, GlobalOptions& global, int& exit_code) {
                   "Also write the parameterization as OBJ with per-corner vt (one input) or a folder for them");
   add_picture_options(*cmd, opt->pictures, "PNG of the quad mesh: wireframe over flat shading");
   add_global_options(*cmd, global);
-  run_on_inputs(*cmd, global, exit_code, opt->inputs,
-                {"vertices", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices", "arap",
-                 "manifold"},
-                [opt](const std::string& input, bool batch, ProgressSink& progress) {
-                  auto path = [&](const std::string& o, const char* suffix) {
-                    return optional_output_path(input, o, batch, suffix);
-                  };
-                  const RemeshOutputs out{output_path(input, opt->output, batch, opt->ply_quality ? ".quad.ply" : ".quad.obj"),
-                                          path(opt->report, ".remesh.json"),
-                                          path(opt->param_output, ".param.obj"),
-                                          path(opt->pictures.png, ".quad.png"),
-                                          path(opt->pictures.report_html, ".remesh.html"),
-                                          path(opt->pictures.plot, ".optimize.png")};
-                  return run_remesh(input, out, *opt, progress);
-                });
+  run_on_inputs(
+      *cmd, global, exit_code, opt->inputs,
+      {"vertices", "non_quads", "rsd_edge_length", "rsd_corner_angle", "irregular_vertices", "arap", "manifold"},
+      [opt](const std::string& input, bool batch, ProgressSink& progress) {
+        const std::string quads = opt->ply_quality ? ".quad.ply" : ".quad.obj";
+        const RemeshOutputs out{output_path(input, opt->output, batch, quads),
+                                optional_output_path(input, opt->param_output, batch, ".param.obj"),
+                                job_extras(input, batch, opt->report, opt->pictures, ".remesh", ".quad.png")};
+        return run_remesh(input, out, *opt, progress);
+      });
 }
 
-const CommandRegistrar registrar{60, "remesh", register_remesh};
+const CommandRegistrar registrar{
+    60, "remesh", register_remesh,
+    "Quad remeshing: frame field -> QuadCover parameterization -> quad extraction along the integer iso-lines; "
+    "writes the quad mesh (OBJ) and optionally a JSON report with the Table 7.1 metrics"};
 
 }  // namespace
 

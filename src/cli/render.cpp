@@ -108,16 +108,11 @@ void write_report_page(const std::string& input, const std::string& html, const 
   write_html_report(html, report);
 }
 
-void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_render(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RenderCmdOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "render",
-      "Render PNG pictures offscreen: a parameterized OBJ with a checkerboard from its per-corner `vt`, seams "
-      "(orange) and cones (blue: index 1/4, red: -1/4, cyan/magenta: ±1/2, grey: other, e.g. whole turns); a "
-      "quad/polygon mesh as wireframe; or the UV layout",
-      opt->inputs, "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
-  cmd->add_option("-o,--output", opt->output,
-                  "Output PNG (one input) or folder (several inputs: <name>.png inside; default: next to each input)");
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+                  "Output PNG (one input) or folder (several inputs: <name>.png inside; default: next to each input)",
+                  "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
   cmd->add_option("--view", opt->view,
                   "Camera: front, side, top, back, bottom, iso, all (front+side+top side by side), or AZ,EL in "
                   "degrees (default front)");
@@ -159,7 +154,11 @@ void register_render(CLI::App& app, GlobalOptions& global, int& exit_code) {
   });
 }
 
-const CommandRegistrar registrar{60, "render", register_render};
+const CommandRegistrar registrar{
+    60, "render", register_render,
+    "Render PNG pictures offscreen: a parameterized OBJ with a checkerboard from its per-corner `vt`, seams "
+    "(orange) and cones (blue: index 1/4, red: -1/4, cyan/magenta: ±1/2, grey: other, e.g. whole turns); a "
+    "quad/polygon mesh as wireframe; or the UV layout"};
 
 }  // namespace
 

@@ -41,15 +41,9 @@ nlohmann::json run_repair(const std::string& input, const std::string& output) {
           {"unreferenced_vertices_dropped", built.report.unreferenced_vertices}};
 }
 
-void register_repair(CLI::App& app, GlobalOptions& global, int& exit_code) {
+void register_repair(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RepairOptions>();
-  CLI::App* cmd = add_mesh_command(
-      app, "repair",
-      "Make a mesh usable where validation can: reorient an orientable but inconsistently oriented surface, "
-      "fan-triangulate polygons and drop unreferenced vertices; write the triangle mesh (format by extension). "
-      "Problems it cannot repair are listed with exit 2 and nothing is written",
-      opt->inputs);
-  cmd->add_option("-o,--output", opt->output,
+  add_mesh_inputs(*cmd, opt->inputs, opt->output,
                   "Output mesh .obj/.off/.ply/.stl (one input) or folder (several inputs); default: next to the "
                   "input as NAME.repaired.obj");
   add_global_options(*cmd, global);
@@ -59,7 +53,11 @@ void register_repair(CLI::App& app, GlobalOptions& global, int& exit_code) {
                 });
 }
 
-const CommandRegistrar registrar{15, "repair", register_repair};
+const CommandRegistrar registrar{
+    15, "repair", register_repair,
+    "Make a mesh usable where validation can: reorient an orientable but inconsistently oriented surface, "
+    "fan-triangulate polygons and drop unreferenced vertices; write the triangle mesh (format by extension). "
+    "Problems it cannot repair are listed with exit 2 and nothing is written"};
 
 }  // namespace
 

@@ -23,6 +23,14 @@ FieldStyle parse_field_style(std::string_view name) {
 
 std::string to_string(FieldStyle style) { return style == FieldStyle::Smooth ? "smooth" : "curvature"; }
 
+Fill parse_fill(std::string_view name) {
+  if (name == "propagate") return Fill::Propagate;
+  if (name == "smooth") return Fill::Smooth;
+  throw InputError("fill", 0, "unknown fill '" + std::string(name) + "' (expected propagate or smooth)");
+}
+
+std::string to_string(Fill fill) { return fill == Fill::Propagate ? "propagate" : "smooth"; }
+
 FieldOptions field_options(FieldStyle style) {
   FieldOptions o;
   if (style == FieldStyle::Smooth) {
@@ -31,6 +39,97 @@ FieldOptions field_options(FieldStyle style) {
   }
   return o;
 }
+
+namespace {
+
+// Power field aligned to the trusted frames with weight ω_t^stable (5.2), normalized to mean 1 over them, and held
+// at the feature directions X on the constrained faces.
+PowerFieldProblem power_fill_problem(const FrameFieldResult& r, const Eigen::VectorXcd& X,
+                                     const FieldOptions& options) {
+  const auto nf = static_cast<int>(X.size());
+  PowerFieldProblem problem;
+  problem.target = X;
+  problem.weight = Eigen::VectorXd::Zero(nf);
+  double sum = 0;
+  int count = 0;
+  for (int t = 0; t < nf; ++t)
+    if (r.trusted[static_cast<std::size_t>(t)] && !r.constrained[static_cast<std::size_t>(t)]) {
+      problem.weight[t] = r.stability[t];
+      sum += r.stability[t];
+      ++count;
+    }
+  if (sum > 0) problem.weight *= count / sum;
+  problem.fixed = r.constrained;
+  problem.alignment = options.fill_alignment;
+  problem.unit_weight = options.fill_unit_weight;
+  problem.iterations = options.fill_iterations;
+  return problem;
+}
+
+// β per face: the rotation from X_t to the nearest curvature direction on trusted faces, 0 elsewhere.
+Eigen::VectorXd curvature_targets(const FrameFieldResult& r, const Eigen::VectorXcd& X) {
+  Eigen::VectorXd beta = Eigen::VectorXd::Zero(X.size());
+  for (Eigen::Index t = 0; t < X.size(); ++t)
+    if (r.trusted[static_cast<std::size_t>(t)]) beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / X[t], 4));
+  return beta;
+}
+
+// Straightest matching (5.1) of the smoothed frames α, expressed as changes of the smoother's matching
+// (θ_e - α_s + α_t is the smoothed frames' curvature). Returns the number of edges changed.
+int straighten_matching(const Mesh& mesh, FrameSmoother& smoother, const Eigen::VectorXd& alpha) {
+  int changed = 0;
+  const Eigen::VectorXd& theta = smoother.curvature();
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    if (mesh.is_boundary_edge(e)) continue;
+    const double smoothed = theta[e] - alpha[mesh.EF()(e, 0)] + alpha[mesh.EF()(e, 1)];
+    const int k = static_cast<int>(std::lround(2.0 * smoothed / std::numbers::pi));
+    if (k != 0) {
+      smoother.change_matching(e, k);
+      ++changed;
+    }
+  }
+  return changed;
+}
+
+// Smoothing (5.3) of r.field in rounds, re-choosing the straightest matching between rounds.
+void smooth_field(const Mesh& mesh, const FieldOptions& options, FrameSmoother& smoother, FrameFieldResult& r,
+                  ProgressSink& progress) {
+  progress.report("field", 0.5, "smoothing (5.3)");
+  smoother.set_input(r.field);
+  // E_A measures the deviation from the original curvature directions on the trusted faces (5.3), which
+  // the power fill does not reproduce exactly: β_t = the rotation from X_t to the nearest of the four
+  // curvature directions. Propagated trusted frames are the curvature frames themselves (β = 0).
+  if (options.fill == Fill::Smooth) smoother.set_alignment_targets(curvature_targets(r, r.field.X));
+  Eigen::VectorXd alpha = smoother.solve();
+  for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
+    if (straighten_matching(mesh, smoother, alpha) == 0) break;
+    alpha = smoother.solve();
+  }
+  r.field = smoother.rotated(alpha);
+  r.energy_smooth = smoothing_energy(mesh, r.field);
+  r.energy_align = smoother.alignment_energy(alpha);
+}
+
+// Quarter moves along paths (5.2.2) leave no |index| >= 2 quarters; the frames are then smoothed (5.3) once
+// more with that matching, starting from the current field (its θ is small, so ±π/2 changes never wrap).
+void split_singularities(const Mesh& mesh, const FieldOptions& options, std::unique_ptr<FrameSmoother>& smoother,
+                         FrameFieldResult& r) {
+  r.singularity_moves =
+      plan_singularity_split(mesh, cross_field_quarter_index(mesh, r.field), options.split_min_quarters);
+  if (r.singularity_moves.empty()) return;
+  FrameField split = r.field;
+  apply_quarter_moves(mesh, r.singularity_moves, split.matching);
+  if (!smoother)
+    smoother = std::make_unique<FrameSmoother>(mesh, r.stability, r.trusted, r.constrained, options.lambda);
+  smoother->set_alignment_targets(curvature_targets(r, split.X));  // E_A towards the curvature directions
+  smoother->set_input(split);
+  const Eigen::VectorXd alpha = smoother->solve();
+  r.field = smoother->rotated(alpha);
+  r.energy_smooth = smoothing_energy(mesh, r.field);
+  r.energy_align = smoother->alignment_energy(alpha);
+}
+
+}  // namespace
 
 FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptions& options, ProgressSink& progress) {
   FrameFieldResult r;
@@ -58,85 +157,15 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
     factor_smoothing();
     X = propagate_frames(mesh, X, r.trusted, r.stability);  // 5.1.2
   } else {
-    // Power field aligned to the trusted frames with weight ω_t^stable (5.2), normalized to mean 1 over them.
-    PowerFieldProblem problem;
-    problem.target = X;
-    problem.weight = Eigen::VectorXd::Zero(nf);
-    double sum = 0;
-    int count = 0;
-    for (int t = 0; t < nf; ++t)
-      if (r.trusted[static_cast<std::size_t>(t)] && !r.constrained[static_cast<std::size_t>(t)]) {
-        problem.weight[t] = r.stability[t];
-        sum += r.stability[t];
-        ++count;
-      }
-    if (sum > 0) problem.weight *= count / sum;
-    problem.fixed = r.constrained;
-    problem.alignment = options.fill_alignment;
-    problem.unit_weight = options.fill_unit_weight;
-    problem.iterations = options.fill_iterations;
+    const PowerFieldProblem problem = power_fill_problem(r, X, options);
     tbb::parallel_invoke([&] { X = smooth_power_field(mesh, problem).X; }, factor_smoothing);
     for (int t = 0; t < nf; ++t)  // bit-exact curve directions (the solve returns them normalized once more)
       if (r.constrained[static_cast<std::size_t>(t)]) X[t] = features.direction[t];
   }
   r.field = cross_field_with_straightest_matching(mesh, X);
   r.energy_smooth_initial = r.energy_smooth = smoothing_energy(mesh, r.field);
-
-  // β per face: the rotation from X_t to the nearest curvature direction on trusted faces, 0 elsewhere.
-  auto curvature_targets = [&](const Eigen::VectorXcd& X) {
-    Eigen::VectorXd beta = Eigen::VectorXd::Zero(nf);
-    for (int t = 0; t < nf; ++t)
-      if (r.trusted[static_cast<std::size_t>(t)])
-        beta[t] = 0.25 * std::arg(std::pow(r.curvature.direction[t] / X[t], 4));
-    return beta;
-  };
-  if (!progress.cancelled() && smoother) {
-    progress.report("field", 0.5, "smoothing (5.3)");
-    smoother->set_input(r.field);
-    // E_A measures the deviation from the original curvature directions on the trusted faces (5.3), which
-    // the power fill does not reproduce exactly: β_t = the rotation from X_t to the nearest of the four
-    // curvature directions. Propagated trusted frames are the curvature frames themselves (β = 0).
-    if (options.fill == Fill::Smooth) smoother->set_alignment_targets(curvature_targets(r.field.X));
-    Eigen::VectorXd alpha = smoother->solve();
-    for (int round = 1; round < options.smoothing_rounds && !progress.cancelled(); ++round) {
-      // Straightest matching (5.1) of the smoothed frames, expressed as changes of the smoother's matching
-      // (θ_e - α_s + α_t is the smoothed frames' curvature).
-      int changed = 0;
-      const Eigen::VectorXd& theta = smoother->curvature();
-      for (int e = 0; e < mesh.num_edges(); ++e) {
-        if (mesh.is_boundary_edge(e)) continue;
-        const double smoothed = theta[e] - alpha[mesh.EF()(e, 0)] + alpha[mesh.EF()(e, 1)];
-        const int k = static_cast<int>(std::lround(2.0 * smoothed / std::numbers::pi));
-        if (k != 0) {
-          smoother->change_matching(e, k);
-          ++changed;
-        }
-      }
-      if (changed == 0) break;
-      alpha = smoother->solve();
-    }
-    r.field = smoother->rotated(alpha);
-    r.energy_smooth = smoothing_energy(mesh, r.field);
-    r.energy_align = smoother->alignment_energy(alpha);
-  }
-  if (options.split_singularities && !progress.cancelled()) {
-    // Quarter moves along paths (5.2.2) leave no |index| >= 2 quarters; the frames are then smoothed (5.3) once
-    // more with that matching, starting from the current field (its θ is small, so ±π/2 changes never wrap).
-    r.singularity_moves =
-        plan_singularity_split(mesh, cross_field_quarter_index(mesh, r.field), options.split_min_quarters);
-    if (!r.singularity_moves.empty()) {
-      FrameField split = r.field;
-      apply_quarter_moves(mesh, r.singularity_moves, split.matching);
-      if (!smoother)
-        smoother = std::make_unique<FrameSmoother>(mesh, r.stability, r.trusted, r.constrained, options.lambda);
-      smoother->set_alignment_targets(curvature_targets(split.X));  // E_A towards the curvature directions
-      smoother->set_input(split);
-      const Eigen::VectorXd alpha = smoother->solve();
-      r.field = smoother->rotated(alpha);
-      r.energy_smooth = smoothing_energy(mesh, r.field);
-      r.energy_align = smoother->alignment_energy(alpha);
-    }
-  }
+  if (!progress.cancelled() && smoother) smooth_field(mesh, options, *smoother, r, progress);
+  if (options.split_singularities && !progress.cancelled()) split_singularities(mesh, options, smoother, r);
   progress.report("field", 0.9, "indices");
   r.branch_points = branch_points(mesh, r.field);
   progress.report("field", 1.0, "done");

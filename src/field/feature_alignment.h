@@ -16,10 +16,8 @@ struct FeatureOptions {
   double sharp_angle_degrees = 35.0;
   /// A sharp edge counts only as part of a feature curve of at least this many sharp edges, consecutive ones
   /// continuing each other (turning by less than 40° at their common vertex). Isolated sharp edges are noise
-  /// on coarse organic meshes (bunny_3k has ~250 edges above 35°, half of them isolated); CAD creases are long
-  /// chains. 8 keeps 93-100 % of the sharp edges of the CAD meshes (fandisk, couplingdown) and drops 60-90 % of
-  /// the organic ones (bunny, cow, spot, fertility), whose crease fragments cost distortion and folds. 1 keeps
-  /// every sharp edge.
+  /// on coarse organic meshes; CAD creases are long chains (BENCHMARKS.md, "Option defaults"). 1 keeps every
+  /// sharp edge.
   int min_curve_edges = 8;
 };
 

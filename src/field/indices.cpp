@@ -31,6 +31,18 @@ int quarters(double s, int v) {
   return static_cast<int>(r);
 }
 
+// Per interior vertex: (angle defect + Σ ±angle_e around it) in quarter turns (0 at boundary vertices).
+Eigen::VectorXi loop_quarters(const Mesh& mesh, const Eigen::VectorXd& angle) {
+  Eigen::VectorXi q = Eigen::VectorXi::Zero(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.is_boundary_vertex(v)) continue;
+    double sum = mesh.angle_defect()[v];
+    for_each_loop_edge(mesh, v, [&](int e, int sign) { sum += sign * angle[e]; });
+    q[v] = quarters(sum, v);
+  }
+  return q;
+}
+
 }  // namespace
 
 Eigen::VectorXi matching_quarter_index(const Mesh& mesh, const Eigen::VectorXi& matching) {
@@ -45,25 +57,14 @@ Eigen::VectorXi matching_quarter_index(const Mesh& mesh, const Eigen::VectorXi& 
 }
 
 Eigen::VectorXi cross_field_quarter_index(const Mesh& mesh, const FrameField& field) {
-  const Eigen::VectorXd theta = field_curvature(mesh, field);
-  Eigen::VectorXi q = Eigen::VectorXi::Zero(mesh.num_vertices());
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (mesh.is_boundary_vertex(v)) continue;
-    double sum = mesh.angle_defect()[v];
-    for_each_loop_edge(mesh, v, [&](int e, int sign) { sum += sign * theta[e]; });
-    q[v] = quarters(sum, v);  // Def. 3.3
-  }
-  return q;
+  return loop_quarters(mesh, field_curvature(mesh, field));  // Def. 3.3
 }
 
 Eigen::VectorXi vector_field_index(const Mesh& mesh, const Eigen::VectorXcd& X) {
-  const Eigen::VectorXd angle = intrinsic_angles(mesh, X);
+  const Eigen::VectorXi quarter = loop_quarters(mesh, intrinsic_angles(mesh, X));
   Eigen::VectorXi ind = Eigen::VectorXi::Zero(mesh.num_vertices());
   for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (mesh.is_boundary_vertex(v)) continue;
-    double sum = mesh.angle_defect()[v];
-    for_each_loop_edge(mesh, v, [&](int e, int sign) { sum += sign * angle[e]; });
-    const int q = quarters(sum, v);  // Def. 1.18: a multiple of 2π
+    const int q = quarter[v];  // Def. 1.18: a multiple of 2π
     if (q % 4 != 0)
       throw NumericalError("field index",
                            "vertex " + std::to_string(v) + ": vector field angle sum is not a multiple of 2π");

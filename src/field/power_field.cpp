@@ -52,47 +52,50 @@ Complex powered_transport(const Mesh& mesh, int e) {
   return r2 * r2;
 }
 
-}  // namespace
-
-PowerFieldResult smooth_power_field(const Mesh& mesh, const PowerFieldProblem& problem) {
-  check(mesh, problem);
-  const int nf = mesh.num_faces(), ne = mesh.num_edges();
-  const Eigen::VectorXd kappa = alignment_coefficients(mesh, problem);
-  const Eigen::VectorXd omega = smoothing_edge_weights(mesh);
-
-  PowerFieldResult r;
-  r.held.assign(static_cast<std::size_t>(nf), 0);
-  for (std::size_t t = 0; t < problem.fixed.size(); ++t) r.held[t] = problem.fixed[t];
-  // Hold the lowest-index face of every component without an anchor (E is rotation invariant there).
+// The faces held at u_t = c_t: the fixed ones plus the lowest-index face of every component without an anchor
+// (E is rotation invariant there).
+std::vector<char> held_faces(const Mesh& mesh, const PowerFieldProblem& problem, const Eigen::VectorXd& kappa) {
+  const int nf = mesh.num_faces();
+  std::vector<char> held(static_cast<std::size_t>(nf), 0);
+  for (std::size_t t = 0; t < problem.fixed.size(); ++t) held[t] = problem.fixed[t];
   std::vector<char> anchored(static_cast<std::size_t>(mesh.num_components()), 0);
   for (int t = 0; t < nf; ++t)
-    if (r.held[static_cast<std::size_t>(t)] || kappa[t] > 0)
+    if (held[static_cast<std::size_t>(t)] || kappa[t] > 0)
       anchored[static_cast<std::size_t>(mesh.face_component()[t])] = 1;
   for (int t = 0; t < nf; ++t) {
     auto& a = anchored[static_cast<std::size_t>(mesh.face_component()[t])];
-    if (!a) r.held[static_cast<std::size_t>(t)] = a = 1;
+    if (!a) held[static_cast<std::size_t>(t)] = a = 1;
   }
+  return held;
+}
 
-  std::vector<int> unknown(static_cast<std::size_t>(nf), -1), faces;
+// ∇E = 0 as A x = b over the unknown faces: A Hermitian positive definite, the held faces' terms moved to b.
+struct PowerSystem {
+  std::vector<int> faces;  ///< face of each unknown
+  Eigen::SparseMatrix<Complex> A;
+  Eigen::VectorXcd b;
+};
+
+PowerSystem assemble_power_system(const Mesh& mesh, const std::vector<char>& held, const Eigen::VectorXd& kappa,
+                                  const Eigen::VectorXcd& u) {
+  const int nf = mesh.num_faces(), ne = mesh.num_edges();
+  const Eigen::VectorXd omega = smoothing_edge_weights(mesh);
+  PowerSystem sys;
+  std::vector<int> unknown(static_cast<std::size_t>(nf), -1);
   for (int t = 0; t < nf; ++t)
-    if (!r.held[static_cast<std::size_t>(t)]) {
-      unknown[static_cast<std::size_t>(t)] = static_cast<int>(faces.size());
-      faces.push_back(t);
+    if (!held[static_cast<std::size_t>(t)]) {
+      unknown[static_cast<std::size_t>(t)] = static_cast<int>(sys.faces.size());
+      sys.faces.push_back(t);
     }
-  const int n = static_cast<int>(faces.size());
-
-  r.u.resize(nf);
-  for (int t = 0; t < nf; ++t) r.u[t] = powered_unit(problem.target[t]);
-
-  // ∇E = 0: A u = b with A Hermitian positive definite; held faces move to b.
+  const int n = static_cast<int>(sys.faces.size());
   std::vector<Eigen::Triplet<Complex>> entries;
   entries.reserve(static_cast<std::size_t>(n + 4 * ne));
-  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(n);
+  sys.b = Eigen::VectorXcd::Zero(n);
   for (int i = 0; i < n; ++i) {
-    const int t = faces[static_cast<std::size_t>(i)];
+    const int t = sys.faces[static_cast<std::size_t>(i)];
     if (kappa[t] > 0) {
       entries.emplace_back(i, i, kappa[t]);
-      b[i] += kappa[t] * r.u[t];
+      sys.b[i] += kappa[t] * u[t];
     }
   }
   for (int e = 0; e < ne; ++e) {
@@ -108,53 +111,80 @@ PowerFieldResult smooth_power_field(const Mesh& mesh, const PowerFieldProblem& p
       entries.emplace_back(t, s, -w * q);
       entries.emplace_back(s, t, -w * std::conj(q));
     } else if (t >= 0) {
-      b[t] += w * q * r.u[fs];
+      sys.b[t] += w * q * u[fs];
     } else if (s >= 0) {
-      b[s] += w * std::conj(q) * r.u[ft];
+      sys.b[s] += w * std::conj(q) * u[ft];
     }
   }
   for (int i = 0; i < n; ++i) entries.emplace_back(i, i, 0.0);  // the diagonal's pattern, for refactorize()
-  if (n > 0) {
-    Eigen::SparseMatrix<Complex> A(n, n);
-    A.setFromTriplets(entries.begin(), entries.end());
-    SparseCholesky<Complex> cholesky;
-    cholesky.compute(A, "field power fill");  // throws NumericalError if not positive definite
-    Eigen::VectorXcd x = cholesky.solve(b);
-    if (problem.unit_weight > 0 && problem.iterations > 0) {
-      // Majorize-minimize for the Ginzburg–Landau term: (|u| - 1)² <= |u - u⁰/|u⁰||², equal at u = u⁰.
-      const Eigen::VectorXd area = component_area(mesh);
-      Eigen::VectorXd g(n);
-      for (int i = 0; i < n; ++i) {
-        const int t = faces[static_cast<std::size_t>(i)];
-        g[i] = problem.unit_weight * mesh.face_areas()[t] / area[mesh.face_component()[t]];
-        A.coeffRef(i, i) += g[i];
-      }
-      cholesky.refactorize(A);
-      Eigen::VectorXcd previous = x;
-      for (int k = 0; k < problem.iterations; ++k) {
-        Eigen::VectorXcd rhs = b;
-        for (int i = 0; i < n; ++i)
-          if (std::abs(x[i]) > 0) rhs[i] += g[i] * x[i] / std::abs(x[i]);
-        x = cholesky.solve(rhs);
-        ++r.iterations;
-        double moved = 0;
-        for (int i = 0; i < n; ++i) moved = std::max(moved, std::abs(std::arg(x[i] * std::conj(previous[i]))));
-        previous = x;
-        if (moved < 1e-6) break;
-      }
-    }
-    for (int i = 0; i < n; ++i) r.u[faces[static_cast<std::size_t>(i)]] = x[i];
-  }
+  sys.A.resize(n, n);
+  sys.A.setFromTriplets(entries.begin(), entries.end());
+  return sys;
+}
 
-  // X_t = (u_t/|u_t|)^{1/4}; at held faces the target itself, so that it lies exactly in the cross.
-  r.X.resize(nf);
-  for (int t = 0; t < nf; ++t) {
+// Majorize-minimize steps for the Ginzburg–Landau term from the linear solution x: (|u| - 1)² <= |u - u⁰/|u⁰||²,
+// equal at u = u⁰. Returns the steps taken.
+int ginzburg_landau_steps(const Mesh& mesh, const PowerFieldProblem& problem, PowerSystem& sys,
+                          SparseCholesky<Complex>& cholesky, Eigen::VectorXcd& x) {
+  const int n = static_cast<int>(sys.faces.size());
+  const Eigen::VectorXd area = component_area(mesh);
+  Eigen::VectorXd g(n);
+  for (int i = 0; i < n; ++i) {
+    const int t = sys.faces[static_cast<std::size_t>(i)];
+    g[i] = problem.unit_weight * mesh.face_areas()[t] / area[mesh.face_component()[t]];
+    sys.A.coeffRef(i, i) += g[i];
+  }
+  cholesky.refactorize(sys.A);
+  Eigen::VectorXcd previous = x;
+  int steps = 0;
+  for (int k = 0; k < problem.iterations; ++k) {
+    Eigen::VectorXcd rhs = sys.b;
+    for (int i = 0; i < n; ++i)
+      if (std::abs(x[i]) > 0) rhs[i] += g[i] * x[i] / std::abs(x[i]);
+    x = cholesky.solve(rhs);
+    ++steps;
+    double moved = 0;
+    for (int i = 0; i < n; ++i) moved = std::max(moved, std::abs(std::arg(x[i] * std::conj(previous[i]))));
+    previous = x;
+    if (moved < 1e-6) break;
+  }
+  return steps;
+}
+
+// X_t = (u_t/|u_t|)^{1/4}; at held faces the target itself, so that it lies exactly in the cross.
+Eigen::VectorXcd first_frame_vectors(const PowerFieldProblem& problem, const PowerFieldResult& r) {
+  const Eigen::Index nf = r.u.size();
+  Eigen::VectorXcd X(nf);
+  for (Eigen::Index t = 0; t < nf; ++t) {
     const Complex d = problem.target[t];
     if (r.held[static_cast<std::size_t>(t)] && std::abs(d) > 0)
-      r.X[t] = d / std::abs(d);
+      X[t] = d / std::abs(d);
     else
-      r.X[t] = std::abs(r.u[t]) > 0 ? std::polar(1.0, 0.25 * std::arg(r.u[t])) : Complex(1.0);
+      X[t] = std::abs(r.u[t]) > 0 ? std::polar(1.0, 0.25 * std::arg(r.u[t])) : Complex(1.0);
   }
+  return X;
+}
+
+}  // namespace
+
+PowerFieldResult smooth_power_field(const Mesh& mesh, const PowerFieldProblem& problem) {
+  check(mesh, problem);
+  const int nf = mesh.num_faces();
+  const Eigen::VectorXd kappa = alignment_coefficients(mesh, problem);
+  PowerFieldResult r;
+  r.held = held_faces(mesh, problem, kappa);
+  r.u.resize(nf);
+  for (int t = 0; t < nf; ++t) r.u[t] = powered_unit(problem.target[t]);
+  PowerSystem sys = assemble_power_system(mesh, r.held, kappa, r.u);
+  if (!sys.faces.empty()) {
+    SparseCholesky<Complex> cholesky;
+    cholesky.compute(sys.A, "field power fill");  // throws NumericalError if not positive definite
+    Eigen::VectorXcd x = cholesky.solve(sys.b);
+    if (problem.unit_weight > 0 && problem.iterations > 0)
+      r.iterations = ginzburg_landau_steps(mesh, problem, sys, cholesky, x);
+    for (std::size_t i = 0; i < sys.faces.size(); ++i) r.u[sys.faces[i]] = x[static_cast<Eigen::Index>(i)];
+  }
+  r.X = first_frame_vectors(problem, r);
   return r;
 }
 

@@ -25,35 +25,33 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
   set_input(input);
 }
 
-FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability, const std::vector<char>& trusted,
-                             const std::vector<char>& fixed, double lambda)
-    : mesh_(&mesh), lambda_(lambda) {
-  const int nf = mesh.num_faces(), ne = mesh.num_edges();
-  if (!(lambda > 0 && lambda <= 1)) throw std::invalid_argument("FrameSmoother: λ must lie in (0, 1]");
-  if (stability.size() != nf || trusted.size() != static_cast<std::size_t>(nf) ||
-      (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
-    throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
-  omega_ = smoothing_edge_weights(mesh);
+namespace {
 
-  // Alignment weights a_t, normalized by their mean over the trusted faces.
-  align_ = Eigen::VectorXd::Zero(nf);
+// Alignment weights a_t = ω_t A_t on the trusted faces, normalized by their mean over them.
+Eigen::VectorXd alignment_weights(const Mesh& mesh, const Eigen::VectorXd& stability,
+                                  const std::vector<char>& trusted) {
+  const int nf = mesh.num_faces();
+  Eigen::VectorXd align = Eigen::VectorXd::Zero(nf);
   double sum = 0;
   int count = 0;
   for (int t = 0; t < nf; ++t)
     if (trusted[static_cast<std::size_t>(t)]) {
-      align_[t] = stability[t] * mesh.face_areas()[t];
-      sum += align_[t];
+      align[t] = stability[t] * mesh.face_areas()[t];
+      sum += align[t];
       ++count;
     }
-  if (sum > 0) align_ *= count / sum;
-  beta_ = Eigen::VectorXd::Zero(nf);
+  if (sum > 0) align *= count / sum;
+  return align;
+}
 
-  // Fixed faces; then fix the most stable face of every free group that has no anchor.
-  fixed_.assign(static_cast<std::size_t>(nf), 0);
-  for (std::size_t t = 0; t < fixed.size(); ++t) fixed_[t] = fixed[t];
+// Fixes the most stable face of every group of free faces that neither touches a fixed face nor has an
+// alignment term ((1-λ) a_t > 0): A (5.4) would be singular there.
+void anchor_free_groups(const Mesh& mesh, const Eigen::VectorXd& stability, const Eigen::VectorXd& align, double lambda,
+                        std::vector<char>& fixed) {
+  const int nf = mesh.num_faces();
   std::vector<int> group(static_cast<std::size_t>(nf), -1), stack;
   for (int seed = 0; seed < nf; ++seed) {
-    if (fixed_[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
+    if (fixed[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
     bool anchored = false;
     int best = seed;
     stack.assign(1, seed);
@@ -61,12 +59,12 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability,
     while (!stack.empty()) {
       const int f = stack.back();
       stack.pop_back();
-      if ((1 - lambda) * align_[f] > 0) anchored = true;
+      if ((1 - lambda) * align[f] > 0) anchored = true;
       if (stability[f] > stability[best] || (stability[f] == stability[best] && f < best)) best = f;
       for (int k = 0; k < 3; ++k) {
         const int g = mesh.neighbor(f, k);
         if (g < 0) continue;
-        if (fixed_[static_cast<std::size_t>(g)]) {
+        if (fixed[static_cast<std::size_t>(g)]) {
           anchored = true;
         } else if (group[static_cast<std::size_t>(g)] < 0) {
           group[static_cast<std::size_t>(g)] = seed;
@@ -74,30 +72,27 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability,
         }
       }
     }
-    if (!anchored) fixed_[static_cast<std::size_t>(best)] = 1;
+    if (!anchored) fixed[static_cast<std::size_t>(best)] = 1;
   }
+}
 
-  unknown_of_face_.assign(static_cast<std::size_t>(nf), -1);
-  for (int t = 0; t < nf; ++t)
-    if (!fixed_[static_cast<std::size_t>(t)]) {
-      unknown_of_face_[static_cast<std::size_t>(t)] = static_cast<int>(unknowns_.size());
-      unknowns_.push_back(t);
-    }
-  const int n = num_unknowns();
-
-  // A (5.4) restricted to the free faces (fixed α = 0 moves nothing to the right-hand side); b in set_input.
-  b_ = Eigen::VectorXd::Zero(n);
+// A (5.4) restricted to the free faces (fixed α = 0 moves nothing to the right-hand side).
+Eigen::SparseMatrix<double> smoothing_matrix(const Mesh& mesh, const Eigen::VectorXd& omega,
+                                             const Eigen::VectorXd& align, double lambda,
+                                             const std::vector<int>& unknown_of_face,
+                                             const std::vector<int>& unknowns) {
+  const int n = static_cast<int>(unknowns.size()), ne = mesh.num_edges();
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(n + 4 * ne));
   for (int i = 0; i < n; ++i) {
-    const double a = (1 - lambda) * align_[unknowns_[static_cast<std::size_t>(i)]];
+    const double a = (1 - lambda) * align[unknowns[static_cast<std::size_t>(i)]];
     if (a > 0) entries.emplace_back(i, i, a);
   }
   for (int e = 0; e < ne; ++e) {
     if (mesh.is_boundary_edge(e)) continue;
-    const int s = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 0))];
-    const int t = unknown_of_face_[static_cast<std::size_t>(mesh.EF()(e, 1))];
-    const double w = lambda * omega_[e];
+    const int s = unknown_of_face[static_cast<std::size_t>(mesh.EF()(e, 0))];
+    const int t = unknown_of_face[static_cast<std::size_t>(mesh.EF()(e, 1))];
+    const double w = lambda * omega[e];
     if (s >= 0) entries.emplace_back(s, s, w);
     if (t >= 0) entries.emplace_back(t, t, w);
     if (s >= 0 && t >= 0) {
@@ -107,8 +102,35 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability,
   }
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+}  // namespace
+
+FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability, const std::vector<char>& trusted,
+                             const std::vector<char>& fixed, double lambda)
+    : mesh_(&mesh), lambda_(lambda) {
+  const int nf = mesh.num_faces();
+  if (!(lambda > 0 && lambda <= 1)) throw std::invalid_argument("FrameSmoother: λ must lie in (0, 1]");
+  if (stability.size() != nf || trusted.size() != static_cast<std::size_t>(nf) ||
+      (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
+    throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
+  omega_ = smoothing_edge_weights(mesh);
+  align_ = alignment_weights(mesh, stability, trusted);
+  beta_ = Eigen::VectorXd::Zero(nf);
+  fixed_.assign(static_cast<std::size_t>(nf), 0);
+  for (std::size_t t = 0; t < fixed.size(); ++t) fixed_[t] = fixed[t];
+  anchor_free_groups(mesh, stability, align_, lambda, fixed_);
+  unknown_of_face_.assign(static_cast<std::size_t>(nf), -1);
+  for (int t = 0; t < nf; ++t)
+    if (!fixed_[static_cast<std::size_t>(t)]) {
+      unknown_of_face_[static_cast<std::size_t>(t)] = static_cast<int>(unknowns_.size());
+      unknowns_.push_back(t);
+    }
+  b_ = Eigen::VectorXd::Zero(num_unknowns());  // b in set_input
   solver_ = std::make_unique<Solver>();
-  solver_->cholesky.compute(A, "field smoothing (5.4)");  // throws NumericalError if not positive definite
+  solver_->cholesky.compute(smoothing_matrix(mesh, omega_, align_, lambda, unknown_of_face_, unknowns_),
+                            "field smoothing (5.4)");  // throws NumericalError if not positive definite
 }
 
 void FrameSmoother::set_input(const FrameField& input) {

@@ -35,29 +35,24 @@ nlohmann::json to_json(const ParamQuality& q) {
 }
 
 nlohmann::json to_json(const QuadQuality& q) {
-  return {{"vertices", q.vertices},
-          {"faces", q.faces},
-          {"quads", q.quads},
-          {"non_quads", q.non_quads},
-          {"face_sizes", map_json(q.face_sizes)},
-          {"mean_edge_length", q.mean_edge_length},
-          {"rsd_edge_length", q.rsd_edge_length},
-          {"mean_corner_angle", q.mean_corner_angle},
-          {"rsd_corner_angle", q.rsd_corner_angle},
-          {"valence_histogram", map_json(q.valence_histogram)},
-          {"irregular_vertices", q.irregular_vertices},
-          {"boundary_vertices", q.boundary_vertices},
-          {"irregular_boundary_vertices", q.irregular_boundary_vertices},
-          {"manifold", q.topology.manifold()},
-          {"oriented", q.topology.oriented()},
-          {"closed", q.topology.closed()},
-          {"components", q.topology.components},
-          {"boundary_loops", q.topology.boundary_loops},
-          {"genus", to_json(q.topology)["genus"]},
-          {"euler_characteristic", q.topology.euler_characteristic},
-          {"boundary_edges", q.topology.boundary_edges},
-          {"non_manifold_edges", q.topology.non_manifold_edges},
-          {"non_manifold_vertices", q.topology.non_manifold_vertices}};
+  nlohmann::json j = {{"vertices", q.vertices},
+                      {"faces", q.faces},
+                      {"quads", q.quads},
+                      {"non_quads", q.non_quads},
+                      {"face_sizes", map_json(q.face_sizes)},
+                      {"mean_edge_length", q.mean_edge_length},
+                      {"rsd_edge_length", q.rsd_edge_length},
+                      {"mean_corner_angle", q.mean_corner_angle},
+                      {"rsd_corner_angle", q.rsd_corner_angle},
+                      {"valence_histogram", map_json(q.valence_histogram)},
+                      {"irregular_vertices", q.irregular_vertices},
+                      {"boundary_vertices", q.boundary_vertices},
+                      {"irregular_boundary_vertices", q.irregular_boundary_vertices}};
+  const nlohmann::json topology = to_json(q.topology);  // mesh/surface_counts.h
+  for (const char* key : {"manifold", "oriented", "closed", "components", "boundary_loops", "genus",
+                          "euler_characteristic", "boundary_edges", "non_manifold_edges", "non_manifold_vertices"})
+    j[key] = topology[key];
+  return j;
 }
 
 nlohmann::json to_json(const SurfaceDistance& d) {
@@ -67,28 +62,14 @@ nlohmann::json to_json(const SurfaceDistance& d) {
           {"max_from_reference", d.max_from_reference}};
 }
 
-nlohmann::json to_json(const ExtractionReport& r) {
-  return {{"quads", r.quads},
-          {"non_quads", r.non_quads},
-          {"grid_vertices", r.grid_vertices},
-          {"boundary_vertices", r.boundary_vertices},
-          {"unfolded_triangles", r.unfolded_triangles},
-          {"moved_vertices", r.moved_vertices},
-          {"collapsed_edges", r.collapsed_edges},
-          {"split_polygons", r.split_polygons},
-          {"merged_polygons", r.merged_polygons},
-          {"filled_holes", r.filled_holes},
-          {"removed_spikes", r.removed_spikes},
-          {"flipped_triangles", r.flipped_triangles},
-          {"degenerate_triangles", r.degenerate_triangles},
-          {"torn_seams", r.torn_seams},
-          {"non_integer_translations", r.non_integer_translations},
-          {"failed_traces", r.failed_traces},
-          {"dropped_faces", r.dropped_faces},
-          {"degenerate_faces", r.degenerate_faces},
-          {"split_vertices", r.split_vertices},
-          {"active_parameter_area", r.active_parameter_area}};
-}
+// Every counter under its own name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExtractionReport, quads, non_quads, grid_vertices, boundary_vertices,
+                                   unfolded_triangles, moved_vertices, collapsed_edges, flipped_triangles,
+                                   degenerate_triangles, torn_seams, non_integer_translations, failed_traces,
+                                   dropped_faces, degenerate_faces, removed_spikes, split_vertices, split_polygons,
+                                   merged_polygons, filled_holes, active_parameter_area)
+
+nlohmann::json to_json(const ExtractionReport& r) { return r; }
 
 nlohmann::json to_json(const Report& r) {
   nlohmann::json j;

@@ -11,12 +11,7 @@ std::vector<BalancingSweepRow> balancing_sweep(const Mesh& mesh, const FrameFiel
   const OptimizeOptions& oo = options.optimize;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, oo.lambda);
   CurlEnergy energy(mesh, smoother, SmoothingWeights{oo.lambda, field.stability, field.trusted}, oo.energy);
-  CurlReductionOptions ro;
-  ro.cancellation_neighbours = oo.cancellation_neighbours;
-  ro.max_evaluations = oo.max_evaluations;
-  ro.time_limit_seconds = oo.time_limit_seconds;
-  ro.local_estimates = oo.local_estimates;
-  ro.threads = oo.threads;
+  CurlReductionOptions ro = curl_reduction_options(oo);
   ro.allow_creation = options.allow_creation;  // with creation: the right end of Figure 6.5
   CurlReductionResult r = reduce_curl(mesh, energy, ro, progress);
   long evaluations = r.evaluations;

@@ -21,6 +21,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// Sizes the workspace's face/edge stamps for the mesh and starts a new stamp (clearing them only on wrap-around).
+void next_stamp(EstimateWorkspace& ws, int nf, int ne) {
+  if (static_cast<int>(ws.face_stamp.size()) != nf || static_cast<int>(ws.edge_stamp.size()) != ne) {
+    ws.face_stamp.assign(static_cast<std::size_t>(nf), 0);
+    ws.edge_stamp.assign(static_cast<std::size_t>(ne), 0);
+    ws.edge_slot.assign(static_cast<std::size_t>(ne), 0);
+    ws.stamp = 0;
+  }
+  if (++ws.stamp == 0) {
+    std::fill(ws.face_stamp.begin(), ws.face_stamp.end(), 0);
+    std::fill(ws.edge_stamp.begin(), ws.edge_stamp.end(), 0);
+    ws.stamp = 1;
+  }
+}
+
 }  // namespace
 
 struct CurlEnergy::Workspaces {
@@ -249,18 +264,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
 
 double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const {
   if (!estimates_ready_) throw std::logic_error("CurlEnergy::estimate before prepare_estimates");
-  const int nf = mesh_->num_faces(), ne = mesh_->num_edges();
-  if (static_cast<int>(ws.face_stamp.size()) != nf || static_cast<int>(ws.edge_stamp.size()) != ne) {
-    ws.face_stamp.assign(static_cast<std::size_t>(nf), 0);
-    ws.edge_stamp.assign(static_cast<std::size_t>(ne), 0);
-    ws.edge_slot.assign(static_cast<std::size_t>(ne), 0);
-    ws.stamp = 0;
-  }
-  if (++ws.stamp == 0) {
-    std::fill(ws.face_stamp.begin(), ws.face_stamp.end(), 0);
-    std::fill(ws.edge_stamp.begin(), ws.edge_stamp.end(), 0);
-    ws.stamp = 1;
-  }
+  next_stamp(ws, mesh_->num_faces(), mesh_->num_edges());
   auto t0 = Clock::now();
   ws.m_override.clear(), ws.theta_override.clear(), ws.mu_override.clear(), ws.db_smooth.clear();
   auto layer = [&](int f, int k) {

@@ -44,9 +44,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
   CurlEnergy energy(mesh, smoother, SmoothingWeights{options.lambda, field.stability, field.trusted}, options.energy);
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  CurlReductionOptions ro;
-  ro.allow_creation = options.mode == OptimizeMode::Full;
-  ro.cancellation_neighbours = options.cancellation_neighbours;
+  CurlReductionOptions ro = curl_reduction_options(options);
   const long budget =
       options.max_evaluations == kAutoBudget ? auto_evaluation_budget(mesh, options.mode) : options.max_evaluations;
   out.max_evaluations = std::max(0L, budget);
@@ -62,8 +60,6 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   if (options.mode == OptimizeMode::Full && budget > 0) ro.max_evaluations = std::max(1L, budget - budget / 3);
   // full: balancing (with its E_H measurement) gets the last third of the time limit, like the evaluations.
   ro.time_limit_seconds = options.mode == OptimizeMode::Full ? limit * 2 / 3 : limit;
-  ro.local_estimates = options.local_estimates;
-  ro.threads = options.threads;
   out.reduction = reduce_curl(mesh, energy, ro, progress);
   long evaluations = out.reduction.evaluations;
   const bool out_of_time = limit > 0 && elapsed() >= limit;
@@ -90,6 +86,17 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.evaluations_per_second = out.seconds > 0 ? evaluations / out.seconds : 0;
   return out;
+}
+
+CurlReductionOptions curl_reduction_options(const OptimizeOptions& options) {
+  CurlReductionOptions ro;
+  ro.allow_creation = options.mode == OptimizeMode::Full;
+  ro.cancellation_neighbours = options.cancellation_neighbours;
+  ro.max_evaluations = options.max_evaluations;
+  ro.time_limit_seconds = options.time_limit_seconds;
+  ro.local_estimates = options.local_estimates;
+  ro.threads = options.threads;
+  return ro;
 }
 
 nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {

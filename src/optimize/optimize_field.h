@@ -59,6 +59,9 @@ struct OptimizeResult {
   CurlEnergyTimings estimate_timings;  ///< screening estimates, summed over the threads
 };
 
+/// The CurlReductionOptions of `options` as given (creation with mode full; budget and time limit unresolved).
+CurlReductionOptions curl_reduction_options(const OptimizeOptions& options);
+
 /// The default evaluation budget (deterministic, no clock): enough for `relocate` to converge on the test meshes
 /// and for `full` to stay within the whole-pipeline goals of BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on
 /// two cores). Grows with the number of interior edges, capped.

@@ -47,128 +47,166 @@ std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z
   return slots;
 }
 
-AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
-                                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
-                                     const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                     const CurveLimits& limits)
-    : mesh_(&mesh), cut_(&cut), layer_(&layer), known_(&known), slots_(slots) {
-  std::vector<AlignedCurve>& curves = curves_;
-  int& conflicts = conflicts_;
-  const int nv = mesh.num_vertices();
-  conflicts = 0;
-  curves.clear();
-  auto phi_at = [&](const Eigen::VectorXcd& u, int f, int c) {
+namespace {
+
+// What the slots of AlignedCorrection are read against: the map φ = known - i^layer u (branch vertices: known).
+struct SlotFrame {
+  const Mesh& mesh;
+  const CoverCut& cut;
+  const Eigen::MatrixX3i& layer;
+  const Eigen::MatrixX3cd& known;
+  const std::vector<CurveSlot>& slots;
+
+  Complex phi_at(const Eigen::VectorXcd& u, int f, int c) const {
     const int p = mesh.F()(f, c);
     return known(f, c) - (cut.branch[p] ? Complex(0) : ipow(layer(f, c)) * u[p]);
-  };
-  // Each slot i (a curve edge) asks coordinate a_i = n_i at both endpoints; at a vertex p this fixes one real
-  // component of u_p: Re(i^{-s} u_p) = Re(i^{-a} known) - n, s = a - λ (s even: x = ±β, s odd: y = ±β).
-  // Slots fixing the same component of the same u_p lie on one iso-line seen through the transitions of the cut:
-  // n_j = σ n_i + τ with σ = ±1 and τ ∈ Z. A breadth-first search over these relations gives every slot its
-  // n = σ n_root + τ; the root value is the rounded mean of the unconstrained solution along the whole line.
-  const int ns = static_cast<int>(slots.size());
-  struct Use {
-    int slot, corner_face, corner;
-    int component;  // 0: x, 1: y of u_p
-    int sign;       // u-component = sign · β
-  };
-  std::vector<std::vector<Use>> uses(static_cast<std::size_t>(nv));
-  for (int i = 0; i < ns; ++i)
+  }
+  /// Corner of slot i's face at the end `end` of its edge.
+  int corner(int i, int end) const { return corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end)); }
+};
+
+// One end of a slot at a vertex p: the component of u_p it fixes.
+struct Use {
+  int slot, corner_face, corner;
+  int component;  // 0: x, 1: y of u_p
+  int sign;       // u-component = sign · β
+};
+
+double known_coord(const SlotFrame& s, const Use& w) {
+  return std::real(ipow(-s.slots[w.slot].coordinate) * s.known(w.corner_face, w.corner));
+}
+
+// Each slot i (a curve edge) asks coordinate a_i = n_i at both endpoints; at a vertex p this fixes one real
+// component of u_p: Re(i^{-s} u_p) = Re(i^{-a} known) - n, s = a - λ (s even: x = ±β, s odd: y = ±β).
+std::vector<std::vector<Use>> slot_uses(const SlotFrame& s) {
+  std::vector<std::vector<Use>> uses(static_cast<std::size_t>(s.mesh.num_vertices()));
+  for (int i = 0; i < static_cast<int>(s.slots.size()); ++i)
     for (int end = 0; end < 2; ++end) {
-      const int f = slots[i].face, c = corner_of(mesh, f, mesh.E()(slots[i].edge, end)), p = mesh.F()(f, c);
-      if (cut.branch[p]) continue;  // pinned by the periods (integral on the rotated and coarse lattices)
-      const int s = mod4(slots[i].coordinate - layer(f, c));
-      uses[p].push_back({i, f, c, s % 2, (s == 0 || s == 1) ? 1 : -1});
+      const int f = s.slots[i].face, c = s.corner(i, end), p = s.mesh.F()(f, c);
+      if (s.cut.branch[p]) continue;  // pinned by the periods (integral on the rotated and coarse lattices)
+      const int q = mod4(s.slots[i].coordinate - s.layer(f, c));
+      uses[p].push_back({i, f, c, q % 2, (q == 0 || q == 1) ? 1 : -1});
     }
-  auto known_coord = [&](const Use& w) {
-    return std::real(ipow(-slots[w.slot].coordinate) * known(w.corner_face, w.corner));
-  };
-  // Relations: u-comp = sign_i (K_i - n_i) = sign_j (K_j - n_j)  =>  n_j = σ n_i + τ, σ = sign_i sign_j,
-  // τ = K_j - σ K_i.
-  struct Rel {
-    int to, sigma;
-    double tau;
-  };
-  std::vector<std::vector<Rel>> rel(static_cast<std::size_t>(ns));
-  for (int p = 0; p < nv; ++p)
-    for (std::size_t a = 0; a < uses[p].size(); ++a)
-      for (std::size_t b2 = a + 1; b2 < uses[p].size(); ++b2) {
-        const Use &wi = uses[p][a], &wj = uses[p][b2];
+  return uses;
+}
+
+// n_j = σ n_i + τ between two slots that fix one component of one u_p.
+struct Rel {
+  int to, sigma;
+  double tau;
+};
+
+// Relations: u-comp = sign_i (K_i - n_i) = sign_j (K_j - n_j)  =>  n_j = σ n_i + τ, σ = sign_i sign_j,
+// τ = K_j - σ K_i.
+std::vector<std::vector<Rel>> slot_relations(const SlotFrame& s, const std::vector<std::vector<Use>>& uses) {
+  std::vector<std::vector<Rel>> rel(s.slots.size());
+  for (const auto& at : uses)
+    for (std::size_t a = 0; a < at.size(); ++a)
+      for (std::size_t b2 = a + 1; b2 < at.size(); ++b2) {
+        const Use &wi = at[a], &wj = at[b2];
         if (wi.component != wj.component || wi.slot == wj.slot) continue;
         const int sigma = wi.sign * wj.sign;
-        const double tau = std::round(known_coord(wj) - sigma * known_coord(wi));
+        const double tau = std::round(known_coord(s, wj) - sigma * known_coord(s, wi));
         rel[wi.slot].push_back({wj.slot, sigma, tau});
         rel[wj.slot].push_back({wi.slot, sigma, -sigma * tau});  // n_i = σ n_j - σ τ
       }
-  std::vector<int>& curve_of = curve_of_;
-  curve_of.assign(static_cast<std::size_t>(ns), -1);
-  std::vector<int> sigma_of(ns, 1);
-  std::vector<double> tau_of(static_cast<std::size_t>(ns), 0);
-  std::vector<int> queue;
-  for (int root = 0; root < ns; ++root) {
-    if (curve_of[root] >= 0) continue;
-    const int k = static_cast<int>(curves.size());
-    curves.push_back({});
-    curves.back().coordinate = slots[root].coordinate;
-    curve_of[root] = k;
-    queue.assign(1, root);
-    double sum = 0, anchor = 0, length = 0, lo = INFINITY, hi = -INFINITY;
-    int count = 0;
-    bool anchored = false;  // a branch point on the line fixes its value (its position is set by the periods)
-    bool consistent = true;  // two branch points on one line at different integers: the line cannot be kept
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const int i = queue[q];
-      curves[k].edges.push_back(slots[i].edge);
-      length += std::abs(phi_at(u0, slots[i].face, corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, 1))) -
-                         phi_at(u0, slots[i].face, corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, 0))));
-      for (int end = 0; end < 2; ++end) {  // estimate of n_root from slot i: σ_i (coordinate - τ_i)
-        const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
-        const double estimate =
-            sigma_of[i] * (std::real(ipow(-slots[i].coordinate) * phi_at(u0, slots[i].face, c)) - tau_of[i]);
-        sum += estimate;
-        lo = std::min(lo, estimate), hi = std::max(hi, estimate);
-        ++count;
-        if (cut.branch[mesh.F()(slots[i].face, c)]) {
-          if (anchored && std::abs(estimate - anchor) > 0.5) consistent = false;
-          if (!anchored) anchored = true, anchor = estimate;
-        }
-      }
-      for (const Rel& r : rel[i]) {
-        if (curve_of[r.to] >= 0) continue;
-        curve_of[r.to] = k;
-        sigma_of[r.to] = r.sigma * sigma_of[i];
-        tau_of[r.to] = r.sigma * tau_of[i] + r.tau;
-        queue.push_back(r.to);
+  return rel;
+}
+
+// Per slot: its curve and n = σ n_root + τ.
+struct SlotCurves {
+  std::vector<int> curve_of, sigma_of;
+  std::vector<double> tau_of;
+};
+
+// The breadth-first search over the relations from `root`: adds curve k (slots, value, enforced) to `curves`.
+// The root value is the rounded mean of the unconstrained solution u0 along the whole line.
+void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, const Eigen::VectorXcd& u0,
+                 const CurveLimits& limits, int root, std::vector<AlignedCurve>& curves, SlotCurves& sc) {
+  const int k = static_cast<int>(curves.size());
+  curves.push_back({});
+  curves.back().coordinate = s.slots[root].coordinate;
+  sc.curve_of[root] = k;
+  std::vector<int> queue(1, root);
+  double sum = 0, anchor = 0, length = 0, lo = INFINITY, hi = -INFINITY;
+  int count = 0;
+  bool anchored = false;   // a branch point on the line fixes its value (its position is set by the periods)
+  bool consistent = true;  // two branch points on one line at different integers: the line cannot be kept
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const int i = queue[q];
+    const CurveSlot& slot = s.slots[i];
+    curves[k].edges.push_back(slot.edge);
+    length += std::abs(s.phi_at(u0, slot.face, s.corner(i, 1)) - s.phi_at(u0, slot.face, s.corner(i, 0)));
+    for (int end = 0; end < 2; ++end) {  // estimate of n_root from slot i: σ_i (coordinate - τ_i)
+      const int c = s.corner(i, end);
+      const double estimate =
+          sc.sigma_of[i] * (std::real(ipow(-slot.coordinate) * s.phi_at(u0, slot.face, c)) - sc.tau_of[i]);
+      sum += estimate;
+      lo = std::min(lo, estimate), hi = std::max(hi, estimate);
+      ++count;
+      if (s.cut.branch[s.mesh.F()(slot.face, c)]) {
+        if (anchored && std::abs(estimate - anchor) > 0.5) consistent = false;
+        if (!anchored) anchored = true, anchor = estimate;
       }
     }
-    curves[k].value = std::round(anchored ? anchor : sum / count);
-    // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
-    // collapses the strip between them), lines far from straight in the free map (pinning bends the map across a
-    // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
-    // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
-    const double shift = std::abs(sum / count - curves[k].value);
-    curves[k].enforced =
-        consistent && length >= limits.min_length && shift <= limits.max_shift && hi - lo <= limits.max_spread;
+    for (const Rel& r : rel[i]) {
+      if (sc.curve_of[r.to] >= 0) continue;
+      sc.curve_of[r.to] = k;
+      sc.sigma_of[r.to] = r.sigma * sc.sigma_of[i];
+      sc.tau_of[r.to] = r.sigma * sc.tau_of[i] + r.tau;
+      queue.push_back(r.to);
+    }
   }
-  std::vector<double>& n_of = n_of_;
-  n_of.assign(static_cast<std::size_t>(ns), 0);
+  curves[k].value = std::round(anchored ? anchor : sum / count);
+  // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
+  // collapses the strip between them), lines far from straight in the free map (pinning bends the map across a
+  // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
+  // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
+  const double shift = std::abs(sum / count - curves[k].value);
+  curves[k].enforced =
+      consistent && length >= limits.min_length && shift <= limits.max_shift && hi - lo <= limits.max_spread;
+}
+
+// Slots fixing the same component of the same u_p lie on one iso-line seen through the transitions of the cut:
+// every connected set of relations is one curve.
+SlotCurves trace_curves(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, const Eigen::VectorXcd& u0,
+                        const CurveLimits& limits, std::vector<AlignedCurve>& curves) {
+  const int ns = static_cast<int>(s.slots.size());
+  SlotCurves sc{std::vector<int>(ns, -1), std::vector<int>(ns, 1), std::vector<double>(ns, 0.0)};
+  for (int root = 0; root < ns; ++root)
+    if (sc.curve_of[root] < 0) trace_curve(s, rel, u0, limits, root, curves, sc);
+  return sc;
+}
+
+// n per slot from its curve's value; the curves' edge lists in slot order with their coordinates and values.
+std::vector<double> slot_values(const SlotFrame& s, const SlotCurves& sc, std::vector<AlignedCurve>& curves) {
+  const int ns = static_cast<int>(s.slots.size());
+  std::vector<double> n_of(static_cast<std::size_t>(ns), 0);
   for (auto& c : curves) c.edges.clear();
   for (int i = 0; i < ns; ++i) {
-    n_of[i] = sigma_of[i] * curves[curve_of[i]].value + tau_of[i];
-    AlignedCurve& c = curves[curve_of[i]];
-    c.edges.push_back(slots[i].edge);
-    c.edge_coordinates.push_back(slots[i].coordinate);
+    n_of[i] = sc.sigma_of[i] * curves[sc.curve_of[i]].value + sc.tau_of[i];
+    AlignedCurve& c = curves[sc.curve_of[i]];
+    c.edges.push_back(s.slots[i].edge);
+    c.edge_coordinates.push_back(s.slots[i].coordinate);
     c.edge_values.push_back(n_of[i]);
   }
+  return n_of;
+}
 
-  // A line that closes on itself with another integer (a boundary loop around branch points, a line through a
-  // cut whose transition does not map it to itself) fixes some component of u twice with different values: such
-  // lines, and those through two branch points at different integers, are left free (reported, not enforced).
+// A line that closes on itself with another integer (a boundary loop around branch points, a line through a
+// cut whose transition does not map it to itself) fixes some component of u twice with different values: such
+// lines, and those through two branch points at different integers, are left free (reported, not enforced).
+// Returns the number of enforced curves so dropped.
+int drop_conflicting_curves(const SlotFrame& s, const std::vector<std::vector<Use>>& uses,
+                            const std::vector<int>& curve_of, const std::vector<double>& n_of,
+                            std::vector<AlignedCurve>& curves) {
+  const int nv = s.mesh.num_vertices();
+  int conflicts = 0;
   std::map<int, std::pair<int, double>> seen;  // u-component index -> (curve, value)
   for (int p = 0; p < nv; ++p)
     for (const Use& w : uses[p]) {
       const int idx = w.component * nv + p, k = curve_of[w.slot];
-      const double v = w.sign * (known_coord(w) - n_of[w.slot]);
+      const double v = w.sign * (known_coord(s, w) - n_of[w.slot]);
       auto [it, inserted] = seen.try_emplace(idx, k, v);
       if (!inserted && std::abs(it->second.second - v) > 1e-9 * (1 + std::abs(v))) {
         if (curves[k].enforced) ++conflicts;
@@ -176,19 +214,13 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
         curves[it->second.first].enforced = false;
       }
     }
-  std::vector<char>& fixed = fixed_;
-  fixed.assign(static_cast<std::size_t>(2 * nv), 0);
-  Eigen::VectorXd& value = value_;
-  value = Eigen::VectorXd::Zero(2 * nv);
-  for (int p = 0; p < nv; ++p)
-    for (const Use& w : uses[p]) {
-      if (!curves[curve_of[w.slot]].enforced) continue;
-      const int idx = w.component * nv + p;
-      fixed[idx] = 1;
-      value[idx] = w.sign * (known_coord(w) - n_of[w.slot]);
-    }
+  return conflicts;
+}
 
-  // Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.
+// Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.
+void pin_kernel(const Mesh& mesh, const std::vector<int>& kernel_pins, std::vector<char>& fixed,
+                Eigen::VectorXd& value) {
+  const int nv = mesh.num_vertices();
   for (const int p : kernel_pins) {
     const int comp = mesh.vertex_component()[p];
     bool has[2] = {false, false};
@@ -197,6 +229,32 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
     for (int part = 0; part < 2; ++part)
       if (!has[part]) fixed[part * nv + p] = 1, value[part * nv + p] = 0;
   }
+}
+
+}  // namespace
+
+AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
+                                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
+                                     const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
+                                     const CurveLimits& limits)
+    : mesh_(&mesh), cut_(&cut), layer_(&layer), known_(&known), slots_(slots) {
+  const SlotFrame frame{mesh, cut, layer, known, slots_};
+  const int nv = mesh.num_vertices();
+  const std::vector<std::vector<Use>> uses = slot_uses(frame);
+  SlotCurves sc = trace_curves(frame, slot_relations(frame, uses), u0, limits, curves_);
+  n_of_ = slot_values(frame, sc, curves_);
+  curve_of_ = std::move(sc.curve_of);
+  conflicts_ = drop_conflicting_curves(frame, uses, curve_of_, n_of_, curves_);
+  fixed_.assign(static_cast<std::size_t>(2 * nv), 0);
+  value_ = Eigen::VectorXd::Zero(2 * nv);
+  for (int p = 0; p < nv; ++p)
+    for (const Use& w : uses[p]) {
+      if (!curves_[curve_of_[w.slot]].enforced) continue;
+      const int idx = w.component * nv + p;
+      fixed_[idx] = 1;
+      value_[idx] = w.sign * (known_coord(frame, w) - n_of_[w.slot]);
+    }
+  pin_kernel(mesh, kernel_pins, fixed_, value_);
 }
 
 Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b,

@@ -28,9 +28,7 @@ struct ParamOptions {
   /// Default density when neither is given: h = default_edge_factor × mean mesh edge length (≈ #F / 9 quads on
   /// a regular mesh), or finer so that there are at least min_quads_per_branch_point quads per branch point of the
   /// field (h ≤ sqrt(area / (min_quads_per_branch_point · #branch points)); 0 = no such bound). Branch points sit on
-  /// integer points: a grid with a few quads per cone must fold. At the old rule cow had 550 quads for 121 branch
-  /// points and 48 flipped triangles, couplingdown 252 for 76 and 82; with 30 per branch point 3 and 23
-  /// (BENCHMARKS.md, "Default density").
+  /// integer points: a grid with a few quads per cone must fold (BENCHMARKS.md, "Default density").
   double default_edge_factor = 2.0;
   double min_quads_per_branch_point = 30.0;
   /// Rounding of the periods to the lattice (6.3): the period matrix P_ij = ⟨H_i, Σ_j⟩ of the harmonic fields of
@@ -49,9 +47,7 @@ struct ParamOptions {
   /// moves it by at most this many grid units on average; farther ones stay free and their deviation is reported.
   double align_max_shift = 0.35;
   /// ... and only if its coordinate varies along it by at most this many grid units in the unconstrained map.
-  /// Straightening a wigglier line bends the map around it: on bunny_3k at 6500 quads the three lines of the
-  /// closed-up base rim (spread 0.7-2.2) cost ARAP 0.0171 -> 0.0241 and 4 flips; fandisk's ARAP 0.0223 -> 0.0143
-  /// without its spread > 1 lines (BENCHMARKS.md, "Curve alignment").
+  /// Straightening a wigglier line bends the map around it (BENCHMARKS.md, "Option defaults").
   double align_max_spread = 1.0;
   /// Curves shorter than this many grid units (quad edge lengths) stay free: pinning short crease fragments costs
   /// distortion and folds for no visible gain.

@@ -26,9 +26,8 @@ struct RelaxationOptions {
   /// nearest rotation of a flipped triangle is its way back to a positive orientation.
   double flip_weight = 10.0;
   /// Refactorizations at most: refactorization_budget / #F, between 2 and `iterations`. More of them keep
-  /// unflipping triangles (couplingdown 44 / 40 / 23 flips with 8 / 12 / 20, camelhead 9 / 4 / 2), but each costs a
-  /// factorization: on armadillo_86k 20 of them made the relaxation 5.3 s CPU against 0.3 s for the harmonic solve
-  /// (22 -> 14 flips). The default allows 20 up to 50k faces, 11 on armadillo_86k and 2 from 500k faces on.
+  /// unflipping triangles, but each costs a factorization (BENCHMARKS.md, "Option defaults"). The default allows
+  /// 20 up to 50k faces and 2 from 500k faces on.
   double refactorization_budget = 1e6;
 };
 

@@ -31,6 +31,7 @@ void validate(const PipelineOptions& o) {
 FieldOptions field_stage_options(const PipelineOptions& options) {
   FieldOptions o = field_options(options.field_style);
   o.features = options.param.features;
+  o.fill = options.fill;
   return o;
 }
 

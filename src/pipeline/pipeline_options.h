@@ -15,6 +15,9 @@ namespace quadcover {
 struct PipelineOptions {
   /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5) or smoothest.
   FieldStyle field_style = FieldStyle::Curvature;
+  /// Frames of the untrusted faces before the smoothing (FieldOptions::fill): the power-field solve, or the
+  /// thesis's trusted propagation (5.1.2).
+  Fill fill = Fill::Smooth;
   /// Optimization of the field's matching (thesis ch. 6, optimize/optimize_field.h).
   OptimizeMode optimize = OptimizeMode::Relocate;
   /// E_D evaluations of Algorithm 6.1: kAutoBudget (-1) = auto, 0 = until converged.
@@ -47,8 +50,8 @@ struct PipelineOptions {
 /// rigidity outside [0, 1], a budget below -1, a feature angle outside [0, 180]).
 void validate(const PipelineOptions& options);
 
-/// The FieldOptions of the field stage (the preset with options.param.features), whose λ also serves Algorithm 6.1's
-/// re-smoothing.
+/// The FieldOptions of the field stage (the preset with options.fill and options.param.features), whose λ also serves
+/// Algorithm 6.1's re-smoothing.
 FieldOptions field_stage_options(const PipelineOptions& options);
 
 /// The OptimizeOptions of the optimization stage (mode, budget, λ of the field stage, `param` for E_H).

@@ -100,23 +100,27 @@ namespace {
 
 /// One sentence listing the repairs of the extraction, or none.
 std::vector<std::string> extraction_repairs(const ExtractionReport& r) {
-  std::vector<std::string> repairs;
-  auto note = [&](int n, const char* one, const char* many) {
-    if (n > 0) repairs.push_back(std::to_string(n) + " " + (n == 1 ? one : many));
+  struct Repair {
+    int ExtractionReport::*count;
+    const char *one, *many;
   };
-  note(r.unfolded_triangles, "folded triangle unfolded", "folded triangles unfolded");
-  note(r.moved_vertices, "vertex moved by the fold repair", "vertices moved by the fold repair");
-  note(r.collapsed_edges, "edge mapped to a point collapsed", "edges mapped to a point collapsed");
-  note(r.flipped_triangles, "flipped triangle cut out", "flipped triangles cut out");
-  note(r.degenerate_triangles, "collapsed triangle cut out", "collapsed triangles cut out");
-  note(r.torn_seams, "torn seam treated as boundary", "torn seams treated as boundary");
-  note(r.non_integer_translations, "non-integer transition", "non-integer transitions");
-  note(r.failed_traces, "iso-line that could not be followed", "iso-lines that could not be followed");
-  note(r.dropped_faces, "face dropped", "faces dropped");
-  note(r.degenerate_faces, "degenerate face dropped", "degenerate faces dropped");
-  note(r.removed_spikes, "spike removed", "spikes removed");
-  note(r.split_vertices, "pinched vertex split", "pinched vertices split");
-  note(r.filled_holes, "hole filled", "holes filled");
+  static constexpr Repair kRepairs[] = {
+      {&ExtractionReport::unfolded_triangles, "folded triangle unfolded", "folded triangles unfolded"},
+      {&ExtractionReport::moved_vertices, "vertex moved by the fold repair", "vertices moved by the fold repair"},
+      {&ExtractionReport::collapsed_edges, "edge mapped to a point collapsed", "edges mapped to a point collapsed"},
+      {&ExtractionReport::flipped_triangles, "flipped triangle cut out", "flipped triangles cut out"},
+      {&ExtractionReport::degenerate_triangles, "collapsed triangle cut out", "collapsed triangles cut out"},
+      {&ExtractionReport::torn_seams, "torn seam treated as boundary", "torn seams treated as boundary"},
+      {&ExtractionReport::non_integer_translations, "non-integer transition", "non-integer transitions"},
+      {&ExtractionReport::failed_traces, "iso-line that could not be followed", "iso-lines that could not be followed"},
+      {&ExtractionReport::dropped_faces, "face dropped", "faces dropped"},
+      {&ExtractionReport::degenerate_faces, "degenerate face dropped", "degenerate faces dropped"},
+      {&ExtractionReport::removed_spikes, "spike removed", "spikes removed"},
+      {&ExtractionReport::split_vertices, "pinched vertex split", "pinched vertices split"},
+      {&ExtractionReport::filled_holes, "hole filled", "holes filled"}};
+  std::vector<std::string> repairs;
+  for (const Repair& k : kRepairs)
+    if (const int n = r.*k.count; n > 0) repairs.push_back(std::to_string(n) + " " + (n == 1 ? k.one : k.many));
   if (repairs.empty()) return {};
   std::string line = "the extraction repaired the map (";
   for (std::size_t i = 0; i < repairs.size(); ++i) line += (i ? ", " : "") + repairs[i];

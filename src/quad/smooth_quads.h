@@ -14,8 +14,7 @@ namespace quadcover {
 struct QuadSmoothingOptions {
   int iterations = 20;  ///< local/global rounds (0 = off); the default of `remesh`
   /// Weight of the common size h against each quad's own size in its target square: 1 evens out edge lengths
-  /// (rigid), 0 only squares the quads up (conformal). 0.5 by default: on bunny_3k at 6500 vertices (Table 7.1)
-  /// 20 rounds take RSD edge / angle 8.6 / 6.7 % → 7.9 / 5.7 %, rigidity 1 → 7.6 / 6.1 %.
+  /// (rigid), 0 only squares the quads up (conformal); 0.5 by default (BENCHMARKS.md, "Option defaults").
   double rigidity = 0.5;
   /// Fraction of the way to the target taken per round (damped Jacobi).
   double step = 0.5;

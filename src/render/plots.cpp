@@ -311,46 +311,52 @@ std::vector<double> histogram_counts(const Histogram& h, double* lo_out, double*
   return counts;
 }
 
-std::string line_plot_svg(const LinePlot& plot, int width, int height) {
-  SvgPainter p(width, height);
-  paint_line_plot(p, plot, width, height);
+namespace {
+
+// The figure drawn by `paint` with a Painter of type P (SvgPainter: SVG text, RasterPainter: Image).
+template <class P, class Figure>
+auto draw(void (*paint)(Painter&, const Figure&, int, int), const Figure& figure, int width, int height) {
+  P p(width, height);
+  paint(p, figure, width, height);
   return p.finish();
+}
+
+// SVG for a ".svg" path, else PNG, written atomically.
+template <class Figure>
+void write_figure(const std::string& path, void (*paint)(Painter&, const Figure&, int, int), const Figure& figure,
+                  int width, int height) {
+  if (ends_with_svg(path)) {
+    const std::string svg = draw<SvgPainter>(paint, figure, width, height);
+    write_file_atomically(path, [&](std::ostream& out) { out << svg; });
+  } else {
+    write_png(path, draw<RasterPainter>(paint, figure, width, height));
+  }
+}
+
+}  // namespace
+
+std::string line_plot_svg(const LinePlot& plot, int width, int height) {
+  return draw<SvgPainter>(paint_line_plot, plot, width, height);
 }
 
 Image line_plot_image(const LinePlot& plot, int width, int height) {
-  RasterPainter p(width, height);
-  paint_line_plot(p, plot, width, height);
-  return p.finish();
+  return draw<RasterPainter>(paint_line_plot, plot, width, height);
 }
 
 std::string histogram_svg(const Histogram& histogram, int width, int height) {
-  SvgPainter p(width, height);
-  paint_histogram(p, histogram, width, height);
-  return p.finish();
+  return draw<SvgPainter>(paint_histogram, histogram, width, height);
 }
 
 Image histogram_image(const Histogram& histogram, int width, int height) {
-  RasterPainter p(width, height);
-  paint_histogram(p, histogram, width, height);
-  return p.finish();
+  return draw<RasterPainter>(paint_histogram, histogram, width, height);
 }
 
 void write_line_plot(const std::string& path, const LinePlot& plot, int width, int height) {
-  if (ends_with_svg(path)) {
-    const std::string svg = line_plot_svg(plot, width, height);
-    write_file_atomically(path, [&](std::ostream& out) { out << svg; });
-  } else {
-    write_png(path, line_plot_image(plot, width, height));
-  }
+  write_figure(path, paint_line_plot, plot, width, height);
 }
 
 void write_histogram(const std::string& path, const Histogram& histogram, int width, int height) {
-  if (ends_with_svg(path)) {
-    const std::string svg = histogram_svg(histogram, width, height);
-    write_file_atomically(path, [&](std::ostream& out) { out << svg; });
-  } else {
-    write_png(path, histogram_image(histogram, width, height));
-  }
+  write_figure(path, paint_histogram, histogram, width, height);
 }
 
 }  // namespace quadcover

@@ -9,16 +9,12 @@
 #include <map>
 
 #include "render/html_report.h"
+#include "support/text.h"
 
 namespace quadcover {
 namespace {
 
-std::string between(const std::string& s, const std::string& open, const std::string& close) {
-  const auto a = s.find(open);
-  if (a == std::string::npos) return "";
-  const auto b = s.find(close, a + open.size());
-  return s.substr(a + open.size(), b - a - open.size());
-}
+using testing::between;
 
 /// The surface of [0, 1]³ with n × n squares per side, as triangles with per-corner uv = the side's grid
 /// coordinates (one chart per side: a seamless map with a cone at each corner), and as quads.

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "support/test_meshes.h"
+#include "support/text.h"
 
 namespace quadcover {
 namespace html_assets {
@@ -17,12 +18,7 @@ std::string_view viewer_js();
 }  // namespace html_assets
 namespace {
 
-std::string between(const std::string& s, const std::string& open, const std::string& close) {
-  const auto a = s.find(open);
-  if (a == std::string::npos) return "";
-  const auto b = s.find(close, a + open.size());
-  return s.substr(a + open.size(), b - a - open.size());
-}
+using testing::between;
 
 std::string read_source_file(const std::string& relative) {
   std::ifstream in(std::string(QUADCOVER_TEST_DATA_DIR) + "/../../" + relative, std::ios::binary);

@@ -119,4 +119,13 @@ Mesh make_ellipsoid(int level, double a, double b, double c) {
   return Mesh::from_triangles(V, F);
 }
 
+Mesh make_torus_and_cylinder() {
+  const Mesh torus = make_torus(12, 8), cylinder = make_cylinder(10, 4);
+  Eigen::MatrixX3d V(torus.num_vertices() + cylinder.num_vertices(), 3);
+  V << torus.V(), cylinder.V();
+  Eigen::MatrixX3i F(torus.num_faces() + cylinder.num_faces(), 3);
+  F << torus.F(), cylinder.F().array() + torus.num_vertices();
+  return Mesh::from_triangles(V, F);
+}
+
 }  // namespace quadcover::testing

@@ -105,12 +105,7 @@ TEST(CutMesh, UncutSurfacesKeepTheirTopology) {
 
 // Several components are cut independently: a torus and a cylinder in one mesh give two disks.
 TEST(CutMesh, EveryComponentBecomesADisk) {
-  const Mesh torus = testing::make_torus(12, 8), cylinder = testing::make_cylinder(10, 4);
-  Eigen::MatrixX3d V(torus.num_vertices() + cylinder.num_vertices(), 3);
-  V << torus.V(), cylinder.V();
-  Eigen::MatrixX3i F(torus.num_faces() + cylinder.num_faces(), 3);
-  F << torus.F(), cylinder.F().array() + torus.num_vertices();
-  const Mesh both = Mesh::from_triangles(V, F);
+  const Mesh both = testing::make_torus_and_cylinder();
   ASSERT_EQ(both.num_components(), 2);
   const CutGraph g = cut_graph(both);
   EXPECT_EQ(g.paths.size(), 3u);  // 2g = 2 loops on the torus, b - 1 = 1 path on the cylinder

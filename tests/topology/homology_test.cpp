@@ -180,12 +180,7 @@ TEST(Homology, CylinderHasOneBoundaryToBoundaryGenerator) {
 
 // Two components (a torus and a cylinder): generators and dual cycles stay within their component.
 TEST(Homology, ComponentsAreIndependent) {
-  const Mesh torus = testing::make_torus(12, 8), cylinder = testing::make_cylinder(10, 4);
-  Eigen::MatrixX3d V(torus.num_vertices() + cylinder.num_vertices(), 3);
-  V << torus.V(), cylinder.V();
-  Eigen::MatrixX3i F(torus.num_faces() + cylinder.num_faces(), 3);
-  F << torus.F(), cylinder.F().array() + torus.num_vertices();
-  const Mesh both = Mesh::from_triangles(V, F);
+  const Mesh both = testing::make_torus_and_cylinder();
   const HomologyBasis basis = homology_basis(both, cut_graph(both));
   ASSERT_EQ(basis.size(), 3);
   const Eigen::SparseMatrix<Complex> sigma = sigma_fields(both, basis);

@@ -1,0 +1,66 @@
+// `param` / `remesh --fill propagate|smooth` through the real binary: the thesis's trusted propagation (5.1.2) is
+// reachable from the jobs, it changes the field (branch points of the field stage, the written map), the default is
+// the smooth fill (same bytes as `--fill smooth`), the report names the fill, and another word is refused (exit 2).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.h"
+#include "support/test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using quadcover::testing::run_cli;
+using quadcover::testing::slurp;
+
+class FillCli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir = quadcover::testing::fresh_dir("fill_cli", "files"); }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+
+  /// Runs `COMMAND bunny_3k -o NAME.obj --report NAME.json --optimize none EXTRA`; returns the report.
+  nlohmann::json run(const std::string& command, const std::string& name, const std::string& extra) {
+    const std::string args = command + " " + quadcover::testing::data_path("bunny_3k") + " -o " + path(name + ".obj") +
+                             " --report " + path(name + ".json") + " --optimize none -q " + extra;
+    EXPECT_EQ(run_cli(args).code, 0) << args;
+    return nlohmann::json::parse(slurp(path(name + ".json")));
+  }
+  fs::path dir;
+};
+
+TEST_F(FillCli, PropagateChangesTheFieldAndTheDefaultIsSmooth) {
+  const nlohmann::json by_default = run("param", "default", "");
+  const nlohmann::json smooth = run("param", "smooth", "--fill smooth");
+  const nlohmann::json propagate = run("param", "propagate", "--fill propagate");
+  EXPECT_EQ(by_default["options"]["fill"], "smooth");
+  EXPECT_EQ(propagate["options"]["fill"], "propagate");
+  EXPECT_EQ(slurp(path("default.obj")), slurp(path("smooth.obj")));  // the default output is the smooth fill's
+  // Propagation leaves more branch points in the field (seams between propagated regions, BENCHMARKS.md).
+  const auto initial = [](const nlohmann::json& r) { return r["field"]["branch_points_initial"].get<int>(); };
+  EXPECT_GT(initial(propagate), initial(smooth));
+  EXPECT_NE(slurp(path("propagate.obj")), slurp(path("smooth.obj")));
+  EXPECT_TRUE(propagate["parameterization"]["seamless"].get<bool>());
+}
+
+TEST_F(FillCli, RemeshTakesItToo) {
+  const nlohmann::json propagate = run("remesh", "quads", "--fill propagate --smooth-quads 0");
+  EXPECT_EQ(propagate["options"]["fill"], "propagate");
+  EXPECT_GT(propagate["quad_mesh"]["quads"].get<int>(), 0);
+}
+
+TEST_F(FillCli, AnotherWordIsRefused) {
+  for (const std::string command : {"param", "remesh"}) {
+    SCOPED_TRACE(command);
+    const std::string out = path("refused.obj");
+    const auto r = run_cli(
+        command + " " + quadcover::testing::data_path("bunny_3k") + " -o " + out + " --fill flood -q", path("err.txt"));
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--fill"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+}  // namespace
