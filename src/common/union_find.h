@@ -9,8 +9,12 @@ namespace quadcover::detail {
 
 class UnionFind {
  public:
-  explicit UnionFind(int n) : parent_(static_cast<std::size_t>(n)), size_(static_cast<std::size_t>(n), 1) {
+  explicit UnionFind(int n) { reset(n); }
+  /// n singletons again (reuses the storage).
+  void reset(int n) {
+    parent_.resize(static_cast<std::size_t>(n));
     std::iota(parent_.begin(), parent_.end(), 0);
+    size_.assign(static_cast<std::size_t>(n), 1);
   }
   int find(int x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "common/union_find.h"
 #include "mesh/shape_operator.h"
 
 namespace quadcover {
@@ -17,13 +18,7 @@ void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& shar
   std::vector<std::vector<int>> at(static_cast<std::size_t>(mesh.num_vertices()));
   for (int e : sharp)
     for (int j = 0; j < 2; ++j) at[static_cast<std::size_t>(mesh.E()(e, j))].push_back(e);
-  std::vector<int> parent(static_cast<std::size_t>(ne));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i)
-      i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    return i;
-  };
+  detail::UnionFind curves(ne);
   const auto away = [&](int e, int v) {  // unit direction of e leaving v
     const int w = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
     return Eigen::Vector3d((mesh.V().row(w) - mesh.V().row(v)).normalized());
@@ -34,11 +29,11 @@ void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& shar
     for (std::size_t i = 0; i < edges.size(); ++i)
       for (std::size_t j = i + 1; j < edges.size(); ++j)
         if (away(edges[i], v).dot(away(edges[j], v)) < continues)
-          parent[static_cast<std::size_t>(find(edges[i]))] = find(edges[j]);
+          curves.unite(edges[i], edges[j]);
   }
   std::vector<int> size(static_cast<std::size_t>(ne), 0);
-  for (int e : sharp) ++size[static_cast<std::size_t>(find(e))];
-  std::erase_if(sharp, [&](int e) { return size[static_cast<std::size_t>(find(e))] < min_edges; });
+  for (int e : sharp) ++size[static_cast<std::size_t>(curves.find(e))];
+  std::erase_if(sharp, [&](int e) { return size[static_cast<std::size_t>(curves.find(e))] < min_edges; });
 }
 
 }  // namespace

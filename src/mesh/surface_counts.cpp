@@ -6,25 +6,14 @@
 #include <utility>
 
 #include "common/errors.h"
+#include "common/union_find.h"
 #include "mesh/mesh.h"
 
 namespace quadcover {
 
 namespace {
 
-/// Disjoint sets with path halving (corners, boundary edges, vertices).
-struct Sets {
-  std::vector<int> parent;
-  explicit Sets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
+using Sets = detail::UnionFind;  // corners, boundary edges, vertices
 
 /// The faces' sides (corner c runs from its vertex to the next corner's) grouped into undirected edges.
 struct Sides {
@@ -78,7 +67,7 @@ void count_fans_and_loops(int num_vertices, const Sides& s, SurfaceCounts& c) {
   int nb = 0;
   for (std::size_t e = 0; e < s.sides.size(); ++e)
     if (s.sides[e] == 1) boundary_id[e] = nb++;
-  Sets fans(static_cast<std::size_t>(corners)), loops(static_cast<std::size_t>(nb));
+  Sets fans(corners), loops(nb);
   std::vector<std::pair<int, int>> links;  // (edge or fan, corner or boundary edge) at one vertex
   for (int v = 0; v < num_vertices; ++v) {
     links.clear();
@@ -115,7 +104,7 @@ SurfaceCounts surface_counts(int num_vertices, const std::vector<std::vector<int
     c.non_manifold_edges += s.sides[e] > 2;
     c.inconsistent_edges += s.sides[e] == 2 && s.forward[e] != 1;
   }
-  Sets components(static_cast<std::size_t>(num_vertices));
+  Sets components(num_vertices);
   std::vector<char> used(static_cast<std::size_t>(num_vertices), 0);
   for (const auto& f : faces) {
     c.non_quads += f.size() != 4;

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "common/union_find.h"
 #include "mesh/mesh.h"
 #include "mesh/edge_table.h"
 
@@ -201,17 +202,12 @@ void check_vertex_fans(const PolygonSoup& soup, const ValidationOptions& options
       for (std::size_t t = 0; t < tris.size(); ++t)
         for (int k = 0; k < 3; ++k) tri_of[fill[static_cast<std::size_t>(tris[t][k])]++] = static_cast<std::uint32_t>(t);
     }
-    std::vector<int> parent;
+    detail::UnionFind fan(0);
     for (long v = 0; v < nv; ++v) {
       const std::span<const std::uint32_t> vt(tri_of.data() + tri_begin[static_cast<std::size_t>(v)],
                                               tri_of.data() + tri_begin[static_cast<std::size_t>(v) + 1]);
       if (vt.size() <= 1) continue;
-      parent.resize(vt.size());
-      std::iota(parent.begin(), parent.end(), 0);
-      auto find = [&](int i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-      };
+      fan.reset(static_cast<int>(vt.size()));
       // Two triangles at v are linked if they share an edge (v, w) that is manifold.
       for (std::size_t i = 0; i < vt.size(); ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -223,12 +219,12 @@ void check_vertex_fans(const PolygonSoup& soup, const ValidationOptions& options
             if (h.tri == vt[i]) continue;
             // vt is sorted (triangles were appended in order): binary search keeps huge valences O(d log d).
             const auto it = std::lower_bound(vt.begin(), vt.end(), h.tri);
-            parent[find(static_cast<int>(i))] = find(static_cast<int>(it - vt.begin()));
+            fan.unite(static_cast<int>(i), static_cast<int>(it - vt.begin()));
           }
         }
       }
       int fans = 0;
-      for (std::size_t i = 0; i < vt.size(); ++i) fans += find(static_cast<int>(i)) == static_cast<int>(i);
+      for (std::size_t i = 0; i < vt.size(); ++i) fans += fan.find(static_cast<int>(i)) == static_cast<int>(i);
       if (fans > 1) nm_vertex.vertex(v, ": " + std::to_string(fans) + " separate fans of faces meet there");
     }
   }

@@ -12,17 +12,6 @@
 
 namespace quadcover {
 
-namespace {
-
-int corner_of(const Mesh& mesh, int f, int v) {
-  for (int c = 0; c < 3; ++c)
-    if (mesh.F()(f, c) == v) return c;
-  return -1;
-}
-
-
-}  // namespace
-
 std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z, const std::vector<int>& feature_edges,
                                            double tolerance_degrees) {
   std::vector<int> candidates = feature_edges;
@@ -62,7 +51,7 @@ struct SlotFrame {
     return known(f, c) - (cut.branch[p] ? Complex(0) : ipow(layer(f, c)) * u[p]);
   }
   /// Corner of slot i's face at the end `end` of its edge.
-  int corner(int i, int end) const { return corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end)); }
+  int corner(int i, int end) const { return mesh.corner_of(slots[i].face, mesh.E()(slots[i].edge, end)); }
 };
 
 // One end of a slot at a vertex p: the component of u_p it fixes.
@@ -322,7 +311,7 @@ std::vector<AlignedCurve> AlignedCorrection::curves(const Eigen::VectorXcd& u) c
   // Deviation of every curve from its iso-line on the result (all curve vertices, branch points included).
   for (int i = 0; i < ns; ++i)
     for (int end = 0; end < 2; ++end) {
-      const int c = corner_of(mesh, slots[i].face, mesh.E()(slots[i].edge, end));
+      const int c = mesh.corner_of(slots[i].face, mesh.E()(slots[i].edge, end));
       const double x = std::real(ipow(-slots[i].coordinate) * phi_at(slots[i].face, c));
       AlignedCurve& curve = curves[curve_of[i]];
       curve.max_deviation = std::max(curve.max_deviation, std::abs(x - n_of[i]));

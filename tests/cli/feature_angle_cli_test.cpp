@@ -15,11 +15,9 @@ namespace fs = std::filesystem;
 using quadcover::testing::run_cli;
 using quadcover::testing::slurp;
 
-class FeatureAngleCli : public ::testing::Test {
+class FeatureAngleCli : public quadcover::testing::FolderTest {
  protected:
-  void SetUp() override { dir = quadcover::testing::fresh_dir("feature_angle_cli", "files"); }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
+  FeatureAngleCli() : FolderTest("feature_angle_cli") {}
 
   /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` and returns its report.
   nlohmann::json report(const std::string& command, const std::string& mesh, const std::string& angle,
@@ -31,7 +29,6 @@ class FeatureAngleCli : public ::testing::Test {
     EXPECT_EQ(run_cli(args).code, 0) << args;
     return nlohmann::json::parse(slurp(json));
   }
-  fs::path dir;
 };
 
 TEST_F(FeatureAngleCli, AngleReachesTheFieldStageAndTheReport) {

@@ -15,11 +15,9 @@ namespace fs = std::filesystem;
 using quadcover::testing::run_cli;
 using quadcover::testing::slurp;
 
-class FillCli : public ::testing::Test {
+class FillCli : public quadcover::testing::FolderTest {
  protected:
-  void SetUp() override { dir = quadcover::testing::fresh_dir("fill_cli", "files"); }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
+  FillCli() : FolderTest("fill_cli") {}
 
   /// Runs `COMMAND bunny_3k -o NAME.obj --report NAME.json --optimize none EXTRA`; returns the report.
   nlohmann::json run(const std::string& command, const std::string& name, const std::string& extra) {
@@ -28,7 +26,6 @@ class FillCli : public ::testing::Test {
     EXPECT_EQ(run_cli(args).code, 0) << args;
     return nlohmann::json::parse(slurp(path(name + ".json")));
   }
-  fs::path dir;
 };
 
 TEST_F(FillCli, PropagateChangesTheFieldAndTheDefaultIsSmooth) {

@@ -20,12 +20,9 @@ using quadcover::PolygonSoup;
 using quadcover::testing::run_cli;
 using quadcover::testing::slurp;
 
-class PlyOutputCli : public ::testing::Test {
+class PlyOutputCli : public quadcover::testing::FolderTest {
  protected:
-  void SetUp() override { dir = quadcover::testing::fresh_dir("ply_output_cli", "files"); }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-  fs::path dir;
+  PlyOutputCli() : FolderTest("ply_output_cli") {}
 };
 
 /// A little-endian binary PLY body after the header: reads values in order.

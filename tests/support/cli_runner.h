@@ -1,6 +1,7 @@
 #pragma once
 // Running the built CLI from tests: the binary is QUADCOVER_CLI (defined for every test executable). Header-only so
 // that the macro of the including test applies.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace quadcover::testing {
 
@@ -35,6 +37,19 @@ inline std::filesystem::path fresh_dir(const std::string& prefix, const std::str
   std::filesystem::create_directories(dir);
   return dir;
 }
+
+/// A test with its own empty folder fresh_dir(PREFIX, "files"), removed afterwards; path(NAME) is a file in it.
+class FolderTest : public ::testing::Test {
+ protected:
+  explicit FolderTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override { dir = fresh_dir(prefix_, "files"); }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+  std::filesystem::path dir;
+
+ private:
+  std::string prefix_;
+};
 
 /// Runs `quadcover ARGS` and captures stdout. stderr goes to `stderr_file` (read back into CliRun::err) or is
 /// discarded. timeout_seconds > 0 kills a hanging run (reported as code -1) instead of blocking the suite.
