@@ -11,10 +11,11 @@ class ProgressSink {
  public:
   virtual ~ProgressSink() = default;
   /// `stage` names the pipeline stage, `fraction` is in [0,1] or negative when unknown, `message` is free text.
+  /// \pre none
   virtual void report(std::string_view stage, double fraction, std::string_view message) = 0;
-  virtual bool cancelled() const { return false; }
+  virtual bool cancelled() const { return false; }  ///< \pre none
   /// Seconds until a time limit makes cancelled() true (infinity without one): lets a job leave its later, not
-  /// interruptible stages their time.
+  /// interruptible stages their time. \pre none
   virtual double seconds_left() const;
 };
 
@@ -22,7 +23,7 @@ class ProgressSink {
 /// even after a Ctrl-C or a time limit stopped the optimization (a second Ctrl-C still ends the process).
 class FinishingProgress final : public ProgressSink {
  public:
-  explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}
+  explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}  ///< \pre inner outlives this sink.
   void report(std::string_view stage, double fraction, std::string_view message) override {
     inner_.report(stage, fraction, message);
   }
@@ -39,6 +40,7 @@ class NullProgress final : public ProgressSink {
 
 inline double ProgressSink::seconds_left() const { return std::numeric_limits<double>::infinity(); }
 
+/// \pre none
 inline NullProgress& null_progress() {
   static NullProgress sink;
   return sink;
