@@ -86,6 +86,8 @@ class Walker:
                     if c.get("kind") in FUNCS:
                         c.setdefault("_template_comment", [x for x in node.get("inner", []) if x.get("kind") == "FullComment"])
             for c in node.get("inner", []):
+                if c.get("kind") in FUNCS:
+                    c["access"] = access
                 self.walk(c, scope)
             return
         if kind in FUNCS:
