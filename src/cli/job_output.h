@@ -15,7 +15,7 @@ struct JobExtras {
   std::string report, plot, html;
 };
 
-/// Prints "warning: INPUT: sentence" on stderr for each of report["warnings"], also with --quiet.
+/// Prints "warning: INPUT: sentence" on stderr for each of report["warnings"], also with --quiet. \pre none
 void print_warnings(const std::string& input, const nlohmann::json& report);
 
 /// Writes the JSON report, the Fig. 6.1 plot and the HTML page that `extras` asks for (atomically), the page with the

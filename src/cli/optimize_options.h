@@ -32,6 +32,7 @@ struct OptimizeCliOptions {
 
 /// Adds --field, --feature-angle, --align, --optimize, --rounding, --max-iterations, --keep-better, --relaxation,
 /// --stiffening and --max-memory to `cmd` (validated by CLI11, --feature-angle by apply_optimize_options).
+/// \pre options outlives cmd.
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
 /// Sets the field, feature, optimization, rounding, relaxation and stiffening options of the pipeline from the

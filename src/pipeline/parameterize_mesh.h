@@ -50,6 +50,7 @@ struct ParamJob {
   StagePeakBytes peak_bytes;  ///< per stage, under the names of `seconds`
 
   /// The mesh of `map`: the refined one, or `input` (the mesh given to parameterize_mesh) when none was needed.
+  /// \pre input is the mesh given to parameterize_mesh.
   const Mesh& mesh(const Mesh& input) const { return refinement.mesh ? *refinement.mesh : input; }
 };
 
@@ -61,10 +62,11 @@ struct ParamJob {
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
 
 /// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
+/// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
 
 /// The warnings a map deserves (handles whose field has holonomy but no branch points, even branch points left on
-/// half-integers), in the words the CLI prints.
+/// half-integers), in the words the CLI prints. \pre none
 std::vector<std::string> map_warnings(const Parameterization& map);
 
 }  // namespace quadcover
