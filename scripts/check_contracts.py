@@ -4,7 +4,10 @@
 Parses every header with clang (-fparse-all-comments, JSON AST filtered to namespace quadcover), so what counts as a
 declaration and as its doc comment is the compiler's. Checked: free functions, public member functions and
 constructors with parameters (not copy/move), in src/, not in a `detail` namespace, not defaulted/deleted, not
-operators or destructors. Usage: check_contracts.py [--clang clang++] [--list] SRC_DIR [-- extra clang flags]
+operators or destructors; overrides inherit their base's contract. `--pending HEADER` lists a header's missing
+contracts without failing (for a header another branch is rewriting). Exit 0 if none is missing, 1 otherwise, 2 if
+clang cannot parse the headers.
+Usage: check_contracts.py [--clang clang++] [--pending src/x/y.h]... SRC_DIR [-- extra clang flags]
 """
 import json
 import os
@@ -148,7 +151,7 @@ class Walker:
 
 def main(argv):
     clang = "clang++"
-    listing = False
+    pending = set()
     extra = []
     if "--" in argv:
         i = argv.index("--")
@@ -158,8 +161,8 @@ def main(argv):
     for a in it:
         if a == "--clang":
             clang = next(it)
-        elif a == "--list":
-            listing = True
+        elif a == "--pending":
+            pending.add(os.path.normpath(next(it)))
         else:
             args.append(a)
     if len(args) != 1:
@@ -194,10 +197,14 @@ def main(argv):
         node, pos = dec.raw_decode(text, pos)
         w.file = w.line = None
         w.walk(node, [])
+    failing = 0
     for (f, line), name in sorted(w.missing.items()):
-        print("%s:%s: %s has no \\pre or \\throw in its doc comment" % (f, line, name))
-    print("check_contracts: %d public functions checked, %d without a contract" % (len(w.seen), len(w.missing)))
-    return 1 if w.missing else 0
+        late = os.path.normpath(f) in pending
+        failing += not late
+        print("%s:%s: %s has no \\pre or \\throw in its doc comment%s" % (f, line, name, " (pending)" if late else ""))
+    print("check_contracts: %d public functions checked, %d without a contract (%d pending)" %
+          (len(w.seen), len(w.missing), len(w.missing) - failing))
+    return 1 if failing else 0
 
 
 if __name__ == "__main__":
