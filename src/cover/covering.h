@@ -1,7 +1,9 @@
 #pragma once
 // The explicit 4-sheeted branched covering M̃ of a matching (thesis 3.2.2): four copies t̃^l of every face, glued
 // across every interior edge e (s = EF(e,0), t = EF(e,1)) as t̃_s^k ~ t̃_t^{k - m_e} (the thesis's m_st is our -m_e),
-// and one vertex per cycle of faces around each vertex. Used for verification and pictures, not by the solver.
+// and one vertex per cycle of faces around each vertex. Reference implementation, not used by the product: the
+// product works with the complex Hermitian operators of cover/complex_stiffness.h on M itself, and
+// tests/cover/covering_test.cpp checks them against this covering (𝔏̃* of (3.7) against 𝔏̄*, Lemma 3.5's genus).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>

@@ -36,13 +36,9 @@ struct HtmlReport {
   std::size_t max_display_faces = 30000;
 };
 
-/// Figures derived from a report JSON by convention, so every stage's data feeds in:
-///  - "history": array of {"iteration", "E_D", "E_H", "branch_points"} (Algorithm 6.1) -> E_D and branch points
-///    over iterations (Fig. 6.1) and E_D, E_H, E_D + E_H over the branch point count (Fig. 6.5);
-///  - "histograms": object of name -> array of numbers (e.g. "arap", "edge_length", "angle") -> histograms
-///    (Fig. 6.2, 7.1). Keys that are absent produce no figure.
-///  - "optimize": {"log": [{"evaluation", "E_D", "branch_points", ...}]} (the optimize object of param/remesh
-///    reports) -> the Fig. 6.1 plot when there is no "history". \pre none (absent or malformed keys give no figure).
+/// Figures of a param / remesh report: its "optimize": {"log": [{"evaluation", "E_D", "branch_points", ...}]} ->
+/// E_D and the branch point count over the evaluations (thesis Fig. 6.1); none without an optimization log.
+/// \pre none (an absent or malformed log gives no figure).
 std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report);
 
 /// Thesis Fig. 6.1: E_D (left axis) and the branch point count (right axis) over the iterations, from rows with

@@ -24,7 +24,7 @@ void write_parameterization_png(const std::string& path, const Mesh& mesh, const
 void write_quad_mesh_png(const std::string& path, const QuadMesh& quads,
                          const std::vector<ViewCamera>& views = {ViewCamera{}}, RenderOptions options = {});
 
-/// The HTML report of a run: `report` as the metrics table (and its "history"/"histograms" as plots), the textured
+/// The HTML report of a run: `report` as the metrics table (and its optimize log as the Fig. 6.1 plot), the textured
 /// mesh (when param is given), the quad mesh with its edge-length and angle histograms (when quads is given), and
 /// the per-triangle ARAP histogram (when quality is given). Written atomically.
 /// \pre param, quads, quality belong to mesh when given. \throw InputError if path cannot be written.

@@ -344,13 +344,4 @@ void write_line_plot(const std::string& path, const LinePlot& plot, int width, i
   }
 }
 
-void write_histogram(const std::string& path, const Histogram& histogram, int width, int height) {
-  if (ends_with_svg(path)) {
-    const std::string svg = histogram_svg(histogram, width, height);
-    write_file_atomically(path, [&](std::ostream& out) { out << svg; });
-  } else {
-    write_png(path, histogram_image(histogram, width, height));
-  }
-}
-
 }  // namespace quadcover

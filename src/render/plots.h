@@ -51,10 +51,8 @@ std::string histogram_svg(const Histogram& histogram, int width = 640, int heigh
 /// \pre width, height >= 1; as histogram_counts.
 Image histogram_image(const Histogram& histogram, int width = 640, int height = 400);
 
-/// Writes a plot file by extension: ".svg" as SVG text, anything else as PNG (atomically).
+/// Writes a line plot by extension: ".svg" as SVG text, anything else as PNG (atomically).
 /// \pre width, height >= 1. \throw InputError if path cannot be written.
 void write_line_plot(const std::string& path, const LinePlot& plot, int width = 640, int height = 400);
-/// \pre width, height >= 1. \throw InputError if path cannot be written.
-void write_histogram(const std::string& path, const Histogram& histogram, int width = 640, int height = 400);
 
 }  // namespace quadcover
