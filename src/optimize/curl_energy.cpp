@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
+#include "param/harmonic_correction.h"
 
 namespace quadcover {
 
@@ -44,14 +45,25 @@ CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const Smoothin
 CurlEnergy::~CurlEnergy() = default;
 CurlEnergy::CurlEnergy(CurlEnergy&&) noexcept = default;
 
+// E_D = ½‖X_C‖² (6.1.1) with the co-potential v = 0 on boundary edges, as in the Hodge decomposition (1.2.4) and
+// in parameterize()'s curl removal: boundary rows and columns are the identity's and rhs() is 0 there. The shift
+// εI acts only on closed components, whose constants may lie in the kernel; v = 0 on the boundary makes the others
+// definite.
 Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
   Eigen::SparseMatrix<Complex> A = complex_nonconforming_stiffness(*mesh_, smoother_->matching());
   double mean = 0;
   for (int i = 0; i < A.rows(); ++i) mean += std::abs(A.coeff(i, i));
   mean /= std::max<Eigen::Index>(1, A.rows());
-  Eigen::SparseMatrix<Complex> I(A.rows(), A.cols());
-  I.setIdentity();
-  return A + (options_.diagonal_shift * mean) * I;
+  std::vector<int> boundary;
+  for (int e = 0; e < mesh_->num_edges(); ++e)
+    if (mesh_->is_boundary_edge(e)) boundary.push_back(e);
+  pin_rows(A, boundary);
+  const double shift = options_.diagonal_shift * mean;
+  for (int e = 0; e < mesh_->num_edges(); ++e) {
+    const int f = mesh_->EF()(e, 0) >= 0 ? mesh_->EF()(e, 0) : mesh_->EF()(e, 1);
+    if (mesh_->components()[mesh_->face_component()[f]].boundary_loops == 0) A.coeffRef(e, e) += shift;
+  }
+  return A;
 }
 
 double CurlEnergy::recompute_from_scratch() {
@@ -90,7 +102,7 @@ StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
   const int mu_new = layer_after(e, new_matching);
   const double area = mesh_->face_areas()[g];
   for (int b = 0; b < 3; ++b) {
-    if (b == a) continue;
+    if (b == a || mesh_->is_boundary_edge(mesh_->FE()(g, b))) continue;  // pinned: v = 0 there
     // 𝔏̄*(e, e_b) from face g = K_ab i^{μ_b - μ_a} (3.8), K_ab = ⟨e_a, e_b⟩ / A_g (1.5).
     const double K = std::real(std::conj(mesh_->edge_vector_local(g, a)) * mesh_->edge_vector_local(g, b)) / area;
     c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu(g, b) - mu_new) - ipow(mu(g, b) - mu(g, a)))});
@@ -143,7 +155,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
     if (!mesh_->is_boundary_edge(c.edge)) field_.matching[c.edge] -= c.delta;
   if (!ok) return std::numeric_limits<double>::infinity();
   t0 = Clock::now();
-  const double e = 0.5 * trial_.evaluate_full(factor_, b);
+  const double e = trial_.evaluate_full(factor_, b);
   timings_.solve += seconds_since(t0);
   pending_valid_ = true;
   return e;
@@ -175,6 +187,7 @@ void CurlEnergy::commit() {
 // conj(i^μ) ⟨Z_f, e⟩ with ⟨Z, e⟩ = ⟨X, e⟩ + i⟨Y, e⟩ (the sum of cover/complex_stiffness.cpp, with cached edge
 // vectors and layers instead of a global layer recomputation).
 Complex CurlEnergy::term(int f, int k, Complex X, int mu) const {
+  if (mesh_->is_boundary_edge(mesh_->FE()(f, k))) return 0;  // v = 0 on boundary edges (see shifted_stiffness)
   const Complex ce = std::conj(edge_vec_(f, k));
   return ipow(-mu) * Complex(std::real(ce * X), std::real(ce * Complex(-X.imag(), X.real())));
 }
@@ -214,7 +227,7 @@ Eigen::VectorXd CurlEnergy::distortion_shares() const {
   return share;
 }
 
-// ∇_α E_D: E_D = ½ bᴴ𝔏̄*⁻¹b, so ∂E_D/∂α_f = Re(vᴴ ∂b/∂α_f) with v = 𝔏̄*⁻¹b; ∂/∂α_f of face f's term c_fk is
+// ∇_α E_D: E_D = bᴴ𝔏̄*⁻¹b, so ∂E_D/∂α_f = 2 Re(vᴴ ∂b/∂α_f) with v = 𝔏̄*⁻¹b; ∂/∂α_f of face f's term c_fk is
 // -i·c_fk (the term is linear in conj(X_f) = e^{-iα_f} conj(X⁰_f)). z = A⁻¹∇_α E_D (5.4).
 void CurlEnergy::prepare_estimates() {
   if (!system_) throw std::logic_error("CurlEnergy::estimate needs the SmoothingWeights constructor");
@@ -234,7 +247,7 @@ void CurlEnergy::prepare_estimates() {
     double g = 0;
     for (int k = 0; k < 3; ++k)
       g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * term(f, k, X, mu_(f, k)));
-    grad_[f] = g;
+    grad_[f] = 2 * g;
   }
   adjoint_ = system_->solve(grad_);
   estimates_ready_ = true;
@@ -326,7 +339,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
   for (std::size_t i = 0; i < patch.size(); ++i) correction -= grad_[patch[i]] * ws.smoothing.x[i];
   ws.timings.curl += seconds_since(t0);
   t0 = Clock::now();
-  const double e_local = 0.5 * ws.trial.evaluate(factor_);  // reach-limited forward solve
+  const double e_local = ws.trial.evaluate(factor_);  // reach-limited forward solve
   ws.timings.solve += seconds_since(t0);
   ++ws.timings.evaluations;
   ws.patch_faces += static_cast<long>(patch.size());

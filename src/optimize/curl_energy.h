@@ -1,6 +1,7 @@
 #pragma once
-// Fast re-evaluation of the curl distortion E_D = ½‖X_C‖² = ½xᴴx, L x = -curl*X, 𝔏̄* = LᴴL (thesis 6.1.1, 6.2.1)
-// after changes of the matching, with Cholesky up/downdates instead of refactorization.
+// Fast re-evaluation of the curl distortion E_D = ½‖X̃_C‖² = xᴴx, L x = -curl*X, 𝔏̄* = LᴴL (thesis 6.1.1, 6.2.1)
+// after changes of the matching, with Cholesky up/downdates instead of refactorization. The co-potential is 0 on
+// boundary edges (1.2.4), so this is the E_D that parameterize() reports (Parameterization::energy_curl / scale²).
 //
 // One evaluation (Table 6.1): the matching changes at some edges; the frame field is re-smoothed by minimizing
 // E(α) (5.3) with the new matching (5.2.2, FrameSmoother: two right-hand side entries per edge, one solve); curl*
@@ -27,8 +28,9 @@
 namespace quadcover {
 
 struct CurlEnergyOptions {
-  /// 𝔏̄* + ε·I with ε = diagonal_shift × mean diagonal: keeps the factor definite when the covering is trivial
-  /// (no odd branch points and trivial holonomy: constants are symmetric). Changes E_D by a relative ~ε/λ_min.
+  /// 𝔏̄* + ε·I on closed components with ε = diagonal_shift × mean diagonal: keeps the factor definite when the
+  /// covering is trivial (no odd branch points and trivial holonomy: constants are symmetric). Changes E_D there by
+  /// a relative ~ε/λ_min. Components with boundary need none: v = 0 on boundary edges (1.2.4), as in parameterize().
   double diagonal_shift = 1e-10;
   /// estimate(): face rings of the local re-smoothing patch around the changed edges, and its CG tolerance.
   int local_rings = 6;
@@ -79,7 +81,7 @@ class CurlEnergy {
   CurlEnergy(CurlEnergy&&) noexcept;
 
   /// E_D of the current state. \pre none
-  double energy() const { return 0.5 * factor_.rhs_energy(); }
+  double energy() const { return factor_.rhs_energy(); }
   /// E_D after applying `changes` (one edge at a time, in order), without changing the state.
   /// \return +infinity if an update lost positive definiteness (never expected for valid matchings).
   /// \pre every change names an edge of the mesh (boundary edges and delta 0 are skipped). \throw NumericalError if the smoothing solve fails.
