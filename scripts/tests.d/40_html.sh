@@ -43,7 +43,7 @@ for i in range(nM):
             tri.append("f " + " ".join(corners))
 open(out + "/torus_param.obj", "w").write("\n".join(pos + vts + tri) + "\n")
 open(out + "/torus_quads.obj", "w").write("\n".join(pos + quad) + "\n")
-open(out + "/report.json", "w").write('{"faces": %d, "E_D": 0.5, "seamless": true, "history": [{"iteration": 0, "E_D": 1.0, "E_H": 0.1, "branch_points": 4}, {"iteration": 1, "E_D": 0.5, "E_H": 0.2, "branch_points": 6}], "histograms": {"arap": [0.1, 0.2, 0.3]}}' % len(tri))
+open(out + "/report.json", "w").write('{"faces": %d, "E_D": 0.5, "seamless": true, "optimize": {"log": [{"evaluation": 0, "E_D": 1.0, "branch_points": 4}, {"evaluation": 1, "E_D": 0.5, "branch_points": 6}]}}' % len(tri))
 PYEOF
 
 "$QC" render "$work/torus_param.obj" --report-html "$work/report.html" --metrics "$work/report.json" \

@@ -18,13 +18,14 @@
 
 namespace quadcover {
 
-/// div X(p) = -½ Σ_{t∋p} ⟨X_t, J e_t⟩ = -∫⟨X, ∇φ_p⟩ (1.6), #V.  X: #F.
+/// div X(p) = -½ Σ_{t∋p} ⟨X_t, J e_t⟩ = -∫⟨X, ∇φ_p⟩ (1.6), #V.  X: #F. \throw std::invalid_argument if X.size() != #F.
 Eigen::VectorXd divergence(const Mesh& mesh, const VectorField& X);
-/// curl X(p) = ½ Σ_{t∋p} ⟨X_t, e_t⟩ = -div JX(p) (1.6), #V.
+/// curl X(p) = ½ Σ_{t∋p} ⟨X_t, e_t⟩ = -div JX(p) (1.6), #V. \throw std::invalid_argument if X.size() != #F.
 Eigen::VectorXd curl(const Mesh& mesh, const VectorField& X);
-/// div* X(e) = ⟨X_s - X_t, J e⟩ = -∫⟨X, ∇ψ_e⟩ (1.6), #E.
+/// div* X(e) = ⟨X_s - X_t, J e⟩ = -∫⟨X, ∇ψ_e⟩ (1.6), #E. \throw std::invalid_argument if X.size() != #F.
 Eigen::VectorXd divergence_star(const Mesh& mesh, const VectorField& X);
 /// curl* X(e) = ⟨X_t - X_s, e⟩ = -div* JX(e), #E (see the sign note above); s = EF(e,0), t = EF(e,1).
+/// \throw std::invalid_argument if X.size() != #F.
 Eigen::VectorXd curl_star(const Mesh& mesh, const VectorField& X);
 
 }  // namespace quadcover

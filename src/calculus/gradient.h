@@ -7,9 +7,9 @@
 
 namespace quadcover {
 
-/// #F by #V complex: (G u)_t = ∇u|_t for u ∈ S_h given at the vertices.
+/// #F by #V complex: (G u)_t = ∇u|_t for u ∈ S_h given at the vertices. \pre none
 Eigen::SparseMatrix<Complex> conforming_gradient(const Mesh& mesh);
-/// #F by #E complex: (G* v)_t = ∇v|_t for v ∈ S_h* given at the edge midpoints.
+/// #F by #E complex: (G* v)_t = ∇v|_t for v ∈ S_h* given at the edge midpoints. \pre none
 Eigen::SparseMatrix<Complex> nonconforming_gradient(const Mesh& mesh);
 
 /// ∇u per face for u ∈ S_h given at the vertices (u: #V). \throw std::invalid_argument on a size mismatch.

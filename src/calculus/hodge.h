@@ -47,19 +47,23 @@ class HodgeDecomposer {
   HodgeDecomposer(HodgeDecomposer&&) noexcept;
 
   /// X: #F. Orthogonal parts summing to X (see the boundary conditions above).
+  /// \throw std::invalid_argument if X.size() != #F.
   HodgeParts decompose(const VectorField& X) const;
-  /// u with 𝔏u = -div X (1.8), normalized (1.10).
+  /// u with 𝔏u = -div X (1.8), normalized (1.10). \throw std::invalid_argument if X.size() != #F.
   Eigen::VectorXd exact_potential(const VectorField& X) const;
   /// v with 𝔏*v = -curl* X (1.9) on interior edges, v = 0 on boundary edges, normalized (1.10) when closed.
+  /// \throw std::invalid_argument if X.size() != #F.
   Eigen::VectorXd coexact_potential(const VectorField& X) const;
   /// Solves 𝔏u = rhs (#V), normalized. rhs is first projected to the range of 𝔏 (its mean per component is
   /// removed), so a right-hand side that sums to zero per component is solved exactly.
+  /// \throw std::invalid_argument if rhs.size() != #V.
   Eigen::VectorXd solve_conforming(const Eigen::VectorXd& rhs) const;
   /// Solves 𝔏*v = rhs (#E) on interior edges with v = 0 on boundary edges (rhs there is ignored); on closed
   /// components rhs is projected to the range (mean removed) and v normalized like solve_conforming.
+  /// \throw std::invalid_argument if rhs.size() != #E.
   Eigen::VectorXd solve_nonconforming(const Eigen::VectorXd& rhs) const;
 
-  const Mesh& mesh() const;
+  const Mesh& mesh() const;  ///< \pre none
 
  private:
   struct Impl;

@@ -29,9 +29,9 @@ class SparseCholesky {
   SparseCholesky(SparseCholesky&&) noexcept;
   SparseCholesky& operator=(SparseCholesky&&) noexcept;
 
-  /// True iff quadcover was built with CHOLMOD (QUADCOVER_USE_CHOLMOD=ON).
+  /// True iff quadcover was built with CHOLMOD (QUADCOVER_USE_CHOLMOD=ON). \pre none
   static bool cholmod_available();
-  /// The backend in use: Cholmod or Eigen (never Automatic).
+  /// The backend in use: Cholmod or Eigen (never Automatic). \pre none
   CholeskyBackend backend() const;
 
   /// Symbolic analysis + numeric factorization of the symmetric/Hermitian positive definite A (full storage;
@@ -43,15 +43,18 @@ class SparseCholesky {
   void refactorize(const Matrix& A);
   /// compute() the first time, refactorize() on later calls while A keeps the analyzed pattern (a fresh analysis
   /// when the number of stored entries changes): for sequences of matrices with one pattern and new values.
+  /// \throw NumericalError as compute().
   void factorize(const Matrix& A, const char* stage = "cholesky");
   /// x with A x = b.  b: rows() entries.
+  /// \throw NumericalError if nothing was factored, b has the wrong size, or CHOLMOD fails.
   Vector solve(const Vector& b) const;
   /// X with A X = B, all columns at once.  B: rows() by k.
+  /// \throw NumericalError if nothing was factored, B has the wrong rows, or CHOLMOD fails.
   Dense solve(const Dense& B) const;
   /// y = L⁻¹ P b for the factorization Pᵀ L Lᴴ P = A, so that bᴴ A⁻¹ b = ‖y‖² (forward substitution only; the
-  /// energy E_D of thesis 6.2.1 is ½‖y‖²).
+  /// energy E_D of thesis 6.2.1 is ½‖y‖²). \throw NumericalError if nothing was factored or b has the wrong size.
   Vector forward_solve(const Vector& b) const;
-  Eigen::Index rows() const;
+  Eigen::Index rows() const;  ///< 0 before compute(). \pre none
 
  private:
   struct Impl;
@@ -66,13 +69,14 @@ struct ColumnFactor {
   int* i = nullptr;  ///< p[n] row indices
   Complex* x = nullptr;  ///< p[n] values
   std::shared_ptr<void> storage;  ///< owns the arrays (CHOLMOD's own, no copy)
-  long nonzeros() const { return p ? p[n] : 0; }
+  long nonzeros() const { return p ? p[n] : 0; }  ///< \pre none
 };
 
 /// The Cholesky factor L of P A Pᵀ = L Lᴴ for the given fill-reducing permutation (perm[new] = old) with the exact
 /// symbolic pattern of P A Pᵀ (no supernodal padding): CHOLMOD's supernodal factorization (BLAS-3) converted to
 /// simplicial form. A is Hermitian positive definite in full storage (the lower triangle is read).
 /// \return false if quadcover was built without CHOLMOD or A is not positive definite (`out` is then empty).
+/// \pre perm is a permutation of [0, A.rows()) (a size mismatch returns false). Does not throw.
 bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A, std::span<const int> perm, ColumnFactor& out);
 
 extern template class SparseCholesky<double>;

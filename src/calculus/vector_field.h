@@ -11,8 +11,9 @@ namespace quadcover {
 using VectorField = Eigen::VectorXcd;
 
 /// L² inner product ⟨X, Y⟩ = Σ_t A_t ⟨X_t, Y_t⟩ (real part of conj(X_t)·Y_t).
+/// \throw std::invalid_argument if X or Y does not have #F entries.
 double l2_inner(const Mesh& mesh, const VectorField& X, const VectorField& Y);
-/// ‖X‖² = ⟨X, X⟩.
+/// ‖X‖² = ⟨X, X⟩. \throw std::invalid_argument if X does not have #F entries.
 double l2_norm_squared(const Mesh& mesh, const VectorField& X);
 
 }  // namespace quadcover

@@ -62,14 +62,16 @@ namespace quadcover::cli {
 // ---- options ------------------------------------------------------------------------------------------------
 
 /// Adds --json, -q/--quiet, -v/--verbose, --time-limit SECONDS and -j/--jobs N to a subcommand.
+/// \pre global outlives cmd.
 void add_global_options(CLI::App& cmd, GlobalOptions& global);
 
 /// Adds the positional "mesh" argument: one or more existing files or folders, or "-" (standard input).
+/// \pre inputs outlives cmd.
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
                       const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
 /// Adds the positional mesh inputs (add_input_option) bound to `inputs` and -o/--output bound to `output` (a file
-/// for one input, a folder for several), described by `output_help`.
+/// for one input, a folder for several), described by `output_help`. \pre inputs and output outlive cmd.
 void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::string& output,
                      const std::string& output_help,
                      const std::string& input_help = "Input mesh files (.obj .off .ply .stl) or folders of them");
@@ -78,14 +80,14 @@ void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::strin
 
 /// Installs the signal handlers: the first Ctrl-C sets the interrupt flag; a second one, SIGTERM, SIGHUP, SIGQUIT
 /// and SIGPIPE remove the temporary files of unfinished writes and exit with 128 + signal; SIGSEGV, SIGBUS,
-/// SIGFPE, SIGILL and SIGABRT remove them and then take their default action (not under a sanitizer).
+/// SIGFPE, SIGILL and SIGABRT remove them and then take their default action (not under a sanitizer). \pre none
 void install_interrupt_handler();
-/// True after Ctrl-C (or request_interrupt()).
+/// True after Ctrl-C (or request_interrupt()). \pre none
 bool interrupted();
-/// Sets / clears the interrupt flag (tests; also the SIGINT handler's action).
+/// Sets / clears the interrupt flag (tests; also the SIGINT handler's action). \pre none
 void request_interrupt();
-void clear_interrupt();
-/// The time the run started (first call; main() calls it at start-up). --time-limit counts from here.
+void clear_interrupt();  ///< \pre none
+/// The time the run started (first call; main() calls it at start-up). --time-limit counts from here. \pre none
 std::chrono::steady_clock::time_point run_start_time();
 
 // ---- progress -----------------------------------------------------------------------------------------------
@@ -101,7 +103,7 @@ struct ProgressStyle {
   int width = 100;        ///< live mode: columns of the terminal
 };
 
-/// The style for stderr: live bar when stderr is a terminal, plain lines otherwise, per the global options.
+/// The style for stderr: live bar when stderr is a terminal, plain lines otherwise, per the global options. \pre none
 ProgressStyle stderr_progress_style(const GlobalOptions& global);
 
 /// A ProgressSink for the command line: stage name, bar or percentage, the stage's message (iteration, E_D, ...)
@@ -110,19 +112,20 @@ ProgressStyle stderr_progress_style(const GlobalOptions& global);
 class TerminalProgress final : public ProgressSink {
  public:
   using Clock = std::chrono::steady_clock;
-  /// deadline: Clock::time_point::max() for none.
+  /// deadline: Clock::time_point::max() for none. \pre out outlives the sink.
   TerminalProgress(std::ostream& out, ProgressStyle style, Clock::time_point deadline = Clock::time_point::max());
-  /// stderr, stderr_progress_style(global), deadline from --time-limit counted from run_start_time().
+  /// stderr, stderr_progress_style(global), deadline from --time-limit counted from run_start_time(). \pre none
   explicit TerminalProgress(const GlobalOptions& global);
   ~TerminalProgress() override;
 
   void report(std::string_view stage, double fraction, std::string_view message) override;
   bool cancelled() const override;
   double seconds_left() const override;
-  /// Ends the live line (called by the destructor).
+  /// Ends the live line (called by the destructor). \pre none
   void finish();
 
   /// One line of progress as shown: "stage  45%  message  ETA 3s" (plain) or with a bar (live). Exposed for tests.
+  /// \pre width >= 1 when bar.
   static std::string format_line(std::string_view stage, double fraction, std::string_view message, double eta_seconds,
                                  bool bar, int width);
 
@@ -136,11 +139,11 @@ class TerminalProgress final : public ProgressSink {
   mutable std::mutex mutex_;
 };
 
-/// The mutex every writer to stderr from worker threads takes (progress lines, per-file results).
+/// The mutex every writer to stderr from worker threads takes (progress lines, per-file results). \pre none
 std::mutex& stderr_mutex();
 
 /// Reports "warning: <text>" to `progress`: TerminalProgress shows it on its own line at once (batch mode too),
-/// unless --quiet.
+/// unless --quiet. \pre none
 void warn(ProgressSink& progress, const std::string& text);
 
 /// Reads and validates a mesh (read_mesh + build_mesh) and warns through `progress` about what the input loses on
@@ -154,6 +157,7 @@ struct FileVertices {
   std::vector<int> of_mesh;    ///< mesh vertex -> its 0-based number in the file
 };
 /// load_mesh that also returns the file's vertices; the warning then says that unreferenced vertices are kept.
+/// \throw InputError, TopologyError as read_mesh / build_mesh.
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices);
 
 // ---- batch --------------------------------------------------------------------------------------------------
@@ -163,7 +167,7 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& f
 /// \throw InputError for a path that does not exist or a folder without meshes.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& args);
 
-/// True if the arguments ask for batch mode: more than one argument or a folder.
+/// True if the arguments ask for batch mode: more than one argument or a folder. \pre none
 bool is_batch(const std::vector<std::string>& args);
 
 /// The output names (without suffix) of a batch's files, in order, distinct among files writing to one folder
@@ -173,7 +177,7 @@ bool is_batch(const std::vector<std::string>& args);
 ///  3. ... whose extensions differ get "_<ext>" appended: "bunny_obj", "bunny_off" (both 2 and 3 may apply);
 ///  4. a name still taken (by another input's own name or an earlier renamed file) gets "_2", "_3", ... in input
 ///     order. Unrenamed files keep their plain names.
-/// Deterministic: depends only on the list and output_dir, not on the scheduling.
+/// Deterministic: depends only on the list and output_dir, not on the scheduling. \pre none
 std::vector<std::string> batch_output_stems(const std::vector<std::string>& files, const std::string& output_dir);
 
 /// Where a batch writes the output of `input`: output_dir / (name + suffix), e.g. ("a/bunny.obj", "out",
@@ -181,6 +185,7 @@ std::vector<std::string> batch_output_stems(const std::vector<std::string>& file
 /// stem, or, while process_files runs a batch holding `input`, its batch_output_stems entry (two inputs of one
 /// batch never write the same file). While run_batch runs, a path that is an input file throws InputError (unless
 /// --overwrite-input) and, with --skip-existing, an existing one throws SkippedExisting: call it before the work.
+/// \throw InputError, SkippedExisting as said above.
 std::string batch_output_path(const std::string& input, const std::string& output_dir, const std::string& suffix);
 
 /// The naming rule of batch_output_stems in one sentence, and what happens to existing files, for --help.
@@ -190,6 +195,7 @@ extern const char* const kBatchNamingHelp;
 /// input exists: the input is skipped, which is not a failure.
 class SkippedExisting : public std::runtime_error {
  public:
+  /// \pre none
   explicit SkippedExisting(const std::string& path) : std::runtime_error(path + " exists (--skip-existing)") {}
 };
 
@@ -221,21 +227,22 @@ struct BatchSpec {
 
 /// Runs the job on every file, `jobs` at a time (0 = all cores) with TBB; exceptions are caught per file and turned
 /// into FileResult::error / exit_code. Results are in input order whatever the scheduling (deterministic output).
-/// Each finished file is reported on `log` (unless quiet).
+/// Each finished file is reported on `log` (unless quiet). \pre none; the job's exceptions are caught per file.
 std::vector<FileResult> process_files(const std::vector<std::string>& files, const GlobalOptions& global,
                                       const FileJob& job, std::ostream& log);
 
 /// The summary table (text) or, with --json, {"files": [...], "succeeded": n, "skipped": s, "partial": p, "failed": m}
-/// on `out`.
+/// on `out`. \pre none
 void print_summary(const std::vector<FileResult>& results, const std::vector<std::string>& columns,
                    const GlobalOptions& global, std::ostream& out);
 
 /// Worst exit code of a batch: 2 if any bad input, else 1 if any other failure, else 3 if any partial result, else 0.
+/// \pre none
 int batch_exit_code(const std::vector<FileResult>& results);
 
 /// One input: runs the job with a TerminalProgress on stderr (exceptions propagate) and prints its result
 /// (JSON with --json, "key: value" lines otherwise, nothing with --quiet). Several: process_files + print_summary.
-/// Returns the exit code.
+/// Returns the exit code. \throw InputError as expand_inputs / prepare_outputs; with one input, what the job throws.
 int run_batch(const BatchSpec& spec, const GlobalOptions& global, const FileJob& job);
 
 /// The work done for one input file of a command; `batch` is true when the command runs on several files or a
@@ -260,13 +267,13 @@ std::string optional_output_path(const std::string& input, const std::string& ou
 // ---- errors and outputs ---------------------------------------------------------------------------------------
 
 /// Classifies the exception currently being handled (call inside catch (...)): returns the exit code and sets
-/// `message` to what should be printed (one line per problem, without "error: ").
+/// `message` to what should be printed (one line per problem, without "error: "). \pre an exception is being handled.
 int describe_current_exception(std::string& message);
 
-/// Writes `j` (pretty-printed) atomically: no partial file on failure.
+/// Writes `j` (pretty-printed) atomically: no partial file on failure. \throw InputError if path cannot be written.
 void write_json_atomically(const std::string& path, const nlohmann::json& j);
 
-/// Prints a JSON object as "  key: value" lines (used for a single file's result without --json).
+/// Prints a JSON object as "  key: value" lines (used for a single file's result without --json). \pre none
 void print_key_values(const nlohmann::json& j, std::ostream& out);
 
 }  // namespace quadcover::cli

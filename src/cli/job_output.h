@@ -24,10 +24,10 @@ struct JobExtras {
 JobExtras job_extras(const std::string& input, bool batch, const std::string& report, const PictureCliOptions& pictures,
                      const std::string& job_suffix, const std::string& png_suffix);
 
-/// \throw InputError naming --plot if the plot is asked for without an optimization to plot.
+/// \throw InputError naming --plot if the plot is asked for without an optimization to plot. \pre none
 void check_plot_request(const JobExtras& extras, OptimizeMode mode);
 
-/// Prints "warning: INPUT: sentence" on stderr for each of report["warnings"], also with --quiet.
+/// Prints "warning: INPUT: sentence" on stderr for each of report["warnings"], also with --quiet. \pre none
 void print_warnings(const std::string& input, const nlohmann::json& report);
 
 /// The end of `param` / `remesh` for one input after its main output (`output`) is written: prints the report's

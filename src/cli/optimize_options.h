@@ -42,6 +42,7 @@ Fill parse_fill_option(const std::string& text);
 /// Adds --field, --fill, --feature-angle, --align, --optimize, --rounding, --max-iterations, --keep-better,
 /// --relaxation, --stiffening and --max-memory to `cmd` (validated by CLI11, --feature-angle by
 /// apply_optimize_options).
+/// \pre options outlives cmd.
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 
 /// Sets the lattice, density, field, feature, optimization, rounding, relaxation and stiffening options of the

@@ -28,11 +28,13 @@ struct PictureCliOptions {
 };
 
 /// Adds --png (described by `png_description`), --view, --size, --report-html and --plot to `cmd`.
+/// \pre options outlives cmd.
 void add_picture_options(CLI::App& cmd, PictureCliOptions& options, const std::string& png_description);
 
 /// Render options (size) and cameras from the parsed options; validates both (call before the long stages so a
-/// bad --view fails at once).
+/// bad --view fails at once). \throw InputError naming --size for a malformed size.
 RenderOptions picture_render_options(const PictureCliOptions& options);
+/// \throw InputError naming --view for a malformed view.
 std::vector<ViewCamera> picture_views(const PictureCliOptions& options);
 
 }  // namespace quadcover::cli

@@ -11,10 +11,11 @@ namespace quadcover {
 /// The input file cannot be read or parsed: names the file and, where known, the line.
 class InputError : public std::runtime_error {
  public:
+  /// \pre none
   InputError(std::string file, long line, const std::string& what)
       : std::runtime_error(format(file, line, what)), file_(std::move(file)), line_(line) {}
-  const std::string& file() const { return file_; }
-  long line() const { return line_; }  ///< 1-based, 0 when not tied to a line
+  const std::string& file() const { return file_; }  ///< \pre none
+  long line() const { return line_; }  ///< 1-based, 0 when not tied to a line \pre none
 
  private:
   static std::string format(const std::string& file, long line, const std::string& what) {
@@ -32,9 +33,10 @@ class InputError : public std::runtime_error {
 /// problems() holds one located message per defect.
 class TopologyError : public std::runtime_error {
  public:
+  /// \pre none
   TopologyError(const std::string& what, std::vector<std::string> problems = {})
       : std::runtime_error(what), problems_(std::move(problems)) {}
-  const std::vector<std::string>& problems() const { return problems_; }
+  const std::vector<std::string>& problems() const { return problems_; }  ///< \pre none
 
  private:
   std::vector<std::string> problems_;
@@ -43,9 +45,10 @@ class TopologyError : public std::runtime_error {
 /// A numerical stage failed (e.g. a factorization was not positive definite): names the stage.
 class NumericalError : public std::runtime_error {
  public:
+  /// \pre none
   NumericalError(std::string stage, const std::string& what)
       : std::runtime_error(stage + ": " + what), stage_(std::move(stage)) {}
-  const std::string& stage() const { return stage_; }
+  const std::string& stage() const { return stage_; }  ///< \pre none
 
  private:
   std::string stage_;

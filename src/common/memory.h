@@ -23,21 +23,21 @@ inline std::int64_t proc_status_bytes(const char* name) {
 }
 }  // namespace detail
 
-/// Current resident set size (VmRSS) in bytes; 0 if unknown.
+/// Current resident set size (VmRSS) in bytes; 0 if unknown. \pre none
 inline std::int64_t resident_bytes() { return detail::proc_status_bytes("VmRSS:"); }
 
 /// Peak resident set size (VmHWM) since process start or since the last reset_peak_resident(), in bytes; 0 if
-/// unknown.
+/// unknown. \pre none
 inline std::int64_t peak_resident_bytes() { return detail::proc_status_bytes("VmHWM:"); }
 
 /// Resets the peak to the current resident size (writes "5" to /proc/self/clear_refs, Linux ≥ 4.0), so that
 /// peak_resident_bytes() after a stage is that stage's peak. The peak it clears is kept for every open
 /// StagePeakMemory and for process_peak_resident_bytes(); the kernel's own maximum (getrusage ru_maxrss,
 /// `/usr/bin/time -v`) is lowered with VmHWM, so a process that resets reports its peak itself. \return false if the
-/// kernel refused (the peak then stays the process-wide one).
+/// kernel refused (the peak then stays the process-wide one). \pre none
 bool reset_peak_resident();
 
-/// Peak resident bytes since the process started, across resets; 0 if unknown.
+/// Peak resident bytes since the process started, across resets; 0 if unknown. \pre none
 std::int64_t process_peak_resident_bytes();
 
 /// Peak resident bytes of one stage: construct before the stage (resets the peak), read peak() after it. Stages may
@@ -50,11 +50,11 @@ class StagePeakMemory {
   StagePeakMemory(const StagePeakMemory&) = delete;
   StagePeakMemory& operator=(const StagePeakMemory&) = delete;
 
-  /// The stage's peak in bytes so far (the process peak so far if the reset failed, see reset_ok()).
+  /// The stage's peak in bytes so far (the process peak so far if the reset failed, see reset_ok()). \pre none
   std::int64_t peak() const;
-  /// Starts a new stage here: resets the peak (keeping it for the other open stages) and forgets this one's.
+  /// Starts a new stage here: resets the peak (keeping it for the other open stages) and forgets this one's. \pre none
   void restart();
-  bool reset_ok() const { return reset_; }
+  bool reset_ok() const { return reset_; }  ///< \pre none
 
  private:
   friend struct OpenStages;

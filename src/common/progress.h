@@ -11,14 +11,15 @@ class ProgressSink {
  public:
   virtual ~ProgressSink() = default;
   /// `stage` names the pipeline stage, `fraction` is in [0,1] or negative when unknown, `message` is free text.
+  /// \pre none
   virtual void report(std::string_view stage, double fraction, std::string_view message) = 0;
-  virtual bool cancelled() const { return false; }
+  virtual bool cancelled() const { return false; }  ///< \pre none
   /// True once the stages that only improve a valid result (relaxation, period-rounding search, keep-better,
   /// density re-solves, cone merging, fold refinement, quad smoothing) should be skipped or end early: after a
   /// Ctrl-C or past a time limit. Those stages test this, the stages a valid result needs test cancelled().
-  virtual bool skip_improvements() const { return cancelled(); }
+  virtual bool skip_improvements() const { return cancelled(); }  ///< \pre none
   /// Seconds until a time limit makes cancelled() true (infinity without one): lets a job leave its later, not
-  /// interruptible stages their time.
+  /// interruptible stages their time. \pre none
   virtual double seconds_left() const;
 };
 
@@ -27,7 +28,7 @@ class ProgressSink {
 /// improving stages still stop then (skip_improvements() is inner's cancelled()).
 class FinishingProgress final : public ProgressSink {
  public:
-  explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}
+  explicit FinishingProgress(ProgressSink& inner) : inner_(inner) {}  ///< \pre inner outlives this sink.
   void report(std::string_view stage, double fraction, std::string_view message) override {
     inner_.report(stage, fraction, message);
   }
@@ -45,6 +46,7 @@ class NullProgress final : public ProgressSink {
 
 inline double ProgressSink::seconds_left() const { return std::numeric_limits<double>::infinity(); }
 
+/// \pre none
 inline NullProgress& null_progress() {
   static NullProgress sink;
   return sink;

@@ -4,7 +4,7 @@
 
 namespace quadcover {
 
-/// k modulo 4 in {0, 1, 2, 3}, also for negative k.
+/// k modulo 4 in {0, 1, 2, 3}, also for negative k. \pre none
 constexpr int mod4(int k) { return ((k % 4) + 4) % 4; }
 
 }  // namespace quadcover

@@ -30,6 +30,7 @@ class StageMeter {
 
   StageMeter() : start_(Clock::now()) {}
 
+  /// \pre none
   StageCost lap() {
     const Clock::time_point now = Clock::now();
     const StageCost cost{std::chrono::duration<double>(now - start_).count(), memory_.peak()};
@@ -38,7 +39,7 @@ class StageMeter {
     return cost;
   }
 
-  /// lap(), appended to `seconds` and `peaks` under `stage`.
+  /// lap(), appended to `seconds` and `peaks` under `stage`. \pre none
   StageCost lap(const std::string& stage, StageSeconds& seconds, StagePeakBytes& peaks) {
     const StageCost cost = lap();
     seconds.emplace_back(stage, cost.seconds);
@@ -46,7 +47,7 @@ class StageMeter {
     return cost;
   }
 
-  /// Begins the next stage here; the time and memory since the last lap are not recorded.
+  /// Begins the next stage here; the time and memory since the last lap are not recorded. \pre none
   void restart() {
     start_ = Clock::now();
     memory_.restart();

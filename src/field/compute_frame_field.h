@@ -71,8 +71,8 @@ enum class FieldStyle {
 };
 /// Parses "curvature|smooth". \throw InputError otherwise.
 FieldStyle parse_field_style(std::string_view name);
-std::string to_string(FieldStyle style);
-/// The FieldOptions of a preset.
+std::string to_string(FieldStyle style);  ///< \pre none
+/// The FieldOptions of a preset. \pre none
 FieldOptions field_options(FieldStyle style);
 
 /// The frame field and what it was made from.
@@ -96,6 +96,7 @@ FrameFieldResult compute_frame_field_detailed(const Mesh& mesh, const FieldOptio
                                               ProgressSink& progress = null_progress());
 
 /// Frame field guided by principal curvature (thesis 5.1); see FieldOptions for the defaults.
+/// \pre and \throw as compute_frame_field_detailed.
 FrameField compute_frame_field(const Mesh& mesh, const FieldOptions& options = {},
                                ProgressSink& progress = null_progress());
 

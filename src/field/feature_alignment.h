@@ -30,7 +30,7 @@ struct FeatureConstraints {
 
 /// Finds boundary and sharp edges and, for every face having one, the direction its cross must contain.
 /// A face with several such edges follows the strongest (boundary counts as π, a sharp edge as |β_e|; ties:
-/// longer edge, then lower face-edge index): a cross cannot contain two non-perpendicular directions.
+/// longer edge, then lower face-edge index): a cross cannot contain two non-perpendicular directions. \pre none
 FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options = {});
 
 }  // namespace quadcover

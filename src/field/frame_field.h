@@ -52,15 +52,17 @@ struct BranchPoint {
 };
 
 /// A cross field (Y = iX) with the given first vectors and matching.
+/// \pre none (sizes are #F and #E of the mesh the field is used with).
 FrameField make_cross_field(Eigen::VectorXcd X, Eigen::VectorXi matching);
 
 /// First vector of the orthogonalized frame (X,Y)^⊥ = ½(X - JY, JX + Y) (thesis 3.1.2); the second is i times it.
+/// \pre none
 inline Complex orthogonalized(Complex X, Complex Y) { return 0.5 * (X - Complex(0, 1) * Y); }
-/// First vectors of (X_t,Y_t)^⊥ for every face. \return #F
+/// First vectors of (X_t,Y_t)^⊥ for every face. \return #F \pre none
 Eigen::VectorXcd orthogonalized_frames(const FrameField& field);
 
 /// The frame-switching operator of our convention applied k times: R'^k(X, Y) with R'(X,Y) = (Y,-X), i.e. the
-/// thesis's R^{-k} (R(X,Y) = (-Y,X), R² = -id (3.1)). For Y = iX it multiplies both vectors by i^k.
+/// thesis's R^{-k} (R(X,Y) = (-Y,X), R² = -id (3.1)). For Y = iX it multiplies both vectors by i^k. \pre none
 std::pair<Complex, Complex> frame_switch(Complex X, Complex Y, int k);
 
 /// Unit cross directions in 3D for drawing: u_t and v_t = n_t × u_t; the cross at t is {±u_t, ±v_t}.
@@ -68,6 +70,6 @@ struct CrossDirections {
   Eigen::MatrixX3d u;  ///< #F by 3, world coordinates of X^⊥_t / |X^⊥_t|
   Eigen::MatrixX3d v;  ///< #F by 3, the quarter turn of u_t about the face normal
 };
-CrossDirections cross_directions(const Mesh& mesh, const FrameField& field);
+CrossDirections cross_directions(const Mesh& mesh, const FrameField& field);  ///< \pre field belongs to mesh (X, Y #F).
 
 }  // namespace quadcover

@@ -50,7 +50,7 @@ struct PowerFieldResult {
 PowerFieldResult smooth_power_field(const Mesh& mesh, const PowerFieldProblem& problem);
 
 /// E(u) of PowerFieldProblem evaluated directly (for tests and reports); with `ginzburg_landau` the term
-/// σ Σ_t (A_t/A_M)(|u_t| - 1)² is added.
+/// σ Σ_t (A_t/A_M)(|u_t| - 1)² is added. \pre u and the problem's arrays have #F entries.
 double power_field_energy(const Mesh& mesh, const PowerFieldProblem& problem, const Eigen::VectorXcd& u,
                           bool ginzburg_landau = false);
 

@@ -19,10 +19,12 @@ std::vector<int> relocation_path(const Mesh& mesh, int p, int q);
 /// from right to left when walking from p to q (with our sign of m, see field/frame_field.h). The matching index
 /// of p decreases by `quarters`, that of q increases by it, all others are unchanged (the two path edges at an
 /// intermediate vertex cancel in its loop sum).
+/// \pre path = relocation_path(mesh, …). \throw std::invalid_argument if two consecutive path vertices share no interior edge.
 std::vector<MatchingChange> relocation_changes(const Mesh& mesh, const std::vector<int>& path, int quarters);
 
 /// Moves the whole matching index 4·ind_p(m) of p to q along relocation_path(p, q) (thesis 5.2.2) and returns the
 /// changes applied to `matching` (#E), e.g. to feed FrameSmoother::change_matching for the re-solve.
+/// \pre matching has #E entries. \throw std::invalid_argument as relocation_path.
 std::vector<MatchingChange> relocate_branch_point(const Mesh& mesh, Eigen::VectorXi& matching, int p, int q);
 
 }  // namespace quadcover

@@ -25,11 +25,13 @@ struct QuarterMove {
 /// |q| distinct interior vertices of index 0 that no earlier move chose. From its 1-ring when that has enough of
 /// them: evenly spaced in fan order, at the rotation whose targets lie farthest apart, then farthest from the other
 /// singularities nearby; else from the nearest rings that have enough, by farthest-point sampling. Deterministic.
+/// \pre min_quarters >= 2. \throw std::invalid_argument if quarter_index does not have #V entries.
 std::vector<QuarterMove> plan_singularity_split(const Mesh& mesh, const Eigen::VectorXi& quarter_index,
                                                 int min_quarters = 2);
 
 /// Applies the moves to `matching` (#E): relocation_changes along relocation_path for each (field/relocation.h,
 /// 5.2.2). Returns the number of matching changes made (edges crossed, counted once per move).
+/// \pre matching has #E entries; moves from plan_singularity_split. \throw std::invalid_argument as relocation_path.
 int apply_quarter_moves(const Mesh& mesh, const std::vector<QuarterMove>& moves, Eigen::VectorXi& matching);
 
 }  // namespace quadcover

@@ -34,6 +34,7 @@ class FrameSmoother {
   /// The same without X⁰: factors A (5.4), which depends only on the mesh, the weights and λ, so that the
   /// factorization can run while X⁰ is still being computed; set_input() must follow before solve(),
   /// change_matching(), rotated() and the energies (set_alignment_targets() may come before).
+  /// \throw std::invalid_argument for λ outside (0,1] or wrong sizes; NumericalError if A cannot be factored.
   FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability, const std::vector<char>& trusted,
                 const std::vector<char>& fixed, double lambda);
   /// Sets X⁰ and its matching (θ and b; A is kept). Alignment targets set before stay in effect.
@@ -45,24 +46,27 @@ class FrameSmoother {
 
   /// m_e += k on interior edge e: θ_e becomes wrap(θ_e - (π/2)k) and only the two entries b_s, b_t change
   /// (5.2.2: by ∓λω_e(π/2)k when no wrap occurs). The result equals a smoother built from the new matching.
+  /// \pre set_input() was called; 0 <= e < #E (a boundary edge or k = 0 changes nothing).
   void change_matching(int e, int k);
   /// Aligns E_A to target rotations instead of α = 0: E_A(α) = Σ_trusted a_t (α_t - β_t)² (beyond the thesis:
   /// lets E_A pull towards the curvature frames when X⁰ is not them, e.g. after the power fill). Like a matching
   /// change it only updates b. β  #F (entries of untrusted and fixed faces are ignored); all zeros restores (5.3).
+  /// \throw std::invalid_argument if beta does not have #F entries.
   void set_alignment_targets(const Eigen::VectorXd& beta);
   /// The minimizer α of (5.3) for the current matching: #F, 0 at fixed faces.
+  /// \pre set_input() was called. \throw NumericalError if the solve fails.
   Eigen::VectorXd solve() const;
-  /// X_t = e^{iα_t} X⁰_t with the current matching (a cross field).
+  /// X_t = e^{iα_t} X⁰_t with the current matching (a cross field). \pre set_input() was called; alpha has #F entries.
   FrameField rotated(const Eigen::VectorXd& alpha) const;
 
-  double smoothing_energy(const Eigen::VectorXd& alpha) const;  ///< E_S(α)
-  double alignment_energy(const Eigen::VectorXd& alpha) const;  ///< E_A(α) with the current targets β
+  double smoothing_energy(const Eigen::VectorXd& alpha) const;  ///< E_S(α) \pre set_input() was called; alpha #F
+  double alignment_energy(const Eigen::VectorXd& alpha) const;  ///< E_A(α) with the current targets β \pre alpha #F
 
-  const Eigen::VectorXi& matching() const { return matching_; }
-  const Eigen::VectorXd& curvature() const { return theta_; }  ///< θ of X⁰ with the current matching, #E
-  /// Faces held at α = 0: the `fixed` ones plus those fixed to make A definite.
+  const Eigen::VectorXi& matching() const { return matching_; }  ///< \pre none
+  const Eigen::VectorXd& curvature() const { return theta_; }  ///< θ of X⁰ with the current matching, #E \pre none
+  /// Faces held at α = 0: the `fixed` ones plus those fixed to make A definite. \pre none
   const std::vector<char>& fixed_faces() const { return fixed_; }
-  int num_unknowns() const { return static_cast<int>(unknowns_.size()); }
+  int num_unknowns() const { return static_cast<int>(unknowns_.size()); }  ///< \pre none
 
  private:
   struct Solver;

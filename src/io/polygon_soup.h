@@ -38,33 +38,39 @@ struct PolygonSoup {
   /// indices as the file writes them).
   int index_base = 0;
 
-  std::size_t num_vertices() const { return static_cast<std::size_t>(positions.rows()); }
-  std::size_t num_faces() const { return face_offsets.size() - 1; }
+  std::size_t num_vertices() const { return static_cast<std::size_t>(positions.rows()); }  ///< \pre none
+  std::size_t num_faces() const { return face_offsets.size() - 1; }  ///< \pre none
+  /// \pre f < num_faces()
   std::size_t face_size(std::size_t f) const {
     return static_cast<std::size_t>(face_offsets[f + 1] - face_offsets[f]);
   }
+  /// \pre f < num_faces()
   const std::int64_t* face_begin(std::size_t f) const { return face_vertices.data() + face_offsets[f]; }
 
+  /// \pre [begin, begin + n) is readable.
   void add_face(const std::int64_t* begin, std::size_t n, long line) {
     face_vertices.insert(face_vertices.end(), begin, begin + n);
     face_offsets.push_back(static_cast<std::int64_t>(face_vertices.size()));
     face_lines.push_back(line);
   }
 
-  bool has_uv() const { return !face_uv.empty(); }
+  bool has_uv() const { return !face_uv.empty(); }  ///< \pre none
 
-  /// "file:line" (or "file, face element N" for binary formats) of face f / vertex v, for messages.
+  /// "file:line" (or "file, face element N" for binary formats) of face f / vertex v, for messages. \pre none
   std::string face_location(std::size_t f) const;
-  std::string vertex_location(std::size_t v) const;
+  std::string vertex_location(std::size_t v) const;  ///< \pre none
 
   /// A soup from plain triangle arrays (V #V by 3, F #F by 3, 0-based), e.g. from the Python module.
+  /// \pre none (indices are checked by validate / build_mesh).
   static PolygonSoup from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
   /// A soup from a polygon mesh (quad meshes): V #V by 3, faces 0-based vertex indices per face (not checked here).
+  /// \pre none
   static PolygonSoup from_polygons(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
 };
 
 /// Fans every polygon with more than three corners into triangles (corner 0 to each consecutive pair).
 /// Used only when the user asks for it (`--triangulate`); face_lines and face_uv are kept for every piece.
+/// \pre every face has at least 3 corners (validate() reports those that do not).
 PolygonSoup triangulate_polygons(const PolygonSoup& soup);
 
 }  // namespace quadcover

@@ -8,7 +8,8 @@
 
 namespace quadcover::detail {
 
-/// An output buffer that flushes to a stream in large blocks (much faster than operator<< per number).
+/// An output buffer that flushes to a stream in large blocks (much faster than operator<< per number). Every member:
+/// \pre none; the stream's own failure state is the caller's to check after flush().
 class TextBuffer {
  public:
   explicit TextBuffer(std::ostream& out) : out_(out) { buf_.reserve(kBlock + 256); }

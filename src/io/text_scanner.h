@@ -7,9 +7,9 @@ namespace quadcover {
 
 class TextScanner {
  public:
-  explicit TextScanner(std::string_view text) : text_(text) {}
+  explicit TextScanner(std::string_view text) : text_(text) {}  ///< \pre text outlives the scanner.
 
-  /// Advances to the next line; false at the end. Comments (`#` to end of line) are stripped.
+  /// Advances to the next line; false at the end. Comments (`#` to end of line) are stripped. \pre none
   bool next_line() {
     if (pos_ >= text_.size()) return false;
     const std::size_t end = text_.find('\n', pos_);
@@ -21,7 +21,7 @@ class TextScanner {
     return true;
   }
 
-  /// The next whitespace-separated token of the current line, or "" at its end.
+  /// The next whitespace-separated token of the current line, or "" at its end. \pre none
   std::string_view token() {
     std::size_t i = 0;
     while (i < cur_.size() && is_space(cur_[i])) ++i;
@@ -32,7 +32,7 @@ class TextScanner {
     return tok;
   }
 
-  /// Parses the next token as a double (accepts nan/inf, which validation reports later).
+  /// Parses the next token as a double (accepts nan/inf, which validation reports later). \pre none
   bool number(double& out) {
     const std::string_view tok = token();
     if (tok.empty()) return false;
@@ -42,6 +42,7 @@ class TextScanner {
     return ec == std::errc() && ptr == tok.data() + tok.size();
   }
 
+  /// \pre none
   template <class Int>
   bool integer(Int& out) {
     const std::string_view tok = token();
@@ -50,16 +51,16 @@ class TextScanner {
     return ec == std::errc() && ptr == tok.data() + tok.size();
   }
 
-  /// True if the rest of the current line holds no more tokens.
+  /// True if the rest of the current line holds no more tokens. \pre none
   bool at_line_end() {
     for (char c : cur_)
       if (!is_space(c)) return false;
     return true;
   }
 
-  long line() const { return line_; }
-  std::string_view rest() const { return cur_; }
-  std::size_t offset() const { return pos_; }
+  long line() const { return line_; }  ///< \pre none
+  std::string_view rest() const { return cur_; }  ///< \pre none
+  std::size_t offset() const { return pos_; }  ///< \pre none
 
  private:
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }

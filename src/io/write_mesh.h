@@ -13,13 +13,16 @@ namespace quadcover {
 // Index arguments are checked: an index out of range throws std::invalid_argument and leaves no file.
 
 /// OBJ with `v` and `f` lines. V #V by 3, F #F by 3 (0-based).
+/// \throw std::invalid_argument for an index out of range; InputError if path cannot be written.
 void write_obj(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
 /// OBJ with per-corner texture coordinates: `v`, `vt`, `f v/vt`. UV #UV by 2; FUV #F by 3 indices into UV.
+/// \throw std::invalid_argument for an index out of range or FUV rows != F rows; InputError if unwritable.
 void write_obj_with_uv(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                        const Eigen::MatrixX2d& UV, const Eigen::MatrixX3i& FUV);
 
 /// OBJ with polygon faces of any size (quad meshes). faces: 0-based vertex indices per face.
+/// \throw std::invalid_argument for an index out of range or a face of < 3 corners; InputError if unwritable.
 void write_polygon_obj(const std::string& path, const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
 
 /// A polygon mesh (quad meshes) in the format the extension of `path` names: .obj, .off, .ply (binary little
@@ -37,6 +40,7 @@ std::string mesh_output_format(const std::string& path);
 
 /// OBJ of a polygon soup as read: positions, `vt` lines and `f v/vt` corners where soup.face_uv has them.
 /// Soup indices must be in range (validate first); -1 in face_uv writes the corner without texture index.
+/// \pre soup indices in range (validated). \throw InputError if path cannot be written.
 void write_soup_obj(const std::string& path, const PolygonSoup& soup);
 
 }  // namespace quadcover

@@ -12,6 +12,7 @@ namespace quadcover {
 void write_off(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
 /// Writes a polygon soup (faces of any size) as ASCII OFF.
+/// \throw std::invalid_argument for a face of < 3 corners or an index out of range; InputError if unwritable.
 void write_off(const std::string& path, const PolygonSoup& soup);
 
 }  // namespace quadcover

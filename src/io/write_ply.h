@@ -33,6 +33,7 @@ void write_ply(const std::string& path, const Eigen::MatrixX3d& V, const Eigen::
 /// property whose name is not an identifier or is x, y, z, or whose size is not #V (no file is left).
 void write_ply(const std::string& path, const PolygonSoup& soup, const std::vector<PlyVertexProperty>& properties,
                PlyEncoding encoding = PlyEncoding::BinaryLittleEndian);
+/// \throw as the overload above.
 inline void write_ply(const std::string& path, const PolygonSoup& soup,
                       PlyEncoding encoding = PlyEncoding::BinaryLittleEndian) {
   write_ply(path, soup, {}, encoding);

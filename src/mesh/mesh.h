@@ -15,7 +15,7 @@ namespace quadcover {
 
 using Complex = std::complex<double>;
 
-/// The quarter-turn power i^k for any integer k.
+/// The quarter-turn power i^k for any integer k. \pre none
 inline Complex ipow(int k) {
   static const Complex table[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   return table[mod4(k)];
@@ -48,29 +48,29 @@ class Mesh {
   static Mesh from_triangles(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
   // ---- sizes
-  int num_vertices() const { return static_cast<int>(V_.rows()); }
-  int num_edges() const { return static_cast<int>(E_.rows()); }
-  int num_faces() const { return static_cast<int>(F_.rows()); }
+  int num_vertices() const { return static_cast<int>(V_.rows()); }  ///< \pre none
+  int num_edges() const { return static_cast<int>(E_.rows()); }  ///< \pre none
+  int num_faces() const { return static_cast<int>(F_.rows()); }  ///< \pre none
 
   // ---- combinatorics
-  const Eigen::MatrixX3d& V() const { return V_; }    ///< #V by 3
-  const Eigen::MatrixX3i& F() const { return F_; }    ///< #F by 3
-  const Eigen::MatrixX2i& E() const { return E_; }    ///< #E by 2, E(e,0) < E(e,1)
-  const Eigen::MatrixX3i& FE() const { return FE_; }  ///< #F by 3, edge opposite corner k
-  const Eigen::MatrixX3i& FE_sign() const { return FE_sign_; }  ///< #F by 3, ±1
-  const Eigen::MatrixX2i& EF() const { return EF_; }  ///< #E by 2, positive / negative face or -1
-  /// #E by 2: the corner index (0..2) of edge e opposite to it in EF(e,0) / EF(e,1), or -1.
+  const Eigen::MatrixX3d& V() const { return V_; }    ///< #V by 3 \pre none
+  const Eigen::MatrixX3i& F() const { return F_; }    ///< #F by 3 \pre none
+  const Eigen::MatrixX2i& E() const { return E_; }    ///< #E by 2, E(e,0) < E(e,1) \pre none
+  const Eigen::MatrixX3i& FE() const { return FE_; }  ///< #F by 3, edge opposite corner k \pre none
+  const Eigen::MatrixX3i& FE_sign() const { return FE_sign_; }  ///< #F by 3, ±1 \pre none
+  const Eigen::MatrixX2i& EF() const { return EF_; }  ///< #E by 2, positive / negative face or -1 \pre none
+  /// #E by 2: the corner index (0..2) of edge e opposite to it in EF(e,0) / EF(e,1), or -1. \pre none
   const Eigen::MatrixX2i& EF_corner() const { return EF_corner_; }
 
-  bool is_boundary_edge(int e) const { return EF_(e, 0) < 0 || EF_(e, 1) < 0; }
-  bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }
-  /// The corner (0..2) of face f at vertex v, or -1 if v is not a vertex of f.
+  bool is_boundary_edge(int e) const { return EF_(e, 0) < 0 || EF_(e, 1) < 0; }  ///< \pre 0 <= e < #E
+  bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }  ///< \pre 0 <= v < #V
+  /// The corner (0..2) of face f at vertex v, or -1 if v is not a vertex of f. \pre 0 <= f < #F
   int corner_of(int f, int v) const {
     for (int c = 0; c < 3; ++c)
       if (F_(f, c) == v) return c;
     return -1;
   }
-  /// The face across face edge k of f, or -1 on the boundary.
+  /// The face across face edge k of f, or -1 on the boundary. \pre 0 <= f < #F, 0 <= k < 3
   int neighbor(int f, int k) const {
     const int e = FE_(f, k);
     return EF_(e, 0) == f ? EF_(e, 1) : EF_(e, 0);
@@ -81,55 +81,59 @@ class Mesh {
   struct FanCorner {
     int face, corner;
   };
+  /// \pre 0 <= v < #V
   std::span<const FanCorner> fan(int v) const {
     return {fan_.data() + fan_offsets_[v], fan_.data() + fan_offsets_[v + 1]};
   }
-  int valence(int v) const;  ///< number of incident edges
+  int valence(int v) const;  ///< number of incident edges \pre 0 <= v < #V
 
-  /// Boundary loops as vertex sequences, each oriented with the surface to its left.
+  /// Boundary loops as vertex sequences, each oriented with the surface to its left. \pre none
   const std::vector<std::vector<int>>& boundary_loops() const { return boundary_loops_; }
-  /// Per loop, the boundary edges in loop order (edge i joins vertex i and i+1 of the loop).
+  /// Per loop, the boundary edges in loop order (edge i joins vertex i and i+1 of the loop). \pre none
   const std::vector<std::vector<int>>& boundary_loop_edges() const { return boundary_loop_edges_; }
 
   // ---- components and topology
-  int num_components() const { return static_cast<int>(components_.size()); }
-  const std::vector<ComponentInfo>& components() const { return components_; }
-  const Eigen::VectorXi& face_component() const { return face_component_; }
-  const Eigen::VectorXi& vertex_component() const { return vertex_component_; }
-  int euler_characteristic() const { return num_vertices() - num_edges() + num_faces(); }
-  int num_boundary_loops() const { return static_cast<int>(boundary_loops_.size()); }
-  /// Sum of the component genera.
+  int num_components() const { return static_cast<int>(components_.size()); }  ///< \pre none
+  const std::vector<ComponentInfo>& components() const { return components_; }  ///< \pre none
+  const Eigen::VectorXi& face_component() const { return face_component_; }  ///< #F. \pre none
+  const Eigen::VectorXi& vertex_component() const { return vertex_component_; }  ///< #V. \pre none
+  int euler_characteristic() const { return num_vertices() - num_edges() + num_faces(); }  ///< \pre none
+  int num_boundary_loops() const { return static_cast<int>(boundary_loops_.size()); }  ///< \pre none
+  /// Sum of the component genera. \pre none
   int genus() const;
 
   // ---- geometry (cached)
-  const Eigen::VectorXd& face_areas() const { return face_area_; }       ///< #F
-  const Eigen::MatrixX3d& face_normals() const { return face_normal_; }  ///< #F by 3, unit
-  const Eigen::MatrixX3d& corner_angles() const { return corner_angle_; }  ///< #F by 3, radians
+  const Eigen::VectorXd& face_areas() const { return face_area_; }       ///< #F \pre none
+  const Eigen::MatrixX3d& face_normals() const { return face_normal_; }  ///< #F by 3, unit \pre none
+  const Eigen::MatrixX3d& corner_angles() const { return corner_angle_; }  ///< #F by 3, radians \pre none
+  /// \pre none
   const Eigen::MatrixX3d& corner_cotangents() const { return corner_cot_; }  ///< #F by 3, cot of corner angles
-  const Eigen::VectorXd& edge_lengths() const { return edge_length_; }  ///< #E
+  const Eigen::VectorXd& edge_lengths() const { return edge_length_; }  ///< #E \pre none
   /// Angle defect (Def. 1.8): 2π - Σα at interior vertices, π - Σα (geodesic curvature) at boundary vertices,
-  /// so that Σ_v angle_defect = 2πχ (discrete Gauss-Bonnet) holds for every mesh.
+  /// so that Σ_v angle_defect = 2πχ (discrete Gauss-Bonnet) holds for every mesh. \pre none
   const Eigen::VectorXd& angle_defect() const { return angle_defect_; }
-  /// Face tangent basis: #F by 3 each; b1 = unit(p1 - p0), b2 = n × b1.
+  /// Face tangent basis: #F by 3 each; b1 = unit(p1 - p0), b2 = n × b1. \pre none
   const Eigen::MatrixX3d& face_basis1() const { return face_b1_; }
-  const Eigen::MatrixX3d& face_basis2() const { return face_b2_; }
+  const Eigen::MatrixX3d& face_basis2() const { return face_b2_; }  ///< \pre none
   /// Corner positions in the face basis: #F by 3 complex, corner 0 at the origin, corner 1 on the positive real axis.
+  /// \pre none
   const Eigen::MatrixX3cd& corner_local() const { return corner_local_; }
-  /// Face edge k (from corner k+1 to corner k+2) as a complex vector in the face basis.
+  /// Face edge k (from corner k+1 to corner k+2) as a complex vector in the face basis. \pre 0 <= f < #F, 0 <= k < 3
   Complex edge_vector_local(int f, int k) const {
     return corner_local_(f, (k + 2) % 3) - corner_local_(f, (k + 1) % 3);
   }
   /// Levi-Civita transport across interior edge e: a tangent vector w in the basis of s = EF(e,0) is ρ_e·w in the
-  /// basis of t = EF(e,1) after unfolding the two triangles into a plane. |ρ_e| = 1; 1 on boundary edges.
+  /// basis of t = EF(e,1) after unfolding the two triangles into a plane. |ρ_e| = 1; 1 on boundary edges. \pre none
   const Eigen::VectorXcd& edge_transport() const { return edge_transport_; }
-  double mean_edge_length() const { return mean_edge_length_; }
-  double bounding_box_diagonal() const;
-  double total_area() const { return total_area_; }  ///< Σ face_areas(), cached
+  double mean_edge_length() const { return mean_edge_length_; }  ///< \pre none
+  double bounding_box_diagonal() const;  ///< 0 for an empty mesh. \pre none
+  double total_area() const { return total_area_; }  ///< Σ face_areas(), cached \pre none
 
-  /// Converts a 3D vector (projected to the tangent plane) into face f's complex coordinates and back.
+  /// Converts a 3D vector (projected to the tangent plane) into face f's complex coordinates and back. \pre 0 <= f < #F
   Complex to_local(int f, const Eigen::Vector3d& w) const {
     return {w.dot(face_b1_.row(f)), w.dot(face_b2_.row(f))};
   }
+  /// \pre 0 <= f < #F
   Eigen::Vector3d to_world(int f, Complex z) const {
     return z.real() * face_b1_.row(f).transpose() + z.imag() * face_b2_.row(f).transpose();
   }
@@ -167,7 +171,8 @@ struct MeshBuildResult {
   std::vector<int> face_source;  ///< mesh face -> soup face (several when polygons were triangulated)
 };
 
-/// Checks the soup against Def. 1.2 and everything else listed in ProblemKind; does not throw.
+/// Checks the soup against Def. 1.2 and everything else listed in ProblemKind.
+/// \pre none. Does not throw: every problem is in the report.
 ValidationReport validate(const PolygonSoup& soup, const ValidationOptions& options = {});
 
 /// Validates and builds. \throw TopologyError whose problems() lists every fatal problem with its location.

@@ -13,11 +13,11 @@ class SegmentGrid {
  public:
   /// Segment s runs from V.row(E(s, 0)) to V.row(E(s, 1)). \pre the indices of E are rows of V.
   SegmentGrid(const Eigen::MatrixX3d& V, const Eigen::MatrixX2i& E);
-  int num_segments() const { return static_cast<int>(a_.size()); }
+  int num_segments() const { return static_cast<int>(a_.size()); }  ///< \pre none
   /// Squared distance from p to the nearest segment (infinity for an empty set); `segment` receives its index
-  /// (the lowest among equally near ones; -1 for an empty set).
+  /// (the lowest among equally near ones; -1 for an empty set). \pre none
   double squared_distance(const Eigen::Vector3d& p, int* segment = nullptr) const;
-  /// The point of the nearest segment closest to p (p itself for an empty set).
+  /// The point of the nearest segment closest to p (p itself for an empty set). \pre none
   Eigen::Vector3d closest_point(const Eigen::Vector3d& p, int* segment = nullptr) const;
 
  private:
@@ -31,7 +31,7 @@ class SegmentGrid {
   std::vector<int> items_;
 };
 
-/// Closest point to p on the segment [a, b] (a for a degenerate segment).
+/// Closest point to p on the segment [a, b] (a for a degenerate segment). \pre none
 Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 
 }  // namespace quadcover

@@ -29,23 +29,24 @@ struct SurfaceCounts {
   /// unless the mesh is manifold and oriented.
   int genus = -1;
   int non_quads = 0;  ///< faces with other than four corners
+  /// \pre none
   bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0 && degenerate_faces == 0; }
-  bool oriented() const { return inconsistent_edges == 0; }
-  bool closed() const { return boundary_edges == 0; }
+  bool oriented() const { return inconsistent_edges == 0; }  ///< \pre none
+  bool closed() const { return boundary_edges == 0; }  ///< \pre none
 };
 
 /// Counts of a polygon mesh (faces of any size) over `num_vertices` vertices. O(n log n) in the corners,
 /// deterministic. \pre every index is in [0, num_vertices).
 SurfaceCounts surface_counts(int num_vertices, const std::vector<std::vector<int>>& faces);
 /// Counts of a triangle mesh, by the same code (a valid Mesh gives its own num_components(), num_boundary_loops(),
-/// genus()).
+/// genus()). \pre none
 SurfaceCounts surface_counts(const Mesh& mesh);
 
 /// The faces of a soup as read (polygons of any size, 0-based indices).
 /// \throw InputError naming the file and line of the first face with a vertex index out of range.
 std::vector<std::vector<int>> soup_polygons(const PolygonSoup& soup);
 
-/// The counts as `info`, `metrics` and the reports write them (genus null where undefined).
+/// The counts as `info`, `metrics` and the reports write them (genus null where undefined). \pre none
 nlohmann::json to_json(const SurfaceCounts& counts);
 
 }  // namespace quadcover

@@ -10,11 +10,12 @@ namespace quadcover {
 /// Closest-point queries on a fixed triangle set (AABB tree, median splits). Build O(n log n), query ~O(log n).
 class TriangleTree {
  public:
-  /// V #V by 3, F #F by 3.
+  /// V #V by 3, F #F by 3. \pre every index of F is a row of V.
   TriangleTree(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
-  /// Squared distance from p to the nearest triangle (infinity for an empty set); `face` receives its index.
+  /// Squared distance from p to the nearest triangle (infinity for an empty set); `face` receives its index. \pre none
   double squared_distance(const Eigen::Vector3d& p, int* face = nullptr) const;
   /// The point of the nearest triangle closest to p (p itself for an empty set); `face` receives its index (-1).
+  /// \pre none
   Eigen::Vector3d closest_point(const Eigen::Vector3d& p, int* face = nullptr) const;
 
  private:
@@ -33,7 +34,7 @@ class TriangleTree {
   std::vector<Triangle> tri_;              // corners of face order_[i]
 };
 
-/// Closest point to p on triangle (a, b, c) (region test on the barycentric coordinates).
+/// Closest point to p on triangle (a, b, c) (region test on the barycentric coordinates). \pre none
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                           const Eigen::Vector3d& c);
 

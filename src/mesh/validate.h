@@ -23,7 +23,7 @@ enum class ProblemKind {
   UnreferencedVertex,       ///< a vertex no face uses: a warning; such vertices are dropped and counted
 };
 
-const char* to_string(ProblemKind kind);
+const char* to_string(ProblemKind kind);  ///< \pre none
 
 struct MeshProblem {
   ProblemKind kind;
@@ -45,11 +45,13 @@ struct ValidationReport {
   std::vector<MeshProblem> problems;
   std::size_t unreferenced_vertices = 0;
   std::size_t flipped_faces = 0;  ///< faces flipped by fix_orientation
+  /// \pre none
   bool valid() const {
     for (const auto& p : problems)
       if (p.fatal) return false;
     return true;
   }
+  /// \pre none
   bool has(ProblemKind kind) const {
     for (const auto& p : problems)
       if (p.kind == kind) return true;

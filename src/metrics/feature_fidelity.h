@@ -40,7 +40,7 @@ FeatureFidelity feature_fidelity(const Mesh& reference, const Eigen::MatrixX3d& 
                                  const FeatureFidelityOptions& options = {});
 
 /// {"h", "boundary", "sharp", "total"}; each part {"edges", "samples", "covered_percent", "mean", "p95", "max"}
-/// (covered_percent and the distances null for a part without samples).
+/// (covered_percent and the distances null for a part without samples). \pre none
 nlohmann::json feature_fidelity_to_json(const FeatureFidelity& f);
 
 }  // namespace quadcover

@@ -52,13 +52,14 @@ ParamQuality param_quality(const Mesh& mesh, const Parameterization& param, cons
 std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
                                        const std::vector<char>& boundary);
 /// The same, with the boundary vertices found from F (ends of an edge no triangle traverses the other way), for
-/// triangles read from a file. Empty if uv does not have a row per face.
+/// triangles read from a file. Empty if uv does not have a row per face. \pre F indices >= 0.
 std::vector<BranchPoint> cones_from_uv(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv);
 
-/// ½ min_{R ∈ SO(2)} ‖J − R‖²_F for a 2×2 matrix J = [[a, b], [c, d]]: ½(‖J‖² + 2 − 2·|(a+d, c−b)|).
+/// ½ min_{R ∈ SO(2)} ‖J − R‖²_F for a 2×2 matrix J = [[a, b], [c, d]]: ½(‖J‖² + 2 − 2·|(a+d, c−b)|). \pre none
 double arap_density(const Eigen::Matrix2d& J);
 
 /// Jacobian of φ on face f: maps the face's tangent basis coordinates (Mesh::corner_local) to φ.
+/// \pre uv is #F by 3; 0 <= f < #F.
 Eigen::Matrix2d map_jacobian(const Mesh& mesh, const Eigen::MatrixX3cd& uv, int f);
 
 }  // namespace quadcover

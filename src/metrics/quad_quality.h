@@ -27,10 +27,11 @@ struct QuadQuality {
 };
 
 /// Quality of the polygon mesh (V #V by 3, faces counter-clockwise). Standard deviations are population ones.
+/// \pre every face index is a row of V.
 QuadQuality quad_quality(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces);
-inline QuadQuality quad_quality(const QuadMesh& q) { return quad_quality(q.V, q.faces); }
+inline QuadQuality quad_quality(const QuadMesh& q) { return quad_quality(q.V, q.faces); }  ///< \pre as above.
 
-/// Relative standard deviation in percent: 100 · sqrt(mean((x - mean)²)) / mean; 0 for an empty list.
+/// Relative standard deviation in percent: 100 · sqrt(mean((x - mean)²)) / mean; 0 for an empty list. \pre none
 double relative_std_percent(const std::vector<double>& x);
 
 }  // namespace quadcover

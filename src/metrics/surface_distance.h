@@ -17,6 +17,7 @@ struct SurfaceDistance {
 
 /// Distances between a polygon mesh (fan-triangulated; sampled at vertices, edge midpoints and face centroids) and a
 /// reference triangle mesh (sampled at its vertices).
+/// \pre every face index is a row of V, every ref_F index a row of ref_V.
 SurfaceDistance surface_distance(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces,
                                  const Eigen::MatrixX3d& ref_V, const Eigen::MatrixX3i& ref_F);
 

@@ -1,6 +1,8 @@
 #pragma once
-// Fast re-evaluation of the curl distortion E_D = ½‖X_C‖² = ½xᴴx, L x = -curl*X, 𝔏̄* = LᴴL (thesis 6.1.1, 6.2.1)
-// after changes of the matching, with Cholesky up/downdates instead of refactorization.
+// Fast re-evaluation of the curl distortion E_D = ½‖X̃_C‖² = xᴴx, L x = -curl*X, 𝔏̄* = LᴴL (thesis 6.1.1, 6.2.1)
+// after changes of the matching, with Cholesky up/downdates instead of refactorization. On closed meshes this is the
+// E_D parameterize() reports (Parameterization::energy_curl / scale², up to the shift below); with boundary it is
+// not yet: here v is free on boundary edges, there v = 0 (1.2.4) (tests/optimize/one_energy_test.cpp).
 //
 // One evaluation (Table 6.1): the matching changes at some edges; the frame field is re-smoothed by minimizing
 // E(α) (5.3) with the new matching (5.2.2, FrameSmoother: two right-hand side entries per edge, one solve); curl*
@@ -72,17 +74,19 @@ class CurlEnergy {
   /// \throw NumericalError if 𝔏̄* cannot be factored.
   CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options = {});
   /// As above, plus the data of the smoother's matrix (5.4) (λ, stability, trusted), which enables estimate().
+  /// \throw std::invalid_argument if the weights' sizes do not match the mesh; NumericalError if 𝔏̄* or A cannot be factored.
   CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
              const CurlEnergyOptions& options = {});
   ~CurlEnergy();
   CurlEnergy(CurlEnergy&&) noexcept;
 
-  /// E_D of the current state.
-  double energy() const { return 0.5 * factor_.rhs_energy(); }
+  /// E_D of the current state. \pre none
+  double energy() const { return factor_.rhs_energy(); }
   /// E_D after applying `changes` (one edge at a time, in order), without changing the state.
   /// \return +infinity if an update lost positive definiteness (never expected for valid matchings).
+  /// \pre every change names an edge of the mesh (boundary edges and delta 0 are skipped). \throw NumericalError if the smoothing solve fails.
   double evaluate(std::span<const MatchingChange> changes);
-  /// True if constructed with SmoothingWeights (estimate() available).
+  /// True if constructed with SmoothingWeights (estimate() available). \pre none
   bool can_estimate() const { return system_ != nullptr; }
   /// Computes ∇_α E_D and the adjoint z of the current state (one back substitution with 𝔏̄*, one solve with A);
   /// needed after every commit before estimate(ws). No-op if current or if fewer than
@@ -93,30 +97,34 @@ class CurlEnergy {
   /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
   /// The same estimate on a patch of `rings` face rings (estimate() uses CurlEnergyOptions::local_rings).
+  /// \pre prepare_estimates() since the last commit. \throw std::logic_error otherwise.
   double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const;
-  const CurlEnergyOptions& options() const { return options_; }
+  const CurlEnergyOptions& options() const { return options_; }  ///< \pre none
   /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
   /// not depend on the thread count. Calls prepare_estimates().
+  /// \pre out.size() == candidates.size(). \throw std::logic_error without SmoothingWeights.
   void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out, int threads = 0);
-  /// Timings and sizes of all estimates so far (summed over the workspaces).
+  /// Timings and sizes of all estimates so far (summed over the workspaces). \pre none
   CurlEnergyTimings estimate_timings() const;
   /// Makes the last evaluate() the current state.
+  /// \throw NumericalError if the last evaluate() failed or there was none since the last commit.
   void commit();
   /// Recomputes everything from scratch for the current matching (factorization included): the reference the
-  /// updates are tested against. \return E_D.
+  /// updates are tested against. \return E_D. \throw NumericalError if 𝔏̄* cannot be factored.
   double recompute_from_scratch();
 
-  const FrameField& field() const { return field_; }
-  const Eigen::VectorXi& matching() const { return field_.matching; }
-  const Eigen::VectorXd& alpha() const { return alpha_; }
-  /// Curvature θ_e of the current (rotated) field: θ⁰_e - α_s + α_t... as seen by E_S (5.3), #E.
+  const FrameField& field() const { return field_; }  ///< \pre none
+  const Eigen::VectorXi& matching() const { return field_.matching; }  ///< \pre none
+  const Eigen::VectorXd& alpha() const { return alpha_; }  ///< \pre none
+  /// Curvature θ_e of the current (rotated) field: θ⁰_e - α_s + α_t... as seen by E_S (5.3), #E. \pre 0 <= e < #E
   double curvature(int e) const;
   /// Per-edge share of E_D used for sorting (Algorithm 6.1 step 2): |Re(conj(v_e) curl*X(e))|, v = 𝔏̄*⁻¹(-curl*X).
+  /// \pre none
   Eigen::VectorXd distortion_shares() const;
-  const UpdatableCholesky& factor() const { return factor_; }
-  const CurlEnergyTimings& timings() const { return timings_; }
-  void reset_timings() { timings_ = {}; }
-  /// The star change of 𝔏̄* (3.8) when m_e changes by delta, given the current layers.
+  const UpdatableCholesky& factor() const { return factor_; }  ///< \pre none
+  const CurlEnergyTimings& timings() const { return timings_; }  ///< \pre none
+  void reset_timings() { timings_ = {}; }  ///< \pre none
+  /// The star change of 𝔏̄* (3.8) when m_e changes by delta, given the current layers. \pre e is an interior edge.
   StarChange stiffness_change(int e, int delta) const;
 
  private:

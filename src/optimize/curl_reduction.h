@@ -68,11 +68,12 @@ struct CurlReductionResult {
 
 /// Runs Algorithm 6.1 on the state of `energy` (its matching and re-smoothed field are updated in place).
 /// E_D never increases except in balancing cancellations, each of which costs less than Δ_EH.
+/// \pre energy was built on mesh. \throw NumericalError if a commit or refactorization fails.
 CurlReductionResult reduce_curl(const Mesh& mesh, CurlEnergy& energy, const CurlReductionOptions& options = {},
                                 ProgressSink& progress = null_progress());
 
 /// 4·ind_p of the matching (Def. 3.2, field/indices.h) changes by +δ at E(e,0) and -δ at E(e,1) when m_e += δ.
-/// Branch points: interior vertices with quarter index ≠ 0 mod 4.
+/// Branch points: interior vertices with quarter index ≠ 0 mod 4. \pre quarter_index has #V entries.
 int count_branch_points(const Mesh& mesh, const Eigen::VectorXi& quarter_index);
 
 }  // namespace quadcover

@@ -49,15 +49,18 @@ class SmoothingSystem {
 
   /// Δb of m_e += k given the current θ_e (5.2.2): {(s, -λω_e d), (t, +λω_e d)} for free s, t; θ_e is updated to
   /// the wrapped value so that repeated changes of one edge compose. \return number of entries written (0..2).
+  /// \pre 0 <= e < #E
   int rhs_change(int e, int k, double& theta_e, FaceEntry out[2]) const;
   /// Δα = A⁻¹ Δb on all faces (one factorization, two triangular solves); 0 at fixed faces.
+  /// \pre rhs has #F entries. \throw NumericalError if the solve fails.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Δα on the patch of free faces within `rings` face-rings of the faces of `rhs` (Dirichlet 0 outside), by
   /// Jacobi-preconditioned conjugate gradients to relative residual `tol`. Results in work.faces / work.x.
+  /// \pre rings >= 0, tol > 0; rhs faces in [0, #F).
   void solve_local(std::span<const FaceEntry> rhs, int rings, double tol, LocalSmoothingWork& work) const;
-  /// y = A x (free faces; x, y #F, fixed entries ignored / 0).
+  /// y = A x (free faces; x, y #F, fixed entries ignored / 0). \pre x has #F entries.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
-  bool is_free(int f) const { return !fixed_[static_cast<std::size_t>(f)]; }
+  bool is_free(int f) const { return !fixed_[static_cast<std::size_t>(f)]; }  ///< \pre 0 <= f < #F
 
  private:
   const Mesh* mesh_;

@@ -20,7 +20,7 @@ enum class OptimizeMode { None, Relocate, Full };
 inline constexpr long kAutoBudget = -1;
 /// Parses "none|relocate|full". \throw InputError otherwise.
 OptimizeMode parse_optimize_mode(std::string_view name);
-/// "none", "relocate" or "full".
+/// "none", "relocate" or "full". \pre none
 const char* to_string(OptimizeMode mode);
 
 struct OptimizeOptions {
@@ -64,9 +64,10 @@ CurlReductionOptions curl_reduction_options(const OptimizeOptions& options);
 
 /// The default evaluation budget (deterministic, no clock): enough for `relocate` to converge on the test meshes
 /// and for `full` to stay within the whole-pipeline goals of BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on
-/// two cores). Grows with the number of interior edges, capped.
+/// two cores). Grows with the number of interior edges, capped. \pre none
 long auto_evaluation_budget(const Mesh& mesh, OptimizeMode mode);
 /// The default time limit in seconds with the auto budget: `full` 2 s + 0.25 ms per face, `relocate` none (0).
+/// \pre none
 double auto_time_limit(const Mesh& mesh, OptimizeMode mode);
 
 /// \pre field came from compute_frame_field_detailed on `mesh`.
@@ -78,13 +79,13 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
 /// time_limit_seconds, exact_evaluations, accepted, cancelled_pairs, stopped_early, converged, stopped_by ("converged",
 /// "evaluations", "time", "cancelled"), delta_EH, h_sym, log (phase, evaluation, E_D, branch_points), and the
 /// wall-clock values under "seconds": {total, evaluations_per_second, exact, estimates} (reports keep timings under
-/// "seconds" keys, so that everything else is byte-identical between runs).
+/// "seconds" keys, so that everything else is byte-identical between runs). \pre none
 nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
 
 /// parameterize() of the optimized field; when `mode` optimized and `keep_better` is set, also of the original
 /// field, keeping the map with the lower total distortion E_D + E_H = ½‖X̃ − ∇φ̃‖² (6.1.1): Algorithm 6.1 lowers
 /// the field's E_D, which need not lower the map's. Adds "kept" ("optimized" or "original") and, when compared,
-/// both totals to `report`.
+/// both totals to `report`. \pre original and optimized belong to mesh. \throw as parameterize().
 Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                           const ParamOptions& param, OptimizeMode mode, bool keep_better,
                                           ProgressSink& progress, nlohmann::json& report);

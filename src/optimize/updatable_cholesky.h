@@ -31,7 +31,7 @@ struct StarChange {
 /// The two rank-1 terms of a star change (Deng's eigen-split, 6.2.1): D = w₁w₁ᴴ - w₂w₂ᴴ with
 /// w₁,₂ = sqrt(λ/2)·(e_k ± u), λ = sqrt(Σ|d_j|²), u_j = conj(d_j)/λ; eigenvalues ±λ with eigenvectors (e_k ± u)/√2.
 /// Applying w₁ (update, λ > 0) before w₂ (downdate) keeps every intermediate matrix positive definite.
-/// \return {w₁, w₂}; both empty if D = 0.
+/// \return {w₁, w₂}; both empty if D = 0. \pre none
 std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const StarChange& change);
 
 /// Cholesky factor with in-place rank-1 modifications, plus a maintained right-hand side b and forward solution x
@@ -49,22 +49,23 @@ class UpdatableCholesky {
   /// `route`: Automatic (by the front sizes, as above), UpLooking (always CXSparse) or Supernodal (CHOLMOD when
   /// compiled in).
   enum class Route { Automatic, UpLooking, Supernodal };
+  /// \pre A is Hermitian (full storage).
   explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A, Route route = Route::Automatic);
-  /// Whether the numbers came from CHOLMOD's supernodal factorization.
+  /// Whether the numbers came from CHOLMOD's supernodal factorization. \pre none
   bool supernodal() const;
 
-  int size() const;
-  /// Nonzeros of L (including the diagonal).
+  int size() const;  ///< \pre none
+  /// Nonzeros of L (including the diagonal). \pre none
   long factor_nonzeros() const;
 
-  /// Sets the right-hand side and recomputes x with a full forward solve.
+  /// Sets the right-hand side and recomputes x with a full forward solve. \throw NumericalError if b.size() != size().
   void set_rhs(const Eigen::VectorXcd& b);
-  const Eigen::VectorXcd& rhs() const { return b_; }
-  /// bᴴ A⁻¹ b = xᴴx for the current A and b.
+  const Eigen::VectorXcd& rhs() const { return b_; }  ///< \pre none
+  /// bᴴ A⁻¹ b = xᴴx for the current A and b. \pre none
   double rhs_energy() const { return x_norm2_; }
-  /// x in the permuted order (L x = P b).
+  /// x in the permuted order (L x = P b). \pre none
   const Eigen::VectorXcd& forward_solution() const { return x_; }
-  /// A⁻¹ b (forward and back substitution), in A's numbering.
+  /// A⁻¹ b (forward and back substitution), in A's numbering. \pre none
   Eigen::VectorXcd solve_full() const;
 
   /// L L^H <- L L^H + sigma w w^H (sigma = ±1) with CXSparse's cs_ci_updown, then a full forward solve.
@@ -72,20 +73,21 @@ class UpdatableCholesky {
   /// (the factor is then invalid: refactor).
   void rank1_cxsparse(std::span<const SparseEntry> w, int sigma);
   /// A <- A + D via the two rank-1 terms of deng_split() with cs_ci_updown, then a full forward solve.
+  /// \pre as rank1_cxsparse. \throw NumericalError as rank1_cxsparse.
   void apply_star_change_cxsparse(const StarChange& change);
 
-  /// Permutation: perm()[new] = old; etree parent in the permuted numbering (-1 for roots).
+  /// Permutation: perm()[new] = old; etree parent in the permuted numbering (-1 for roots). \pre none
   const std::vector<int>& perm() const { return perm_; }
-  const std::vector<int>& inverse_perm() const { return pinv_; }
-  const std::vector<int>& etree() const { return parent_; }
-  /// L in the permuted numbering (n by n lower triangular, real positive diagonal).
+  const std::vector<int>& inverse_perm() const { return pinv_; }  ///< \pre none
+  const std::vector<int>& etree() const { return parent_; }  ///< \pre none
+  /// L in the permuted numbering (n by n lower triangular, real positive diagonal). \pre none
   Eigen::SparseMatrix<Complex> factor() const;
 
   // Raw column storage of L for the path-local evaluator (diagonal first in every column, rows increasing).
-  const int* col_ptr() const;
-  const int* row_idx() const;
-  Complex* values();
-  const Complex* values() const;
+  const int* col_ptr() const;  ///< \pre none
+  const int* row_idx() const;  ///< \pre none
+  Complex* values();  ///< \pre none (writes must keep L a valid factor).
+  const Complex* values() const;  ///< \pre none
 
  private:
   friend class FactorTrial;
@@ -105,22 +107,26 @@ class UpdatableCholesky {
 /// (unchanged) factor; commit() writes one back.
 class FactorTrial {
  public:
-  explicit FactorTrial(int n = 0);
-  /// Starts a new trial (forgets previous changes; O(touched)).
+  explicit FactorTrial(int n = 0);  ///< \pre n >= 0
+  /// Starts a new trial (forgets previous changes; O(touched)). \pre none
   void reset();
   /// Adds A <- A + D (Deng split, update before downdate, 6.2.1). Changes are applied in the order given.
   /// \return false if an intermediate matrix lost positive definiteness (the trial is then invalid).
+  /// \pre F.size() is this trial's n; the pattern of D lies in that of A.
   bool add_star_change(const UpdatableCholesky& F, const StarChange& change);
-  /// Adds b <- b + delta at entries (A's numbering).
+  /// Adds b <- b + delta at entries (A's numbering). \pre F.size() is this trial's n; entries in [0, n).
   void add_rhs_change(const UpdatableCholesky& F, std::span<const SparseEntry> delta);
   /// Reach-limited forward solve on the touched paths. \return the new bᴴA⁻¹b = xᴴx.
+  /// \throw NumericalError if an add_star_change failed.
   double evaluate(const UpdatableCholesky& F);
   /// Full forward solve L̃x = P b_new through the modified factor (touched columns read from the trial): for a
   /// right-hand side that changes everywhere (re-smoothed field, 6.2.1 / Table 6.1). \return the new xᴴx.
+  /// \pre b_new has F.size() entries. \throw NumericalError if an add_star_change failed.
   double evaluate_full(const UpdatableCholesky& F, const Eigen::VectorXcd& b_new);
   /// Writes the modified columns, b and x back into F (after evaluate() or evaluate_full()).
+  /// \pre F is the factor the trial was built on. \throw NumericalError if not evaluated or invalid.
   void commit(UpdatableCholesky& F) const;
-  /// Number of columns of L touched (the reach of the change).
+  /// Number of columns of L touched (the reach of the change). \pre none
   int reach() const { return static_cast<int>(touched_.size()); }
 
  private:

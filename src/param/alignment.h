@@ -30,6 +30,7 @@ struct CurveSlot {
 
 /// Boundary edges and the given feature edges whose gauged frame Z (#F by 2) is aligned with them within
 /// `tolerance_degrees`: the edge is parallel to Z(f, 1 - a) and the coordinate a is constant along it.
+/// \pre Z is #F by 2; feature_edges are edges of mesh.
 std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z, const std::vector<int>& feature_edges,
                                            double tolerance_degrees);
 
@@ -47,17 +48,18 @@ struct CurveLimits {
 /// Holds pointers to mesh, cut, layer and known: they must outlive it.
 class AlignedCorrection {
  public:
+  /// \pre cut = build_cover_cut(mesh, …); layer, known #F by 3; u0 #V; slots from aligned_curve_slots.
   AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0, const std::vector<int>& kernel_pins,
                     const std::vector<CurveSlot>& slots, const CurveLimits& limits);
   /// u with L u = b (real form) and the constrained components fixed. \throw NumericalError if not definite.
   /// refactorize = false reuses the factor of the previous call (L must be the same matrix; only b changes).
   Eigen::VectorXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b, bool refactorize = true);
-  /// The curves with their largest deviation from the iso-line measured on u.
+  /// The curves with their largest deviation from the iso-line measured on u. \pre u has #V entries.
   std::vector<AlignedCurve> curves(const Eigen::VectorXcd& u) const;
-  /// Lines left free because they close on themselves with another integer.
+  /// Lines left free because they close on themselves with another integer. \pre none
   int conflicts() const { return conflicts_; }
-  /// 2·#V flags (x_p at p, y_p at #V + p) of the components of u that the constraints fix.
+  /// 2·#V flags (x_p at p, y_p at #V + p) of the components of u that the constraints fix. \pre none
   const std::vector<char>& fixed_components() const { return fixed_; }
 
  private:

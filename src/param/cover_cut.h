@@ -22,7 +22,7 @@ struct FanCrossing {
   int from, to, edge;
 };
 /// The crossings around v in counter-clockwise fan order: d for an interior vertex (closing the cycle),
-/// d - 1 for a boundary vertex (the fan is open).
+/// d - 1 for a boundary vertex (the fan is open). \pre 0 <= v < #V
 std::vector<FanCrossing> fan_crossings(const Mesh& mesh, int v);
 
 struct CoverCut {
@@ -42,8 +42,8 @@ struct CoverCut {
   /// 4.2, one with k ≠ 0), or -1 when every transition of the component is a pure translation.
   std::vector<int> dependent_path;
 
-  int num_paths() const { return static_cast<int>(path_edge.size()); }
-  /// Number of real symmetric periods that are rounded: 2·(n - #dependent paths); equals h_sym of (4.1).
+  int num_paths() const { return static_cast<int>(path_edge.size()); }  ///< \pre none
+  /// Number of real symmetric periods that are rounded: 2·(n - #dependent paths); equals h_sym of (4.1). \pre none
   int h_sym() const;
 };
 
@@ -54,10 +54,10 @@ CoverCut build_cover_cut(const Mesh& mesh, const Eigen::VectorXi& matching);
 /// h_sym of (4.1) for a connected surface: 4g + 2(b_even + b_odd) - 4 when there are branch points; 4g
 /// without branch points (the b_odd = b_even = 0 case: four copies of M, 2g complex periods). With L > 0 boundary
 /// loops (beyond the thesis), each loop acts like one more base point: 4g + 2(b + L) - 4, or 4g + 2L - 2 without
-/// branch points (trivial holonomy: no path is fixed by the constant).
+/// branch points (trivial holonomy: no path is fixed by the constant). \pre genus, b_even, b_odd, boundary_loops >= 0.
 int symmetric_period_count(int genus, int b_even, int b_odd, int boundary_loops = 0);
 
-/// The frame Z = (X, Y) turned by the frame-complex i^k: i(X, Y) = (-Y, X).
+/// The frame Z = (X, Y) turned by the frame-complex i^k: i(X, Y) = (-Y, X). \pre none
 inline std::pair<Complex, Complex> turn_frame(Complex X, Complex Y, int k) {
   switch (mod4(k)) {
     case 0: return {X, Y};

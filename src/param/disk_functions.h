@@ -13,7 +13,7 @@ namespace quadcover {
 /// A frame field as #F by 2 tangent vectors: column 0 the X-part (layer 0), column 1 the Y-part (layer 1).
 using FramePairs = Eigen::MatrixX2cd;
 
-/// ⟨w, Z⟩ = ⟨w, X⟩ + i⟨w, Y⟩ for a tangent vector w (frame-complex result).
+/// ⟨w, Z⟩ = ⟨w, X⟩ + i⟨w, Y⟩ for a tangent vector w (frame-complex result). \pre none
 inline Complex frame_dot(Complex w, Complex X, Complex Y) {
   return {std::real(std::conj(w) * X), std::real(std::conj(w) * Y)};
 }
@@ -23,16 +23,18 @@ inline Complex frame_dot(Complex w, Complex X, Complex Y) {
 /// \pre cut = build_cover_cut(mesh, …); Z is #F by 2. \throw only std::bad_alloc.
 Eigen::VectorXcd integrate_on_disk(const Mesh& mesh, const CoverCut& cut, const FramePairs& Z);
 
-/// Per-corner values (#F by 3) of a function given per cut-vertex.
+/// Per-corner values (#F by 3) of a function given per cut-vertex. \pre values has cut.disk.num_vertices() entries.
 Eigen::MatrixX3cd corner_values(const CoverCut& cut, const Eigen::VectorXcd& values);
 
 /// Gradient per face of a frame-complex function given per corner: (∇Re φ, ∇Im φ), ∇φ_c = J e_c / 2A.
+/// \pre phi is #F by 3.
 FramePairs corner_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi);
-/// The same on one face f: (∇Re φ, ∇Im φ).
+/// The same on one face f: (∇Re φ, ∇Im φ). \pre phi is #F by 3; 0 <= f < #F.
 std::pair<Complex, Complex> face_gradient(const Mesh& mesh, const Eigen::MatrixX3cd& phi, int f);
 
 /// Translations c_e (#E, 0 off the cut) of a disk function across the cut edges, averaged over the two endpoints;
 /// `mismatch` (if given) receives the largest difference between the two endpoint estimates.
+/// \pre cut = build_cover_cut(mesh, …); phi is #F by 3.
 Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3cd& phi,
                                   double* mismatch = nullptr);
 
@@ -43,15 +45,16 @@ void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorX
 
 /// The same relations over GF(2) for lattice parities: bit j of edge e is the parity of the coefficient of path j
 /// in c_e (i ≡ 1 mod 1+i). \return per edge a bitset of num_paths bits (words of 64).
+/// \pre cut = build_cover_cut(mesh, …).
 std::vector<std::vector<std::uint64_t>> path_parities(const Mesh& mesh, const CoverCut& cut);
 
 /// The function with jumps c across the cut (a potential of Σ̃_c): per corner values, 0 at vertices off the cut; at
 /// a branch point the value is the fixed point c/(1 - i^K) of the composed transition, elsewhere on the cut the first
-/// wedge of the fan has value 0.
+/// wedge of the fan has value 0. \pre cut = build_cover_cut(mesh, …); c has #E entries.
 Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c);
 
 /// Composition of the transitions around vertex v (counter-clockwise, from its first fan face): the rotation power
-/// K and translation D of z ↦ i^K z + D.
+/// K and translation D of z ↦ i^K z + D. \pre cut = build_cover_cut(mesh, …); c has #E entries; 0 <= v < #V.
 std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, int v);
 
 }  // namespace quadcover

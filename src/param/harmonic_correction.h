@@ -23,21 +23,24 @@ class HarmonicCorrection {
 
   /// Right-hand side b_p = ⟨∇φ_p, Σ⟩ over the faces around p (read in p's gauge; 0 at branch points). Only the
   /// listed faces contribute (pass all faces, or the support of a sparse Σ). Kernel pins are not zeroed here.
+  /// \pre Sigma is #F by 2; faces in [0, #F).
   Eigen::VectorXcd rhs(const FramePairs& Sigma, const std::vector<int>& faces) const;
-  Eigen::VectorXcd rhs(const FramePairs& Sigma) const;
+  Eigen::VectorXcd rhs(const FramePairs& Sigma) const;  ///< \pre Sigma is #F by 2.
   /// The same for a field given only on `faces` (X[k], Y[k] on faces[k]; zero elsewhere): no dense #F field.
+  /// \pre X, Y have faces.size() entries; faces in [0, #F).
   Eigen::VectorXcd rhs(const std::vector<int>& faces, const std::vector<Complex>& X,
                        const std::vector<Complex>& Y) const;
   /// u with 𝔏̄ u = b (rows of the kernel pins replaced by u_p = 0), all columns at once.
+  /// \pre B has #V rows. \throw NumericalError if the solve fails.
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B) const;
-  /// Per-corner values i^λ u_p of a vertex function (0 at branch points).
+  /// Per-corner values i^λ u_p of a vertex function (0 at branch points). \pre u has #V entries.
   Eigen::MatrixX3cd corner_values(const Eigen::VectorXcd& u) const;
-  /// H̃ = Σ − ∇u for the u solved from Σ.
+  /// H̃ = Σ − ∇u for the u solved from Σ. \pre Sigma is #F by 2. \throw NumericalError if the solve fails.
   FramePairs harmonic_part(const FramePairs& Sigma) const;
 
-  const Eigen::SparseMatrix<Complex>& stiffness() const { return L_; }  ///< 𝔏̄, unpinned
-  const VertexLayers& layers() const { return layers_; }
-  const std::vector<int>& kernel_pins() const { return kernel_pins_; }
+  const Eigen::SparseMatrix<Complex>& stiffness() const { return L_; }  ///< 𝔏̄, unpinned \pre none
+  const VertexLayers& layers() const { return layers_; }  ///< \pre none
+  const std::vector<int>& kernel_pins() const { return kernel_pins_; }  ///< \pre none
 
  private:
   void add_rhs(int f, Complex X, Complex Y, Eigen::VectorXcd& b) const;  ///< face f's terms of rhs()
@@ -57,10 +60,11 @@ using WeightedCorrectionSolve = std::function<Eigen::VectorXcd(const Eigen::Spar
                                                                const Eigen::VectorXcd& bw, bool refactorize)>;
 
 /// Replaces rows and columns of a Hermitian matrix by those of the identity (the values there pinned to 0).
+/// \pre A is square; rows in [0, A.rows()).
 void pin_rows(Eigen::SparseMatrix<Complex>& A, const std::vector<int>& rows);
 
-/// ‖Z‖² = Σ_f A_f (|X_f|² + |Y_f|²) and the real inner product ⟨Z, W⟩ it comes from.
+/// ‖Z‖² = Σ_f A_f (|X_f|² + |Y_f|²) and the real inner product ⟨Z, W⟩ it comes from. \pre Z is #F by 2.
 double frame_norm2(const Mesh& mesh, const FramePairs& Z);
-double frame_inner(const Mesh& mesh, const FramePairs& Z, const FramePairs& W);
+double frame_inner(const Mesh& mesh, const FramePairs& Z, const FramePairs& W);  ///< \pre Z, W are #F by 2.
 
 }  // namespace quadcover

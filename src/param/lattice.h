@@ -14,12 +14,12 @@ enum class Lattice {
 
 /// "unit", "coarse", "rotated". \throw InputError for any other name.
 Lattice parse_lattice(const std::string& name);
-const char* to_string(Lattice lattice);
+const char* to_string(Lattice lattice);  ///< \pre none
 
-/// The lattice point closest to z.
+/// The lattice point closest to z. \pre z is finite.
 std::complex<double> round_to_lattice(std::complex<double> z, Lattice lattice);
 
-/// Distance of z to the Gaussian integers Z[i] (the seamless condition on translations).
+/// Distance of z to the Gaussian integers Z[i] (the seamless condition on translations). \pre none
 double distance_to_gaussian_integers(std::complex<double> z);
 
 }  // namespace quadcover

@@ -69,6 +69,7 @@ double target_edge_length(const Mesh& mesh, const ParamOptions& options, int bra
 /// Fixes the default density of `options` (neither edge_length nor target_quads given) to an explicit edge_length
 /// from the branch point count of `field`, so that every later stage (Algorithm 6.1's E_H, keep-better's comparison
 /// of two fields) works at one scale. Explicit densities are left as they are.
+/// \pre field belongs to mesh. \throw InputError as target_edge_length.
 void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions& options);
 
 /// Seamless QuadCover parameterization of `mesh` guided by `field`.

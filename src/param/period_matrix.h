@@ -28,6 +28,7 @@ struct SparseJumpField {
   std::vector<int> support;
   std::vector<Complex> X, Y;  ///< per support face
 };
+/// \pre cut = build_cover_cut(mesh, …); 0 <= path < cut.num_paths().
 SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path);
 
 /// P for the free paths of `cut`; `correction` must have been built for the same cut. Solves in blocks of

@@ -20,7 +20,7 @@ enum class RoundingStrategy {
 
 /// Parses "direct|greedy|search1|search2|search3|exact". \throw InputError for anything else.
 RoundingStrategy parse_rounding_strategy(std::string_view name);
-std::string to_string(RoundingStrategy strategy);
+std::string to_string(RoundingStrategy strategy);  ///< \pre none
 
 struct RoundingOptions {
   RoundingStrategy strategy = RoundingStrategy::Search3;
@@ -50,7 +50,7 @@ struct RoundingResult {
   RoundingStrategy used = RoundingStrategy::Direct;  ///< the strategy that actually ran (Exact may fall back)
 };
 
-/// E_H = ½ (c - b)ᵀ P (c - b).
+/// E_H = ½ (c - b)ᵀ P (c - b). \pre P is n by n; b, c have n entries.
 double rounding_energy(const Eigen::MatrixXd& P, const Eigen::VectorXd& b, const Eigen::VectorXi& c);
 
 /// Rounds b to integers minimizing E_H with the chosen strategy.
@@ -62,6 +62,7 @@ RoundingResult round_periods(const Eigen::MatrixXd& P, const Eigen::VectorXd& b,
 /// Schnorr–Euchner enumeration within the squared radius bound2 (pass 2·E_H of a heuristic solution).
 /// Exponential in n; stops after max_nodes enumeration nodes. \return empty if nothing lies within the bound;
 /// *proven (if given) tells whether the enumeration completed, i.e. the result is optimal.
+/// \pre P is n by n symmetric positive definite; b has n entries; bound2 >= 0.
 Eigen::VectorXi closest_vector_exact(const Eigen::MatrixXd& P, const Eigen::VectorXd& b, double bound2,
                                      long long max_nodes = 200'000'000, bool* proven = nullptr);
 

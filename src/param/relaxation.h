@@ -33,10 +33,11 @@ struct RelaxationOptions {
 
 /// Per face, the target gradient pair (∇φ⁰, ∇φ¹) = s R_t of the rotation nearest to the map's Jacobian on f
 /// (R_t = argmin over proper rotations of ‖J_t − R‖_F, J_t rows ∇φ⁰, ∇φ¹ in f's frame), from the map's gradients
-/// (corner_gradient).
+/// (corner_gradient). \pre s > 0
 FramePairs nearest_rotations(const FramePairs& gradient, double s);
 
 /// ½ Σ_t A_t |∇φ_t − s R_t|² / (s² Σ_t A_t): the mean ARAP distortion of the map at scale s (R_t as above).
+/// \pre uv is #F by 3; s > 0.
 double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s);
 
 struct RelaxedCorrection {
@@ -50,6 +51,7 @@ struct RelaxedCorrection {
 /// The relaxation loop from u0 (φ = base − corner_values(u)); Z the scaled gauged frame, s its RMS length
 /// (grid units per model unit). Fills `result` (iterations and the energies of rigidity_energy before and after)
 /// except its price.
+/// \pre as in param/parameterize.cpp: matching #E, base #F by 3, Z #F by 2, u0 #V, s > 0. \throw NumericalError if a solve fails.
 RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                    const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                                    const FramePairs& Z, double s, const Eigen::VectorXcd& u0,

@@ -18,7 +18,7 @@ struct SeamReport {
 
 /// For each interior edge (s = EF(e,0), t = EF(e,1)) finds k ∈ 0..3 and c ∈ Z[i] best satisfying
 /// uv_t = i^k uv_s + c at both endpoints. Tolerance: relative_tolerance × parameter extent.
-/// uv  #F by 3 per-corner coordinates.
+/// uv  #F by 3 per-corner coordinates. \pre uv is #F by 3.
 SeamReport measure_seams(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double relative_tolerance = 1e-9);
 
 /// Orientation of the map's triangles, relative to the reference area A_ref(t) = A3D(t) · (Σ|A_uv| / Σ A3D) and

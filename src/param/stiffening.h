@@ -27,6 +27,7 @@ struct StiffeningOptions {
 
 /// Per face: d = |σ₁ − 1| + |σ₂ − 1| for the singular values of J = (∇φ) Z⁻¹ (the map relative to the frame it
 /// should follow), σ₂ carrying the sign of det J, so a flipped triangle has d > 1. 0 where Z is degenerate.
+/// \pre uv is #F by 3; Z is #F by 2.
 Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, const FramePairs& Z);
 
 /// The stiffening loop from the unweighted solution u0: re-solves with w += c·d while triangles are flipped and
@@ -34,6 +35,7 @@ Eigen::VectorXd frame_distortion(const Mesh& mesh, const Eigen::MatrixX3cd& uv, 
 /// k-th call of `solve`, reported as result.kept_iteration). `base` holds the
 /// corner values of φ̂ + σ (φ = base − u), `target` = T = Σ̃_d − X̃_C, Z the scaled gauged field. Fills `result`
 /// except its price E_K (the caller knows E_H).
+/// \pre matching #E, base #F by 3, Z and target #F by 2, u0 #V. \throw NumericalError if a solve fails.
 Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                     const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                                     const FramePairs& Z, const FramePairs& target,

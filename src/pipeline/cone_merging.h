@@ -21,7 +21,7 @@ struct ConeMerge {
 
 /// The merges that undo the map's stuck faces with two branch corners on one point: per such face (in face order)
 /// the pair, `from` the higher vertex number, skipping pairs that share a vertex with an earlier merge or whose
-/// edge is a boundary edge.
+/// edge is a boundary edge. \pre map was made on mesh (map.uv #F by 3).
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map);
 
 /// `field` with the merges applied to its matching and its frames smoothed again for that matching (the field

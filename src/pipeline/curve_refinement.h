@@ -17,6 +17,7 @@ namespace quadcover {
 /// The interior edges to split: for every face whose three corners are curve vertices (on a boundary edge when
 /// features.boundaries, or on a sharp feature edge of feature_constraints) and that has an edge that is not a curve
 /// edge, its longest such edge (ties: lower edge index), unless one of its edges is chosen already. Ascending.
+/// \pre none
 std::vector<int> curve_refinement_edges(const Mesh& mesh, const FeatureOptions& features);
 
 /// A mesh refined by curve_refinement_edges, or none when nothing needs it.

@@ -40,18 +40,18 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
 /// the smoothed quad mesh), surface_distance (to the input), feature_fidelity (metrics/feature_fidelity.h: the
 /// input's boundary and sharp edges against the quad edges, in units of h), quad_smoothing and surface_check
 /// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
-/// metrics' seconds are added.
+/// metrics' seconds are added. \pre job = remesh(mesh, …).
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
 
 /// Adds a stage measured after the report was made (e.g. the CLI's writing of the outputs) to its seconds and memory
-/// (common/stage_meter.h), and updates the process peak.
+/// (common/stage_meter.h), and updates the process peak. \pre none
 void add_report_stage(nlohmann::json& report, const std::string& stage, const StageCost& cost);
 
 /// The key numbers of a report, flat (printed by the CLI, tabulated in batches): edge_length, branch_points (of the
 /// map), h_sym, flipped_triangles, seamless, E_D, E_H, arap, optimize (without its log), rounding; for param the
 /// input's vertices, faces, genus, boundary_loops; for remesh the quad mesh's vertices, faces, quads, non_quads,
 /// rsd_edge_length, rsd_corner_angle, irregular_vertices, manifold, closed, and input_faces, same_topology,
-/// features_covered_percent, distance_max, repairs.
+/// features_covered_percent, distance_max, repairs. \pre none (absent keys are left out).
 nlohmann::json report_summary(const nlohmann::json& report);
 
 }  // namespace quadcover

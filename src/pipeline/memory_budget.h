@@ -14,11 +14,11 @@ namespace quadcover {
 inline constexpr double kBytesPerInputFace = 4096, kBytesPerQuad = 1024;
 
 /// The quads `options` asks for on `mesh`: N, or area / h² for an edge length h, or for the default density the
-/// mesh's own resolution (area / (default_edge_factor · mean edge)²).
+/// mesh's own resolution (area / (default_edge_factor · mean edge)²). \pre none
 double requested_quads(const Mesh& mesh, const ParamOptions& options);
 
 /// The memory available to the job: `limit_bytes` if positive, else the machine's MemAvailable (/proc/meminfo; 0 if
-/// unknown, then nothing is refused).
+/// unknown, then nothing is refused). \pre none
 std::int64_t available_bytes(std::int64_t limit_bytes = 0);
 
 /// \throw InputError (file "density") naming the estimate, the memory available and the largest quad count that fits,

@@ -53,6 +53,7 @@ struct ParamJob {
   StagePeakBytes peak_bytes;  ///< per stage, under the names of `seconds`
 
   /// The mesh of `map`: the refined one, or `input` (the mesh given to parameterize_mesh) when none was needed.
+  /// \pre input is the mesh given to parameterize_mesh.
   const Mesh& mesh(const Mesh& input) const { return refinement.mesh ? *refinement.mesh : input; }
 };
 
@@ -65,6 +66,7 @@ struct ParamJob {
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
 
 /// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
+/// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
 
 /// The warning for the improving stages a stop skipped or cut short (ParamJob::cut_short), in the words the CLI prints.
@@ -72,7 +74,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
 std::string cut_short_warning(const std::vector<std::string>& stages);
 
 /// The warnings a map deserves (handles whose field has holonomy but no branch points, even branch points left on
-/// half-integers), in the words the CLI prints.
+/// half-integers), in the words the CLI prints. \pre none
 std::vector<std::string> map_warnings(const Parameterization& map);
 
 }  // namespace quadcover

@@ -51,10 +51,10 @@ struct PipelineOptions {
 void validate(const PipelineOptions& options);
 
 /// The FieldOptions of the field stage (the preset with options.fill and options.param.features), whose λ also serves
-/// Algorithm 6.1's re-smoothing.
+/// Algorithm 6.1's re-smoothing. \pre none
 FieldOptions field_stage_options(const PipelineOptions& options);
 
-/// The OptimizeOptions of the optimization stage (mode, budget, λ of the field stage, `param` for E_H).
+/// The OptimizeOptions of the optimization stage (mode, budget, λ of the field stage, `param` for E_H). \pre none
 OptimizeOptions optimize_stage_options(const PipelineOptions& options, const ParamOptions& param);
 
 }  // namespace quadcover

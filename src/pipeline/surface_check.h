@@ -32,7 +32,7 @@ struct SurfaceCheck {
   std::vector<SurfacePlace> places;   ///< where (locate_surface_problems), in face order, then the loops
 };
 
-/// Compares the remeshed surface with the input.
+/// Compares the remeshed surface with the input. \pre every face index is in [0, num_vertices).
 SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vector<std::vector<int>>& faces);
 
 /// Fills check.places from the quad mesh (V, faces) that check_surface compared: every non-quad face, and every
@@ -41,12 +41,12 @@ SurfaceCheck check_surface(const Mesh& input, int num_vertices, const std::vecto
 void locate_surface_problems(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces,
                              SurfaceCheck& check);
 
-nlohmann::json to_json(const SurfaceCheck& check);
+nlohmann::json to_json(const SurfaceCheck& check);  ///< \pre none
 
 /// The warnings of a remesh (a degraded result is said, issue 18 item 9): each problem of the check ("remesh changed
 /// the surface: ..."), one sentence listing the repairs the extraction made (fold repairs, cut-out triangles, torn
 /// seams, failed traces, dropped faces, filled holes, ...) and, for an input with a boundary, the non-quads.
-/// Empty for a closed all-quad result of a clean extraction.
+/// Empty for a closed all-quad result of a clean extraction. \pre none
 std::vector<std::string> remesh_warnings(const SurfaceCheck& check, const ExtractionReport& extraction);
 
 }  // namespace quadcover

@@ -67,7 +67,7 @@ ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, 
                                ProgressSink& progress = null_progress());
 
 /// Total parameter-space area Σ_t |area(φ(t))|: for a valid seamless map of a closed surface it equals the
-/// number of quads of the extracted mesh.
+/// number of quads of the extracted mesh. \pre uv is #F by 3.
 double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 
 }  // namespace quadcover

@@ -21,9 +21,9 @@ struct IPt {
 };
 inline IPt operator+(IPt a, IPt b) { return {a.x + b.x, a.y + b.y}; }
 inline IPt operator-(IPt a, IPt b) { return {a.x - b.x, a.y - b.y}; }
-inline I128 cross(IPt a, IPt b) { return I128(a.x) * b.y - I128(a.y) * b.x; }
-inline I128 dot(IPt a, IPt b) { return I128(a.x) * b.x + I128(a.y) * b.y; }
-/// Multiplication by i^k.
+inline I128 cross(IPt a, IPt b) { return I128(a.x) * b.y - I128(a.y) * b.x; }  ///< \pre none
+inline I128 dot(IPt a, IPt b) { return I128(a.x) * b.x + I128(a.y) * b.y; }  ///< \pre none
+/// Multiplication by i^k. \pre none
 inline IPt rot(IPt p, int k) {
   switch (k & 3) {
     case 0: return p;
@@ -32,9 +32,9 @@ inline IPt rot(IPt p, int k) {
     default: return {p.y, -p.x};
   }
 }
-/// Unit direction i^d scaled by len.
+/// Unit direction i^d scaled by len. \pre none
 inline IPt dir_vec(int d, I64 len = 1) { return rot({len, 0}, d); }
-/// orient(a, b, c) > 0 iff a, b, c are counter-clockwise.
+/// orient(a, b, c) > 0 iff a, b, c are counter-clockwise. \pre none
 inline I128 orient(IPt a, IPt b, IPt c) { return cross(b - a, c - a); }
 
 /// A quarter direction i^dir in the chart of `face`, leaving a grid vertex.
@@ -67,10 +67,11 @@ struct GridMap {
   // what was repaired
   int flipped_faces = 0, degenerate_faces = 0, torn_edges = 0, non_integer_translations = 0;
 
-  const IPt& corner(int f, int c) const { return q[3 * f + c]; }
+  const IPt& corner(int f, int c) const { return q[3 * f + c]; }  ///< \pre 0 <= f < #F, 0 <= c < 3
+  /// \pre 0 <= f < #F, 0 <= k < 3
   IPt to_neighbor(int f, int k, IPt p) const { return rot(p, nb_rot[3 * f + k]) + nb_trans[3 * f + k]; }
-  bool is_grid_value(I64 v) const { return v % scale == 0; }
-  double to_double(I64 v) const { return static_cast<double>(v) / static_cast<double>(scale); }
+  bool is_grid_value(I64 v) const { return v % scale == 0; }  ///< \pre scale > 0
+  double to_double(I64 v) const { return static_cast<double>(v) / static_cast<double>(scale); }  ///< \pre scale > 0
 };
 
 /// Builds the exact map. `snap` (grid units): coordinates this close to a multiple of ½ are snapped onto it
@@ -79,7 +80,7 @@ struct GridMap {
 /// \pre param.uv is #F by 3; its transitions are empty or #E. The map keeps a pointer to mesh. \throw only std::bad_alloc.
 GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance);
 
-/// Index of local corner of face f at vertex v, or -1.
+/// Index of local corner of face f at vertex v, or -1. \pre 0 <= f < #F
 int local_corner(const Mesh& mesh, int f, int v);
 
 }  // namespace quadcover::grid

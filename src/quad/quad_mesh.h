@@ -18,9 +18,9 @@ struct QuadMesh {
   /// #V: 1 for integer grid points, 0 for points where an iso-line meets the boundary (clipped polygons).
   Eigen::VectorXi on_grid;
 
-  int num_vertices() const { return static_cast<int>(V.rows()); }
-  int num_faces() const { return static_cast<int>(faces.size()); }
-  int num_quads() const;  ///< faces with exactly four corners
+  int num_vertices() const { return static_cast<int>(V.rows()); }  ///< \pre none
+  int num_faces() const { return static_cast<int>(faces.size()); }  ///< \pre none
+  int num_quads() const;  ///< faces with exactly four corners \pre none
 };
 
 /// Where two faces use the same directed edge (possible next to cut-out folds), keeps the smallest face and drops
@@ -34,7 +34,7 @@ int drop_faces_on_duplicate_edges(QuadMesh& q);
 int split_pinched_vertices(QuadMesh& q);
 
 /// Cuts spikes out of a face loop: where the loop runs x → v → x (v is an end of the graph, a vertex of valence 1),
-/// v and the repeated x are removed. Returns the number of spikes removed.
+/// v and the repeated x are removed. Returns the number of spikes removed. \pre none
 int remove_spikes(std::vector<int>& loop);
 
 /// Removes the vertices used by no face and numbers the others in order of first use by the faces.

@@ -6,6 +6,7 @@
 namespace quadcover {
 
 /// Rows of the glyph of `c` from the top, bit 4 = leftmost column; all zero for unknown characters and space.
+/// \pre none (a character without a glyph is blank).
 std::array<std::uint8_t, 7> glyph_5x7(char c);
 
 }  // namespace quadcover

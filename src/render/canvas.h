@@ -14,27 +14,31 @@ namespace quadcover {
 class Canvas {
  public:
   /// width × height output pixels, each sampled supersample × supersample times (antialiasing).
+  /// \pre width, height >= 0 (supersample < 1 counts as 1).
   Canvas(int width, int height, int supersample, Rgb background);
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  int width() const { return width_; }  ///< \pre none
+  int height() const { return height_; }  ///< \pre none
 
   /// Called per covered sample with the barycentric coordinates (b0, b1, b2) of the sample in the triangle.
   using Shader = std::function<Rgb(const Eigen::Vector3d& barycentric)>;
 
   /// Fills triangle (x, y, depth) p0 p1 p2 (either orientation). Samples nearer than the stored depth are shaded
   /// and, if write_depth, stored. depth_offset is subtracted from the depth before the test (lines on surfaces).
+  /// \pre none (samples outside the canvas are clipped).
   void fill_triangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
                      const Shader& shade, bool write_depth = true, double depth_offset = 0);
   /// A line of the given width (output pixels) from a to b, depth-tested with the offset, not writing depth.
+  /// \pre none (clipped).
   void draw_line(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double width, Rgb color, double depth_offset = 0);
   /// A filled disk of the given radius (output pixels), depth-tested at the centre's depth minus the offset.
+  /// \pre none (clipped).
   void draw_disk(const Eigen::Vector3d& center, double radius, Rgb color, double depth_offset = 0);
 
-  /// Number of samples written so far (for tests: coverage).
+  /// Number of samples written so far (for tests: coverage). \pre none
   long long samples_written() const { return written_; }
 
-  /// The antialiased image: each output pixel is the mean of its samples.
+  /// The antialiased image: each output pixel is the mean of its samples. \pre none
   Image resolve() const;
 
  private:
@@ -60,15 +64,16 @@ ViewCamera named_view(const std::string& name);
 /// Projects world points to screen (x, y in output pixels, depth) for a camera framing the points `fit`.
 class Projection {
  public:
+  /// \pre width, height >= 1.
   Projection(const ViewCamera& camera, const Eigen::MatrixX3d& fit, int width, int height);
   Eigen::Vector3d operator()(const Eigen::Vector3d& p) const;
-  /// Unit vector from the scene towards the viewer (for shading).
+  /// Unit vector from the scene towards the viewer (for shading). \pre none
   const Eigen::Vector3d& toward_viewer() const { return back_; }
-  /// Unit vector towards the key light: from the viewer's side, above and to the left.
+  /// Unit vector towards the key light: from the viewer's side, above and to the left. \pre none
   Eigen::Vector3d toward_light() const { return (back_ + 0.5 * up_ - 0.3 * right_).normalized(); }
-  /// Output pixels per world unit.
+  /// Output pixels per world unit. \pre none
   double scale() const { return scale_; }
-  /// Depth range of the fitted scene (the bounding-sphere diameter).
+  /// Depth range of the fitted scene (the bounding-sphere diameter). \pre none
   double depth_range() const { return 2 * radius_; }
 
  private:

@@ -27,7 +27,7 @@ void flatten(const nlohmann::json& j, const std::string& prefix,
              std::vector<std::pair<std::string, std::string>>& rows) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) {
-      if (k == "history" || k == "histograms" || k == "log") continue;  // drawn as figures
+      if (k == "log") continue;  // drawn as a figure
       flatten(v, prefix.empty() ? k : prefix + "." + k, rows);
     }
   } else if (j.is_array() && j.size() > 12) {
@@ -215,42 +215,10 @@ LinePlot optimization_history_plot(const nlohmann::json& history) {
 
 std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report) {
   std::vector<std::pair<std::string, std::string>> figures;
-  if (!report.is_object()) return figures;
-  const nlohmann::json* history = nullptr;
-  if (report.contains("history") && report["history"].is_array() && !report["history"].empty())
-    history = &report["history"];
-  else if (report.contains("optimize") && report["optimize"].is_object() && report["optimize"].contains("log") &&
-           report["optimize"]["log"].is_array() && !report["optimize"]["log"].empty())
-    history = &report["optimize"]["log"];
-  if (history) {
-    const auto& h = *history;
+  const nlohmann::json* log = at(report, "optimize/log");
+  if (log && log->is_array() && !log->empty())
     figures.emplace_back("Energy and branch point count during the optimization (thesis Fig. 6.1)",
-                         line_plot_svg(optimization_history_plot(h)));
-    const std::vector<double> ed = column(h, "E_D"), eh = column(h, "E_H"), bp = column(h, "branch_points");
-    bool any_eh = false;
-    for (double v : eh) any_eh = any_eh || std::isfinite(v);
-    if (any_eh) {  // Fig. 6.5 needs E_H per row (the optimize log has E_D only)
-      std::vector<double> sum(ed.size());
-      for (std::size_t i = 0; i < ed.size(); ++i) sum[i] = ed[i] + eh[i];
-      LinePlot over_count{
-          "E_D, E_H and E_D + E_H over the branch point count (Fig. 6.5)",
-          "branch points",
-          "energy",
-          "",
-          {{"E_D", bp, ed, false, true}, {"E_H", bp, eh, false, true}, {"E_D + E_H", bp, sum, false, true}}};
-      figures.emplace_back("Energies over the number of branch points (thesis Fig. 6.5)", line_plot_svg(over_count));
-    }
-  }
-  if (report.contains("histograms") && report["histograms"].is_object())
-    for (const auto& [name, values] : report["histograms"].items()) {
-      if (!values.is_array()) continue;
-      Histogram hist;
-      hist.title = name;
-      hist.x_label = name;
-      for (const auto& v : values)
-        if (v.is_number()) hist.values.push_back(v.get<double>());
-      figures.emplace_back("Histogram of " + name + " (thesis Fig. 6.2 / 7.1)", histogram_svg(hist));
-    }
+                         line_plot_svg(optimization_history_plot(*log)));
   return figures;
 }
 

@@ -36,29 +36,26 @@ struct HtmlReport {
   std::size_t max_display_faces = 30000;
 };
 
-/// Figures derived from a report JSON by convention, so every stage's data feeds in:
-///  - "history": array of {"iteration", "E_D", "E_H", "branch_points"} (Algorithm 6.1) -> E_D and branch points
-///    over iterations (Fig. 6.1) and E_D, E_H, E_D + E_H over the branch point count (Fig. 6.5);
-///  - "histograms": object of name -> array of numbers (e.g. "arap", "edge_length", "angle") -> histograms
-///    (Fig. 6.2, 7.1). Keys that are absent produce no figure.
-///  - "optimize": {"log": [{"evaluation", "E_D", "branch_points", ...}]} (the optimize object of param/remesh
-///    reports) -> the Fig. 6.1 plot when there is no "history".
+/// Figures of a param / remesh report: its "optimize": {"log": [{"evaluation", "E_D", "branch_points", ...}]} ->
+/// E_D and the branch point count over the evaluations (thesis Fig. 6.1); none without an optimization log.
+/// \pre none (an absent or malformed log gives no figure).
 std::vector<std::pair<std::string, std::string>> figures_from_report(const nlohmann::json& report);
 
 /// Thesis Fig. 6.1: E_D (left axis) and the branch point count (right axis) over the iterations, from rows with
-/// "iteration" (or "evaluation", as in the optimize log), "E_D" and "branch_points".
+/// "iteration" (or "evaluation", as in the optimize log), "E_D" and "branch_points". \pre none
 LinePlot optimization_history_plot(const nlohmann::json& history);
 
 /// Edge-length and corner-angle (degrees) histograms of a polygon mesh (Fig. 7.1 style), as (caption, SVG).
+/// \pre every face index is a row of V.
 std::vector<std::pair<std::string, std::string>> polygon_mesh_figures(const Eigen::MatrixX3d& V,
                                                                       const std::vector<std::vector<int>>& faces);
 
 /// The key numbers of a param / remesh report (as the CLI's summary line), in page order: (label, value); entries
-/// absent from the report are left out.
+/// absent from the report are left out. \pre none
 std::vector<std::pair<std::string, std::string>> key_numbers(const nlohmann::json& report);
 
 /// The page as one string (UTF-8): title, key numbers, the 3D views (with seams and branch points), plots, then
-/// the whole metric table.
+/// the whole metric table. \pre none
 std::string html_report(const HtmlReport& report);
 /// Writes the page atomically. \throw InputError naming the path on failure.
 void write_html_report(const std::string& path, const HtmlReport& report);

@@ -18,15 +18,16 @@ struct Image {
   std::vector<std::uint8_t> pixels;
 
   Image() = default;
-  Image(int w, int h, Rgb fill = {1, 1, 1});
-  void set(int x, int y, Rgb c);
-  Rgb at(int x, int y) const;
+  Image(int w, int h, Rgb fill = {1, 1, 1});  ///< \pre w, h >= 0
+  void set(int x, int y, Rgb c);  ///< \pre 0 <= x < width, 0 <= y < height
+  Rgb at(int x, int y) const;  ///< \pre 0 <= x < width, 0 <= y < height
+  /// \pre 0 <= x < width, 0 <= y < height
   const std::uint8_t* pixel(int x, int y) const {
     return pixels.data() + 3 * (static_cast<std::size_t>(y) * width + x);
   }
 };
 
-/// The image as PNG file bytes (8-bit RGB, no interlace).
+/// The image as PNG file bytes (8-bit RGB, no interlace). \throw std::runtime_error if libpng fails.
 std::string encode_png(const Image& image);
 /// Decodes PNG bytes (any colour type; converted to 8-bit RGB). \throw InputError naming `name` if invalid.
 Image decode_png(const std::string& bytes, const std::string& name = "<png>");
@@ -35,7 +36,7 @@ void write_png(const std::string& path, const Image& image);
 /// Reads a PNG file. \throw InputError naming the path.
 Image read_png(const std::string& path);
 
-/// Images side by side (top-aligned) with `gap` pixels of `fill` between them.
+/// Images side by side (top-aligned) with `gap` pixels of `fill` between them. \pre gap >= 0
 Image tile_horizontally(const std::vector<Image>& images, int gap = 8, Rgb fill = {1, 1, 1});
 
 }  // namespace quadcover

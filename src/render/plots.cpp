@@ -355,8 +355,4 @@ void write_line_plot(const std::string& path, const LinePlot& plot, int width, i
   write_figure(path, paint_line_plot, plot, width, height);
 }
 
-void write_histogram(const std::string& path, const Histogram& histogram, int width, int height) {
-  write_figure(path, paint_histogram, histogram, width, height);
-}
-
 }  // namespace quadcover

@@ -35,21 +35,24 @@ struct Histogram {
 
 /// Bin totals of a histogram over [lo, hi] in `bins` equal bins (values outside are clamped into the end bins,
 /// non-finite ones dropped). Exposed for tests and for reports.
+/// \pre h.weights is empty or as long as h.values; h.bins >= 1.
 std::vector<double> histogram_counts(const Histogram& h, double* lo_out = nullptr, double* hi_out = nullptr);
 
-/// s with &, <, > and " escaped, for HTML and SVG text.
+/// s with &, <, > and " escaped, for HTML and SVG text. \pre none
 std::string escape_markup(const std::string& s);
 
-/// "Nice" tick positions (1, 2, 5 × 10^k steps) covering [lo, hi] with about `target` ticks.
+/// "Nice" tick positions (1, 2, 5 × 10^k steps) covering [lo, hi] with about `target` ticks. \pre target >= 1
 std::vector<double> nice_ticks(double lo, double hi, int target = 5);
 
-std::string line_plot_svg(const LinePlot& plot, int width = 640, int height = 400);
-Image line_plot_image(const LinePlot& plot, int width = 640, int height = 400);
+std::string line_plot_svg(const LinePlot& plot, int width = 640, int height = 400);  ///< \pre width, height >= 1
+Image line_plot_image(const LinePlot& plot, int width = 640, int height = 400);  ///< \pre width, height >= 1
+/// \pre width, height >= 1; as histogram_counts.
 std::string histogram_svg(const Histogram& histogram, int width = 640, int height = 400);
+/// \pre width, height >= 1; as histogram_counts.
 Image histogram_image(const Histogram& histogram, int width = 640, int height = 400);
 
-/// Writes a plot file by extension: ".svg" as SVG text, anything else as PNG (atomically).
+/// Writes a line plot by extension: ".svg" as SVG text, anything else as PNG (atomically).
+/// \pre width, height >= 1. \throw InputError if path cannot be written.
 void write_line_plot(const std::string& path, const LinePlot& plot, int width = 640, int height = 400);
-void write_histogram(const std::string& path, const Histogram& histogram, int width = 640, int height = 400);
 
 }  // namespace quadcover

@@ -35,12 +35,12 @@ struct RenderOptions {
 };
 
 /// Colour of a branch point dot by its quarter index 4·ind_p (Def. 3.2): +1 blue, -1 red, +2 cyan, -2 magenta,
-/// other values dark grey.
+/// other values dark grey. \pre none
 Rgb branch_point_color(int quarter_index);
 
 /// Face edges (f, k) (edge opposite corner k of f) of interior edges across which the per-corner UVs jump: the two
 /// faces' coordinates differ at a shared endpoint by more than tolerance × (UV extent). Each such edge once.
-/// F #F by 3; uv #F by 3 per-corner complex coordinates.
+/// F #F by 3; uv #F by 3 per-corner complex coordinates. \pre uv is #F by 3 or empty.
 std::vector<std::pair<int, int>> uv_seam_edges(const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
                                                double tolerance = 1e-9);
 
@@ -48,12 +48,12 @@ std::vector<std::pair<int, int>> uv_seam_edges(const Eigen::MatrixX3i& F, const 
 
 /// The triangle mesh shaded (Lambert + Blinn, headlight), textured from uv (may be empty: plain shading), with
 /// seams and the given branch points marked.
-/// V #V by 3; F #F by 3; uv #F by 3 or empty.
+/// V #V by 3; F #F by 3; uv #F by 3 or empty. \pre F indices are rows of V; uv #F by 3 or empty.
 Image render_textured_mesh(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, const Eigen::MatrixX3cd& uv,
                            const std::vector<BranchPoint>& branch_points, const RenderOptions& options = {});
 
 /// A polygon mesh (e.g. a quad mesh) with flat shading and its edges drawn as a wireframe.
-/// V #V by 3; faces: 0-based vertex indices per polygon (3 or more).
+/// V #V by 3; faces: 0-based vertex indices per polygon (3 or more). \pre face indices are rows of V.
 Image render_polygon_mesh(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces,
                           const RenderOptions& options = {});
 
@@ -75,7 +75,7 @@ struct UvLayoutOptions {
 /// The parameter domain: every triangle drawn at its per-corner UVs (u right, v up); the non-positive ones of
 /// `flips` (flipped_triangles in param/seams.h: flipped or collapsed against τ·A_ref, the classification every report
 /// uses) in red, in front, each also marked by a dot at its centroid (a collapsed one covers no pixel).
-/// uv #F by 3 per-corner coordinates; flips.flipped_faces index its rows.
+/// uv #F by 3 per-corner coordinates; flips.flipped_faces index its rows. \pre flips was measured on uv.
 Image render_uv_layout(const Eigen::MatrixX3cd& uv, const FlipReport& flips, const UvLayoutOptions& options = {});
 
 }  // namespace quadcover

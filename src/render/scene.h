@@ -20,7 +20,7 @@ struct MeshScene {
 MeshScene scene_from_soup(const PolygonSoup& soup);
 
 /// 3D area of each triangle of scene.F, computed as Mesh::face_areas() is (½‖(p1 − p0) × (p2 − p0)‖), so that the
-/// flip classification of `render` matches the reports' bit for bit.
+/// flip classification of `render` matches the reports' bit for bit. \pre scene from scene_from_soup.
 Eigen::VectorXd triangle_areas(const MeshScene& scene);
 
 }  // namespace quadcover

@@ -22,10 +22,10 @@ struct CutMesh {
   Eigen::VectorXi face_piece;
   int num_pieces = 0;
 
-  int num_vertices() const { return static_cast<int>(original_vertex.size()); }
+  int num_vertices() const { return static_cast<int>(original_vertex.size()); }  ///< \pre none
   /// Number of edges of the cut mesh: interior cut edges count twice.
   int num_edges = 0;
-  /// χ = v - e + f of the cut mesh (1 per disk).
+  /// χ = v - e + f of the cut mesh (1 per disk). \pre the cut was made from mesh.
   int euler_characteristic(const Mesh& mesh) const { return num_vertices() - num_edges + mesh.num_faces(); }
 };
 

@@ -17,7 +17,7 @@ namespace quadcover {
 /// Σ_k of (1.13) for every generator, as the columns of a sparse #F by n complex matrix: on the faces left of γ_k,
 /// Σ_k(t) = Σ_{p ∈ t ∩ γ_k} ∇φ_p(t) (summed over the visits of γ_k at p), zero elsewhere. Σ_k is the gradient of
 /// the function that is 1 on the left bank of γ_k and 0 elsewhere, so curl* Σ_k = 0 on every interior edge and
-/// b_j(Σ_k) = δ_jk.
+/// b_j(Σ_k) = δ_jk. \throw TopologyError if a generator cannot be walked; InputError for a walk without edges.
 Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis& basis);
 
 /// Σ of (1.13) for one edge walk v_0 … v_m (consecutive vertices adjacent): closed (v_m = v_0), or open from a
@@ -26,7 +26,7 @@ Eigen::SparseMatrix<Complex> sigma_fields(const Mesh& mesh, const HomologyBasis&
 /// steps between non-adjacent vertices or ends at an interior vertex.
 Eigen::SparseVector<Complex> walk_sigma_field(const Mesh& mesh, std::span<const int> vertices, bool closed);
 
-/// Σ_b = Σ_k b_k Σ_k (dense #F).
+/// Σ_b = Σ_k b_k Σ_k (dense #F). \throw InputError if b.size() != sigma.cols().
 VectorField sigma_field(const Eigen::SparseMatrix<Complex>& sigma, const Eigen::VectorXd& b);
 
 /// The standard basis H_k = Σ_k - ∇u_k, 𝔏u_k = -div Σ_k (thesis 1.2.6), one factorization of 𝔏 for all k.

@@ -42,7 +42,7 @@ struct HomologyBasis {
   /// n by #F complex, the period operator: b_j(X) = Σ_t Re(conj(D_jt) X_t), D_jt the displacement between the
   /// midpoints of the edges through which γ_j* enters and leaves t, in t's basis.
   Eigen::SparseMatrix<Complex> period_operator;
-  int size() const { return static_cast<int>(generators.size()); }
+  int size() const { return static_cast<int>(generators.size()); }  ///< \pre none
 };
 
 /// Generators and dual cycles of the cut graph `graph` of `mesh` (deterministic: connecting paths are chosen
@@ -51,7 +51,7 @@ struct HomologyBasis {
 HomologyBasis homology_basis(const Mesh& mesh, const CutGraph& graph);
 
 /// Periods b_j(X) along the dual cycles (Def. 1.14), #generators. Meaningful for fields with curl* = 0 on the
-/// interior edges (Lemma 1.13); zero for gradients (Corollary 1.15).
+/// interior edges (Lemma 1.13); zero for gradients (Corollary 1.15). \throw InputError if X.size() != #F.
 Eigen::VectorXd periods(const HomologyBasis& basis, const VectorField& X);
 
 }  // namespace quadcover

@@ -20,10 +20,11 @@ namespace quadcover {
 Eigen::VectorXd integrate_cut_vertices(const Mesh& mesh, const CutMesh& cut, const VectorField& X);
 
 /// The same as per-corner values (#F by 3, CornerData): φ(f, k) = u(cut.corner_vertex(f, k)).
+/// \throw InputError if X does not have #F entries.
 Eigen::MatrixX3d integrate(const Mesh& mesh, const CutMesh& cut, const VectorField& X);
 
 /// φ = φ⁰ + iφ¹ per corner with ∇φ⁰ = X and ∇φ¹ = Y: the parameterization of a frame field (X, Y) that is
-/// integrable on the cut mesh (thesis 2.3).
+/// integrable on the cut mesh (thesis 2.3). \throw InputError if X or Y does not have #F entries.
 Eigen::MatrixX3cd integrate_frame(const Mesh& mesh, const CutMesh& cut, const VectorField& X, const VectorField& Y);
 
 }  // namespace quadcover

@@ -54,12 +54,13 @@ TEST(HtmlReport, PageHoldsMetricsFiguresAndMeshData) {
   r.metrics = {{"E_D", 0.25},
                {"seamless", true},
                {"branch_points", {{"+1", 8}}},
-               {"history",
-                {{{"iteration", 0}, {"E_D", 2.0}, {"E_H", 0.1}, {"branch_points", 4}},
-                 {{"iteration", 1}, {"E_D", 1.0}, {"E_H", 0.3}, {"branch_points", 6}}}},
-               {"histograms", {{"arap", {0.1, 0.2, 0.2}}}}};
+               {"optimize",
+                {{"mode", "relocate"},
+                 {"log",
+                  {{{"phase", "start"}, {"evaluation", 0}, {"E_D", 2.0}, {"branch_points", 4}},
+                   {{"phase", "reduce"}, {"evaluation", 7}, {"E_D", 1.0}, {"branch_points", 6}}}}}}};
   r.figures = figures_from_report(r.metrics);
-  ASSERT_EQ(r.figures.size(), 3u);  // Fig. 6.1, Fig. 6.5, one histogram
+  ASSERT_EQ(r.figures.size(), 1u);  // Fig. 6.1 from the optimize log (what param / remesh reports hold)
   r.meshes.push_back({"textured", grid.V(), tris, uv, false});
   r.meshes.push_back({"quads", grid.V(), tris, {}, true});
   const std::string page = html_report(r);
@@ -69,10 +70,11 @@ TEST(HtmlReport, PageHoldsMetricsFiguresAndMeshData) {
   const std::string table = between(page, "<table id=\"qc-metrics\">", "</table>");
   EXPECT_NE(table.find("<td>branch_points.+1</td><td class=\"v\">8</td>"), std::string::npos);
   EXPECT_NE(table.find("<td>E_D</td><td class=\"v\">0.25</td>"), std::string::npos);
-  EXPECT_EQ(table.find("history"), std::string::npos);  // drawn, not tabulated
+  EXPECT_EQ(table.find("optimize.log"), std::string::npos);  // drawn, not tabulated
+  EXPECT_NE(table.find("<td>optimize.mode</td><td class=\"v\">relocate</td>"), std::string::npos);
   std::size_t svgs = 0;
   for (std::size_t p = 0; (p = page.find("<svg", p)) != std::string::npos; ++p) ++svgs;
-  EXPECT_EQ(svgs, 3u);
+  EXPECT_EQ(svgs, 1u);
   EXPECT_EQ(std::count(page.begin(), page.end(), '\0'), 0);
 
   const auto data =
