@@ -142,6 +142,7 @@ struct JobArgs {
   int stiffening = 0, relaxation = 0;
   double feature_angle = FeatureOptions{}.sharp_angle_degrees;
   bool align_curves = true;
+  int fold_refinement_rounds = PipelineOptions{}.fold_refinement_rounds;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -160,6 +161,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.relaxation.iterations = a.relaxation;
   o.param.features.sharp_angle_degrees = a.feature_angle;
   o.param.align_curves = a.align_curves;
+  o.fold_refinement_rounds = a.fold_refinement_rounds;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -344,21 +346,23 @@ PYBIND11_MODULE(_quadcover, m) {
   const auto job_args = [](double edge_length, int quads, int faces, const std::string& lattice,
                            const std::string& optimize, const std::string& rounding, long max_iterations,
                            bool keep_better, int stiffening, int relaxation, const std::string& field,
-                           const py::object& feature_angle, bool align_curves) {
+                           const py::object& feature_angle, bool align_curves, int fold_refinement_rounds) {
     return JobArgs{edge_length, quads,      faces,      lattice,
                    optimize,    rounding,   field,      max_iterations,
                    keep_better, stiffening, relaxation, feature_angle_degrees(feature_angle),
-                   align_curves};
+                   align_curves, fold_refinement_rounds};
   };
   m.def(
       "parameterize",
       [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
                  const std::string& lattice, const std::string& optimize, const std::string& rounding,
                  long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 const py::object& feature_angle, bool align_curves, py::object progress) {
+                 const py::object& feature_angle, bool align_curves, int fold_refinement_rounds,
+                 py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
-                                        keep_better, stiffening, relaxation, field, feature_angle, align_curves),
+                                        keep_better, stiffening, relaxation, field, feature_angle, align_curves,
+                                        fold_refinement_rounds),
                                std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -367,7 +371,7 @@ PYBIND11_MODULE(_quadcover, m) {
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
-      py::arg("progress") = py::none(),
+      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds, py::arg("progress") = py::none(),
       "Seamless QuadCover parameterization: returns (uv, report) with uv #F×3×2 per-corner coordinates in grid "
       "units (integer iso-lines are quad edges) and the report dict: the same document as the CLI's `param --report` "
       "JSON (schema_version, parameterization, field, optimize, rounding, relaxation, stiffening, ...). "
@@ -381,6 +385,8 @@ PYBIND11_MODULE(_quadcover, m) {
       "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
       "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
       "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
+      "fold_refinement_rounds: rounds of edge splits around triangles left flipped or collapsed (the CLI's "
+      "--refine-folds; 0 = off). "
       "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
       "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
       "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.");
@@ -389,11 +395,11 @@ PYBIND11_MODULE(_quadcover, m) {
       [job_args](const py::array& V, const py::array& F, double edge_length, int quads, int faces,
                  const std::string& lattice, const std::string& optimize, const std::string& rounding,
                  long max_iterations, bool keep_better, int stiffening, int relaxation, const std::string& field,
-                 const py::object& feature_angle, bool align_curves, int smooth_quads, double smooth_rigidity,
-                 py::object progress) {
+                 const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int smooth_quads,
+                 double smooth_rigidity, py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
-                                  stiffening, relaxation, field, feature_angle, align_curves),
+                                  stiffening, relaxation, field, feature_angle, align_curves, fold_refinement_rounds),
                          smooth_quads, smooth_rigidity, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -402,6 +408,7 @@ PYBIND11_MODULE(_quadcover, m) {
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
+      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(),
       "Quad remeshing (field -> optimization -> parameterization -> extraction -> smoothing), the same job as the "
