@@ -224,8 +224,10 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
       r = std::move(r_free);
     }
     const int wrong_v = wrong(v);
-    if (r.non_positive_after > result.non_positive_after ||
-        (r.non_positive_after == result.non_positive_after && wrong_v >= wrong_now))
+    // Kept only if neither count grows and one falls: a flipped triangle traded for a wrong winding elsewhere (a
+    // regular vertex at 4π beside the cone: no fold, yet a cone off the lattice) is no progress.
+    if (r.non_positive_after > result.non_positive_after || wrong_v > wrong_now ||
+        r.non_positive_after + wrong_v >= result.non_positive_after + wrong_now)
       break;
     r.non_positive_before = result.non_positive_before;
     r.iterations += result.iterations;

@@ -46,7 +46,8 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
 /// untangle_map (param/untangle.h), then up to kRewindPasses times, while the map has a non-positive triangle or a
 /// wrong winding: rewind_rings on the result and untangle_map again, first with the moved vertices held (left free,
 /// the untangling would wind the rings back to where they were), then with them free if folds are left; kept only if
-/// it leaves fewer non-positive triangles, or as many and fewer wrong windings. The record is the last kept pass's, with non_positive_before,
+/// neither the non-positive triangles nor the wrong windings grow and their sum falls (a flip traded for a regular
+/// vertex at 4π next to the cone is no progress). The record is the last kept pass's, with non_positive_before,
 /// the iterations and the released vertices of all passes and the rewound vertices in rewound_vertices.
 /// target: per vertex the field's cross-field quarter index (field/indices.h); other arguments as untangle_map's.
 /// \throw NumericalError if a factorization fails.
