@@ -142,6 +142,7 @@ struct JobArgs {
   int stiffening = 0, relaxation = 0;
   double feature_angle = FeatureOptions{}.sharp_angle_degrees;
   bool align_curves = true;
+  int fold_refinement_rounds = PipelineOptions{}.fold_refinement_rounds;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -161,6 +162,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.relaxation.iterations = a.relaxation;
   o.param.features.sharp_angle_degrees = a.feature_angle;
   o.param.align_curves = a.align_curves;
+  o.fold_refinement_rounds = a.fold_refinement_rounds;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -348,6 +350,8 @@ constexpr const char* kParameterizeDoc =
     "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
     "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
     "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
+    "fold_refinement_rounds: rounds of edge splits around triangles left flipped or collapsed (the CLI's "
+    "--refine-folds; 0 = off). "
     "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
     "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
     "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
@@ -363,10 +367,11 @@ constexpr const char* kRemeshDoc =
 JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle,
-                 bool align_curves) {
+                 bool align_curves, int fold_refinement_rounds) {
   const double angle = feature_angle_degrees(feature_angle);
-  return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding, field,
-                 fill,        max_iterations, keep_better, stiffening, relaxation, angle,    align_curves};
+  return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding,     field,
+                 fill,        max_iterations, keep_better, stiffening, relaxation, angle,        align_curves,
+                 fold_refinement_rounds};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -376,10 +381,11 @@ void def_jobs(py::module_& m) {
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, py::object progress) {
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
-                                        keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves),
+                                        keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
+                                        fold_refinement_rounds),
                                std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -388,17 +394,20 @@ void def_jobs(py::module_& m) {
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
-      py::arg("align_curves") = true, py::arg("progress") = py::none(), kParameterizeDoc);
+      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("progress") = py::none(), kParameterizeDoc);
   m.def(
       "remesh",
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, int smooth_quads, double smooth_rigidity,
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int smooth_quads,
+         double smooth_rigidity,
          py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
-                                  stiffening, relaxation, field, fill, feature_angle, align_curves),
+                                  stiffening, relaxation, field, fill, feature_angle, align_curves,
+                                  fold_refinement_rounds),
                          smooth_quads, smooth_rigidity, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -407,7 +416,8 @@ void def_jobs(py::module_& m) {
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
-      py::arg("align_curves") = true, py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
+      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(), kRemeshDoc);
 }
 

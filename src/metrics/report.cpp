@@ -169,6 +169,7 @@ nlohmann::json untangling_to_json(const Parameterization& p) {
           {"stuck_faces", u.stuck_faces},
           {"unresolved_faces", u.unresolved_faces},
           {"released_vertices", u.released_vertices},
+          {"rewound_vertices", u.rewound_vertices},
           {"min_det", u.min_det},
           {"E_U", u.energy}};
 }

@@ -105,6 +105,9 @@ struct Parameterization {
     std::vector<int> unresolved_faces;
     /// Vertices whose curve constraint was given up to unstick a face (UntangleOptions::release_curve_corners).
     std::vector<int> released_vertices;
+    /// Vertices whose ring was laid out again before the untangling because the map wound around them other than
+    /// the field's index says (param/ring_winding.h).
+    std::vector<int> rewound_vertices;
   } untangling;
   /// The seamless affine subspace of the final map, the one the untangler moves in (param/untangle.h): for every
   /// covering function δu that is 0 on the fixed components, uv − i^{layer} δu (0 at branch points) keeps every

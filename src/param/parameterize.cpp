@@ -20,6 +20,7 @@
 #include "param/even_branch_fix.h"
 #include "param/harmonic_correction.h"
 #include "param/period_matrix.h"
+#include "param/ring_winding.h"
 #include "param/stiffening.h"
 #include "param/untangle.h"
 
@@ -332,6 +333,7 @@ struct CorrectionInputs {
   const FramePairs& Z;             ///< the scaled gauged frames
   const FramePairs& Sigma;         ///< Σ̃_d
   const FramePairs& XC;            ///< X̃_C
+  const Eigen::VectorXi& cone_index;  ///< per vertex, the field's cross-field quarter index (the map's cone angles)
 };
 
 /// Relaxation, local stiffening and untangling of the correction u, with their energies into P.
@@ -385,7 +387,8 @@ void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInp
   P.subspace = {correction.layers().layer, correction.layers().branch, fixed};
   if (options.untangle.enabled) {
     const double price_before = correction_energy(mesh, correction, in.Sigma, u);
-    u = untangle_map(mesh, correction, in.known, in.Z, fixed, u, options.untangle, progress, P.untangling, releasable);
+    u = untangle_and_rewind(mesh, correction.layers(), in.known, in.Z, fixed, u, in.cone_index, options.untangle,
+                            progress, P.untangling, releasable);
     if (P.untangling.iterations > 0) {
       P.untangling.energy = correction_energy(mesh, correction, in.Sigma, u) - price_before;
       lap("untangling");
@@ -458,7 +461,8 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
   P.energy_harmonic = correction_energy(mesh, correction, Sigma, u);
   lap("harmonic");
-  const CorrectionInputs inputs{correction, aligned ? &*aligned : nullptr, known, Z, Sigma, XC};
+  const Eigen::VectorXi cone_index = cross_field_quarter_index(mesh, field);
+  const CorrectionInputs inputs{correction, aligned ? &*aligned : nullptr, known, Z, Sigma, XC, cone_index};
   refine_correction(mesh, cc, inputs, options, progress, lap, P, u);
   if (aligned) {
     P.aligned_curves = aligned->curves(u);

@@ -37,6 +37,9 @@ struct UntangleOptions {
   /// corners are freed: the map becomes valid there and that curve leaves its iso-line near the vertex (the curve's
   /// reported deviation says by how much). Off: such faces stay collapsed and are reported as stuck.
   bool release_curve_corners = false;
+  /// Before untangling, lay out again the rings around which the map winds other than the field's index says
+  /// (param/ring_winding.h): no untangling in the subspace changes that winding at a branch point.
+  bool rewind_rings = true;
 };
 
 /// f_ε(J) of one 2×2 Jacobian (∞ when ε = 0 and det J ≤ 0), with its gradient and Hessian in the entries

@@ -5,8 +5,10 @@
 #include <chrono>
 #include <string>
 
+#include "field/indices.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
+#include "param/ring_winding.h"
 #include "param/seams.h"
 #include "pipeline/split_map.h"
 
@@ -88,8 +90,9 @@ Round refine_round(const Mesh& mesh, const FrameField& field, const Parameteriza
   const std::vector<char> releasable = releasable_components(fine, P);
   UntangleOptions release = options;
   release.release_curve_corners = true;
-  const Eigen::VectorXcd u = untangle_map(fine, layers, P.uv, map_frames(fine, r.split.field, P), fixed,
-                                          Eigen::VectorXcd::Zero(nv), release, progress, r.untangling, releasable);
+  const Eigen::VectorXcd u =
+      untangle_and_rewind(fine, layers, P.uv, map_frames(fine, r.split.field, P), fixed, Eigen::VectorXcd::Zero(nv),
+                          cross_field_quarter_index(fine, r.split.field), release, progress, r.untangling, releasable);
   P.uv -= layered_values(fine, layers, u);
   for (int p : r.untangling.released_vertices)
     for (const int i : {p, nv + p})
@@ -121,9 +124,11 @@ void keep_round(Round& r, int coarse_faces, int split_edges, FoldRefinement& out
   u.stuck_faces = std::move(r.untangling.stuck_faces);
   u.unresolved_faces = std::move(r.untangling.unresolved_faces);
   for (int p : r.untangling.released_vertices) u.released_vertices.push_back(p);
-  std::sort(u.released_vertices.begin(), u.released_vertices.end());
-  u.released_vertices.erase(std::unique(u.released_vertices.begin(), u.released_vertices.end()),
-                            u.released_vertices.end());
+  for (int p : r.untangling.rewound_vertices) u.rewound_vertices.push_back(p);
+  for (std::vector<int>* list : {&u.released_vertices, &u.rewound_vertices}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
 }
 
 /// The curves' largest deviation from their iso-lines on the final map (released corners move off them).
