@@ -46,7 +46,7 @@ inline constexpr const char* kFillHelp =
 /// or --time-limit skipped or cut short an improving stage: the outputs are complete and checked, not fully improved).
 enum ExitCode { kOk = 0, kInternal = 1, kBadInput = 2, kPartial = 3 };
 
-/// The exit code of a job's result: kPartial if its summary says "partial", else kOk.
+/// The exit code of a job's result: kPartial if its summary says "partial", else kOk. \pre none
 inline int result_exit_code(const nlohmann::json& result) {
   return result.is_object() && result.value("partial", false) ? kPartial : kOk;
 }

@@ -32,7 +32,7 @@ void print_warnings(const std::string& input, const nlohmann::json& report);
 
 /// The end of `param` / `remesh` for one input after its main output (`output`) is written: prints the report's
 /// warnings, calls write_png(path) when a picture is asked for, writes the extras (write_job_extras, titled
-/// "quadcover COMMAND: INPUT") and returns the summary naming `output`.
+/// "quadcover COMMAND: INPUT") and returns the summary naming `output`. \throw as write_job_extras.
 nlohmann::json finish_job(const std::string& command, const std::string& input, const std::string& output,
                           const JobExtras& extras, const Mesh& mesh, const Parameterization& map, const QuadMesh* quads,
                           const nlohmann::json& report, const std::function<void(const std::string&)>& write_png);

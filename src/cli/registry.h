@@ -20,14 +20,14 @@ struct CommandEntry {
   std::string description;  ///< the subcommand's line in --help
 };
 
-inline std::vector<CommandEntry>& command_registry() {
+inline std::vector<CommandEntry>& command_registry() {  ///< \pre none
   static std::vector<CommandEntry> registry;
   return registry;
 }
 
 /// Place `static const CommandRegistrar reg{10, "info", register_info, "DESCRIPTION"};` in the command's source file.
 struct CommandRegistrar {
-  CommandRegistrar(int order, std::string name, RegisterFn fn, std::string description) {
+  CommandRegistrar(int order, std::string name, RegisterFn fn, std::string description) {  ///< \pre none
     command_registry().push_back({order, std::move(name), std::move(fn), std::move(description)});
   }
 };

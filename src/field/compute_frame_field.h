@@ -27,7 +27,7 @@ enum class Fill {
 };
 /// Parses "propagate|smooth". \throw InputError otherwise.
 Fill parse_fill(std::string_view name);
-std::string to_string(Fill fill);
+std::string to_string(Fill fill);  ///< "propagate" or "smooth". \pre none
 
 /// Options of the field stage. Measurements behind the defaults: BENCHMARKS.md, "Frame field".
 struct FieldOptions {

@@ -59,7 +59,7 @@ struct OptimizeResult {
   CurlEnergyTimings estimate_timings;  ///< screening estimates, summed over the threads
 };
 
-/// The CurlReductionOptions of `options` as given (creation with mode full; budget and time limit unresolved).
+/// The CurlReductionOptions of `options` as given (creation with mode full; budget and time limit unresolved). \pre none
 CurlReductionOptions curl_reduction_options(const OptimizeOptions& options);
 
 /// The default evaluation budget (deterministic, no clock): enough for `relocate` to converge on the test meshes

@@ -22,7 +22,7 @@
 namespace quadcover {
 
 /// 4·(1 − Θ_p / 2π) rounded, the map's quarter index at every interior vertex (0 at boundary and unused vertices);
-/// corners with a side of zero length add no angle (as metrics/param_quality.h cones_from_uv). \return #V
+/// corners with a side of zero length add no angle (as metrics/param_quality.h cones_from_uv). \return #V \pre uv is #F.
 Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
 
 struct RingRewinding {
@@ -42,7 +42,7 @@ struct RingRewinding {
 Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                               const Eigen::VectorXcd& u0, const std::vector<char>& fixed,
                               const Eigen::VectorXi& target, RingRewinding& out);
-
+inline constexpr int kRewindPasses = 3;
 /// untangle_map (param/untangle.h), then up to kRewindPasses times, while the map has a non-positive triangle or a
 /// wrong winding: rewind_rings on the result and untangle_map again, first with the moved vertices held (left free,
 /// the untangling would wind the rings back to where they were), then with them free if folds are left; kept only if
@@ -51,7 +51,6 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
 /// the iterations and the released vertices of all passes and the rewound vertices in rewound_vertices.
 /// target: per vertex the field's cross-field quarter index (field/indices.h); other arguments as untangle_map's.
 /// \throw NumericalError if a factorization fails.
-inline constexpr int kRewindPasses = 3;
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                                      const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                                      const Eigen::VectorXi& target, const UntangleOptions& options,

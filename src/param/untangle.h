@@ -43,13 +43,13 @@ struct UntangleOptions {
 };
 
 /// f_ε(J) of one 2×2 Jacobian (∞ when ε = 0 and det J ≤ 0), with its gradient and Hessian in the entries
-/// (J00, J01, J10, J11) when asked for. Exposed for tests.
+/// (J00, J01, J10, J11) when asked for. Exposed for tests. \pre eps >= 0.
 double untangle_density(const Eigen::Matrix2d& J, double eps, double lambda, Eigen::Vector4d* gradient = nullptr,
                         Eigen::Matrix4d* hessian = nullptr);
 
 /// The real components of u that the untangler may move: 2·#V flags (x_p at p, y_p at #V + p), 1 = fixed. Branch
 /// points, vertices without faces and the `pinned` vertices (both components) are fixed, and so is every flagged
-/// entry of `fixed_components` (2·#V or empty: the curve constraints of param/alignment.h).
+/// entry of `fixed_components` (2·#V or empty: the curve constraints of param/alignment.h). \pre layers of mesh.
 std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers& layers,
                                             const std::vector<int>& pinned, const std::vector<char>& fixed_components);
 
@@ -66,7 +66,7 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correc
                               Parameterization::Untangling& result, const std::vector<char>& releasable = {});
 /// The same for φ = base − layered_values(mesh, layers, u): any layering of a covering function that the map's
 /// transitions preserve (i^λ_t = i^k_e i^λ_s across every edge at vertices off the branch points), e.g. the
-/// subspace of a map lifted to a refined mesh (pipeline/split_map.h).
+/// subspace of a map lifted to a refined mesh (pipeline/split_map.h). \throw NumericalError as the untangle_map above.
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,

@@ -29,9 +29,9 @@ struct FoldRefinementOptions {
   UntangleOptions untangle;  ///< the untangling on each refined mesh
 };
 
-/// The faces whose edges a round splits: `faces` grown by `rings` vertex rings. Ascending.
+/// The faces whose edges a round splits: `faces` grown by `rings` vertex rings. Ascending. \pre rings >= 0.
 std::vector<int> grow_faces(const Mesh& mesh, const std::vector<int>& faces, int rings);
-/// Every edge of the listed faces, ascending and without repeats.
+/// Every edge of the listed faces, ascending and without repeats. \pre faces index mesh.
 std::vector<int> edges_of_faces(const Mesh& mesh, const std::vector<int>& faces);
 
 /// What the refinement did (the report's fold_refinement).
