@@ -214,7 +214,7 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
-  if (job.map.rounding.stopped_early) job.cut_short.emplace_back("rounding search");
+  note_cut_short(progress, job.map.rounding.stopped_early, job, "rounding search");  // also ends on its own budget
   if (job.map.relaxation.stopped_early) job.cut_short.emplace_back("relaxation");
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);

@@ -125,8 +125,10 @@ TEST_F(OptimizeCli, TimeLimitStopsTheOptimizationAndStillWritesAValidMesh) {
   // Unlimited full optimization takes far longer than a second on this mesh (BENCHMARKS.md, Table 7.1).
   const Result r = run("remesh " + in + " -o " + path("q.obj") + " --optimize full --max-iterations 0 --time-limit 1" +
                        " --report " + path("q.json") + " --json -q");
-  ASSERT_EQ(r.code, 0);
+  // 3 when the limit also cut an improving stage after Algorithm 6.1 short (partial result written), else 0.
+  ASSERT_TRUE(r.code == 0 || r.code == 3) << r.code;
   const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["partial"].get<bool>(), r.code == 3);
   EXPECT_TRUE(summary["optimize"]["stopped_early"].get<bool>());
   EXPECT_FALSE(summary["optimize"].contains("log"));  // the summary stays short
   const auto report = load_json(path("q.json"));
