@@ -1,5 +1,6 @@
 #include "pipeline/parameterize_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -47,7 +48,7 @@ bool leave_time_for_later_stages(const Mesh& mesh, double field_seconds, double 
 /// Records `stage` in job.cut_short when a stop (Ctrl-C, time limit: progress.skip_improvements()) had come by its end while
 /// it still had work to do (`unfinished`).
 void note_cut_short(const ProgressSink& progress, bool unfinished, ParamJob& job, const char* stage) {
-  if (unfinished && progress.skip_improvements()) job.cut_short.emplace_back(stage);
+  if (unfinished && progress.skip_improvements()) record_cut_short(job, stage);
 }
 
 /// Merges the branch point pairs the map puts on one point (pipeline/cone_merging.h) and solves the map again, at
@@ -59,7 +60,7 @@ void merge_coincident_cones(const Mesh& mesh, const FrameFieldResult& stage, dou
     const std::vector<ConeMerge> merges = coincident_cone_merges(mesh, job.map);
     if (merges.empty()) break;
     if (progress.skip_improvements()) {
-      job.cut_short.emplace_back("cone merging");
+      record_cut_short(job, "cone merging");
       break;
     }
     FrameField field = merge_cones(mesh, stage, job.field, lambda, merges);
@@ -157,11 +158,27 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
   return d;
 }
 
+namespace {
+
+/// The one warning for the improving stages a stop skipped or cut short, in the words the CLI prints.
 std::string cut_short_warning(const std::vector<std::string>& stages) {
   std::string list;
   for (const std::string& s : stages) list += (list.empty() ? "" : ", ") + s;
   return "stopped (Ctrl-C or time limit) before the job finished: skipped or cut short: " + list +
          "; the result is complete and checked, a run without the limit would improve it";
+}
+
+}  // namespace
+
+void record_cut_short(ParamJob& job, std::string stage) {
+  const auto said = job.cut_short.empty()
+                        ? job.warnings.end()
+                        : std::find(job.warnings.begin(), job.warnings.end(), cut_short_warning(job.cut_short));
+  job.cut_short.push_back(std::move(stage));
+  if (said == job.warnings.end())
+    job.warnings.push_back(cut_short_warning(job.cut_short));
+  else
+    *said = cut_short_warning(job.cut_short);
 }
 
 std::vector<std::string> map_warnings(const Parameterization& map) {
@@ -215,7 +232,7 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
   note_cut_short(progress, job.map.rounding.stopped_early, job, "rounding search");  // also ends on its own budget
-  if (job.map.relaxation.stopped_early) job.cut_short.emplace_back("relaxation");
+  if (job.map.relaxation.stopped_early) record_cut_short(job, "relaxation");
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
   meter.restart();
@@ -229,7 +246,6 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
-  if (!job.cut_short.empty()) job.warnings.push_back(cut_short_warning(job.cut_short));
   return job;
 }
 

@@ -69,9 +69,9 @@ ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, Pro
 /// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
 
-/// The warning for the improving stages a stop skipped or cut short (ParamJob::cut_short), in the words the CLI prints.
-/// \pre stages is not empty.
-std::string cut_short_warning(const std::vector<std::string>& stages);
+/// Appends `stage` to job.cut_short and keeps its one warning in job.warnings ("stopped (Ctrl-C or time limit) ...:
+/// skipped or cut short: STAGES; ...") up to date. \pre none
+void record_cut_short(ParamJob& job, std::string stage);
 
 /// The warnings a map deserves (handles whose field has holonomy but no branch points, even branch points left on
 /// half-integers), in the words the CLI prints. \pre none

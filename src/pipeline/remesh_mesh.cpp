@@ -57,13 +57,8 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
   const Parameterization& map = job.param.map;
   job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
   lap("smooth");
-  if (job.smoothing.iterations < options.smoothing.iterations && finishing.skip_improvements()) {
-    std::vector<std::string>& cut = job.param.cut_short;
-    std::vector<std::string>& w = job.param.warnings;
-    if (!cut.empty()) w.erase(std::find(w.begin(), w.end(), cut_short_warning(cut)));
-    cut.emplace_back("quad smoothing");
-    w.push_back(cut_short_warning(cut));
-  }
+  if (job.smoothing.iterations < options.smoothing.iterations && finishing.skip_improvements())
+    record_cut_short(job.param, "quad smoothing");
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
   locate_surface_problems(job.extraction.mesh.V, job.extraction.mesh.faces, job.surface);
   for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
