@@ -143,6 +143,7 @@ struct JobArgs {
   double feature_angle = FeatureOptions{}.sharp_angle_degrees;
   bool align_curves = true;
   int fold_refinement_rounds = PipelineOptions{}.fold_refinement_rounds;
+  int validity_retries = PipelineOptions{}.validity_retries;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -163,6 +164,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.features.sharp_angle_degrees = a.feature_angle;
   o.param.align_curves = a.align_curves;
   o.fold_refinement_rounds = a.fold_refinement_rounds;
+  o.validity_retries = a.validity_retries;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -352,6 +354,8 @@ constexpr const char* kParameterizeDoc =
     "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
     "fold_refinement_rounds: rounds of edge splits around triangles left flipped or collapsed (the CLI's "
     "--refine-folds; 0 = off). "
+    "validity_retries: runs of the job at nearby densities while the result is not valid (the CLI's --retries; "
+    "0 = off, see the report's validity_retries). "
     "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
     "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
     "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
@@ -367,11 +371,11 @@ constexpr const char* kRemeshDoc =
 JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle,
-                 bool align_curves, int fold_refinement_rounds) {
+                 bool align_curves, int fold_refinement_rounds, int validity_retries) {
   const double angle = feature_angle_degrees(feature_angle);
   return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding,     field,
                  fill,        max_iterations, keep_better, stiffening, relaxation, angle,        align_curves,
-                 fold_refinement_rounds};
+                 fold_refinement_rounds, validity_retries};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -381,11 +385,12 @@ void def_jobs(py::module_& m) {
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, py::object progress) {
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
                                         keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                        fold_refinement_rounds),
+                                        fold_refinement_rounds, validity_retries),
                                std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -395,19 +400,21 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
       py::arg("progress") = py::none(), kParameterizeDoc);
   m.def(
       "remesh",
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int smooth_quads,
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         int smooth_quads,
          double smooth_rigidity,
          py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
                                   stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                  fold_refinement_rounds),
+                                  fold_refinement_rounds, validity_retries),
                          smooth_quads, smooth_rigidity, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -417,6 +424,7 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(), kRemeshDoc);
 }

@@ -65,6 +65,13 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "input's vertices first, see the report's refinement and fold_refinement)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd.add_option("--retries", options.validity_retries,
+                 "While the result is not valid (a flipped or collapsed triangle, a vertex the map winds around "
+                 "other than the field says, or a quad mesh whose topology differs from the input's), run the job "
+                 "again at up to N nearby densities (+4%, -4%, +8%, ... quads) and keep the first valid one, else the "
+                 "best (0 = off; see the report's validity_retries)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
   cmd.add_option("--keep-better", options.keep_better,
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
                  "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
@@ -128,6 +135,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.keep_better = cli.keep_better;
   options.merge_coincident_cones = cli.merge_cones;
   options.fold_refinement_rounds = cli.refine_folds;
+  options.validity_retries = cli.validity_retries;
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);

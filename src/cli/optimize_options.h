@@ -27,6 +27,7 @@ struct OptimizeCliOptions {
   bool keep_better = true;            ///< see parameterize_best()
   bool merge_cones = true;            ///< PipelineOptions::merge_coincident_cones
   int refine_folds = 6;               ///< PipelineOptions::fold_refinement_rounds
+  int validity_retries = PipelineOptions{}.validity_retries;  ///< PipelineOptions::validity_retries
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
   std::string fill = "smooth";        ///< FieldOptions::fill: smooth or propagate (thesis 5.1.2)
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h

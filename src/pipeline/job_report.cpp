@@ -32,7 +32,7 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
           {"merge_coincident_cones", o.merge_coincident_cones},
-          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"feature_angle", o.param.features.sharp_angle_degrees},
+          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries}, {"feature_angle", o.param.features.sharp_angle_degrees},
           {"fill", to_string(o.fill)}};
 }
 
@@ -87,6 +87,10 @@ nlohmann::json map_json(const Mesh& mesh, const Parameterization& map, const Eig
   j["cut_edges"] = seams.cut_edges;
   j["parameter_area"] = flips.parameter_area;
   j["flipped_faces"] = flips.flipped_faces;
+  // Interior vertices the written map winds around other than the field's index says (0-based, as flipped_faces).
+  const std::vector<int> wrong = wrong_winding_vertices(mesh, written);
+  j["wrong_windings"] = wrong.size();
+  j["wrong_winding_vertices"] = wrong;
   return j;
 }
 
@@ -113,6 +117,20 @@ nlohmann::json fold_refinement_json(const FoldRefinementReport& f) {
           {"untangle_iterations", f.untangle_iterations},
           {"E_F", f.energy},
           {"seconds", f.seconds}};
+}
+
+/// The validity retries (pipeline/validity_retries.h): every attempt's density and validity, and the one kept.
+nlohmann::json validity_retries_json(const ParamJob& job) {
+  nlohmann::json attempts = nlohmann::json::array();
+  for (const ValidityAttempt& a : job.validity_attempts)
+    attempts.push_back({{"quads_factor", a.quads_factor},
+                        {"edge_length", a.edge_length},
+                        {"valid", a.validity.valid()},
+                        {"topology_changes", a.validity.topology_changes},
+                        {"non_positive_triangles", a.validity.non_positive},
+                        {"wrong_windings", a.validity.wrong_windings},
+                        {"non_quads", a.validity.non_quads}});
+  return {{"attempts", attempts}, {"used", job.validity_attempt_used}};
 }
 
 nlohmann::json seconds_json(const StageSeconds& seconds) {
@@ -147,6 +165,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["mesh"] = mesh_json(input_mesh);
   r["refinement"] = refinement_json(input_mesh, job);
   r["fold_refinement"] = fold_refinement_json(job.fold_refinement);
+  r["validity_retries"] = validity_retries_json(job);
   r["options"] = options_json(job.options);
   r["edge_length"] = map.edge_length;
   r["density"] = {{"target_quads", job.density.target_quads},

@@ -6,6 +6,7 @@
 
 #include "field/compute_frame_field.h"
 #include "pipeline/cone_merging.h"
+#include "pipeline/retry_until_valid.h"
 #include "optimize/optimize_field.h"
 #include "pipeline/memory_budget.h"
 #include "quad/extract_quads.h"
@@ -193,7 +194,7 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
   return warnings;
 }
 
-ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
+ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   validate(options);
   check_memory_budget(input, options.param, available_bytes(options.max_memory_bytes));
   ParamJob job;
@@ -247,6 +248,16 @@ ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, Pr
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
   return job;
+}
+
+ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
+  validate(options);
+  PipelineOptions first = options;
+  first.validity_retries = 0;
+  return retry_until_valid(
+      parameterize_once(input, first, progress), options,
+      [&](const PipelineOptions& o) { return parameterize_once(input, o, progress); },
+      [&](const ParamJob& job) { return map_validity(job.mesh(input), job.map); }, progress);
 }
 
 }  // namespace quadcover

@@ -14,6 +14,7 @@
 #include "pipeline/curve_refinement.h"
 #include "pipeline/fold_refinement.h"
 #include "pipeline/pipeline_options.h"
+#include "pipeline/validity_retries.h"
 
 namespace quadcover {
 
@@ -49,6 +50,10 @@ struct ParamJob {
   /// The improving stages (ProgressSink::skip_improvements) a Ctrl-C or time limit skipped or cut short, in job
   /// order; the result is complete and checked, but a full run would improve it (the CLI exits with 3 then).
   std::vector<std::string> cut_short;
+  /// The runs of the job at nearby densities while the result was not valid (pipeline/validity_retries.h): the
+  /// first is this job's own when no retry ran; validity_attempt_used is the one kept.
+  std::vector<ValidityAttempt> validity_attempts;
+  int validity_attempt_used = 0;
   StageSeconds seconds;     ///< per stage (common/stage_meter.h)
   StagePeakBytes peak_bytes;  ///< per stage, under the names of `seconds`
 
@@ -57,13 +62,21 @@ struct ParamJob {
   const Mesh& mesh(const Mesh& input) const { return refinement.mesh ? *refinement.mesh : input; }
 };
 
-/// Runs the parameterization job on `mesh`.
+/// The ParamJob of a job (for the validity retries). \pre none
+inline ParamJob& param_job(ParamJob& job) { return job; }
+
+/// Runs the parameterization job on `mesh`, again at nearby densities while the map is not valid
+/// (options.validity_retries, pipeline/validity_retries.h).
 /// \pre mesh is a valid triangle mesh (build_mesh).
 /// \throw InputError for invalid options (validate()) or a density the memory cannot hold (check_memory_budget),
 /// NumericalError if a factorization fails.
 /// Honours progress.cancelled(): Algorithm 6.1 stops with its best field; the map is still completed, the
 /// improving stages after it are skipped or cut short (listed in ParamJob::cut_short, with a warning).
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
+
+/// One attempt of the job at the density of `options`, without the validity retries (the remesh job retries
+/// itself as a whole). \pre, \throw as parameterize_mesh.
+ParamJob parameterize_once(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress);
 
 /// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
 /// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.

@@ -14,6 +14,8 @@ void validate(const PipelineOptions& o) {
     throw InputError("edge_length/quads", 0, "give either an edge length or a quad count, not both");
   if (p.stiffening.max_iterations < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
   if (o.fold_refinement_rounds < 0) throw InputError("fold_refinement", 0, "must be >= 0 (0 = off)");
+  if (o.validity_retries < 0 || o.validity_retries > 8)
+    throw InputError("validity_retries", 0, "must be in [0, 8] (0 = off)");
   if (p.relaxation.iterations < 0) throw InputError("relaxation", 0, "must be >= 0 (0 = off)");
   if (o.max_evaluations < kAutoBudget)
     throw InputError("max_iterations", 0, "must be >= -1 (-1 = auto, 0 = until converged)");

@@ -33,6 +33,9 @@ struct PipelineOptions {
   /// Rounds of the refinement around the triangles the untangling leaves non-positive (pipeline/fold_refinement.h;
   /// 0 = off); the map then lives on a finer triangulation (ParamJob::mesh).
   int fold_refinement_rounds = 6;
+  /// Runs of the whole job again at nearby densities while the result is not valid (pipeline/validity_retries.h;
+  /// 0 = off).
+  int validity_retries = 1;
   /// Density, lattice, rounding, relaxation, stiffening, curve alignment (param/parameterize.h). Its `features`
   /// (the feature angle: sharp_angle_degrees, 0 = no sharp features; boundaries) are the curves of both the field
   /// stage (field_stage_options) and the alignment of the map, so the two always follow the same curves.

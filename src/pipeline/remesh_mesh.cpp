@@ -5,6 +5,7 @@
 
 #include "common/errors.h"
 #include "param/seams.h"
+#include "pipeline/retry_until_valid.h"
 
 namespace quadcover {
 
@@ -24,11 +25,9 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
                             : ""));
 }
 
-}  // namespace
-
-RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
+RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   RemeshJob job;
-  job.param = parameterize_mesh(input, options, progress);
+  job.param = parameterize_once(input, options, progress);
   StageMeter meter;
   auto lap = [&](const char* stage) { meter.lap(stage, job.param.seconds, job.param.peak_bytes); };
   FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C
@@ -44,7 +43,7 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
     PipelineOptions unrefined = options;
     unrefined.fold_refinement_rounds = 0;
     const int added = job.param.fold_refinement.added_faces;
-    job.param = parameterize_mesh(input, unrefined, finishing);
+    job.param = parameterize_once(input, unrefined, finishing);
     job.param.warnings.push_back("the fold-refined map (" + std::to_string(added) +
                                  " triangles added) gave no quad mesh; remeshed from the map without the fold "
                                  "refinement instead, which keeps its flipped or collapsed triangles");
@@ -63,6 +62,25 @@ RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, Progres
   locate_surface_problems(job.extraction.mesh.V, job.extraction.mesh.faces, job.surface);
   for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
   return job;
+}
+
+Validity remesh_validity(const Mesh& input, const RemeshJob& job) {
+  Validity v = map_validity(job.param.mesh(input), job.param.map);
+  v.topology_changes = job.surface.same_topology ? 0 : 1;
+  v.non_quads = job.surface.output.non_quads;
+  return v;
+}
+
+}  // namespace
+
+RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
+  validate(options);
+  PipelineOptions first = options;
+  first.validity_retries = 0;
+  return retry_until_valid(
+      remesh_once(input, first, progress), options,
+      [&](const PipelineOptions& o) { return remesh_once(input, o, progress); },
+      [&](const RemeshJob& job) { return remesh_validity(input, job); }, progress);
 }
 
 }  // namespace quadcover

@@ -16,7 +16,11 @@ struct RemeshJob {
   SurfaceCheck surface;  ///< the quad mesh against the input; its problems are in param.warnings
 };
 
-/// Runs the remesh job on `mesh`.
+/// The ParamJob of a remesh job (for the validity retries). \pre none
+inline ParamJob& param_job(RemeshJob& job) { return job.param; }
+
+/// Runs the remesh job on `mesh`, again at nearby densities while the map is not valid or the quad mesh's topology
+/// differs from the input's (options.validity_retries, pipeline/validity_retries.h).
 /// \pre mesh is a valid triangle mesh (build_mesh).
 /// \throw InputError for invalid options or a density whose map holds fewer than 4 quads (the message says how to
 /// ask for more); NumericalError if a factorization fails or the extraction yields no face.

@@ -85,14 +85,19 @@ TEST(ParamCli, WritesSeamlessObjAndReport) {
     EXPECT_TRUE(map["seamless"].get<bool>());
     // Fields with branch points on these meshes: no degenerate-holonomy or half-integer warnings.
     ASSERT_TRUE(report["warnings"].is_array());
-    int refined = 0, folded = 0;  // the refinement and the triangles left non-positive are said, nothing else
+    // The refinement, the triangles left non-positive and an invalid map (pipeline/validity_retries.h) are said,
+    // nothing else.
+    int refined = 0, folded = 0, invalid = 0;
     for (const auto& w : report["warnings"]) {
       refined += w.get<std::string>().find("refined triangulation") != std::string::npos;
       folded += w.get<std::string>().find("stay flipped or collapsed") != std::string::npos;
+      invalid += w.get<std::string>().find("not valid") != std::string::npos;
     }
     EXPECT_EQ(refined, report["refinement"]["split_edges"].get<int>() > 0 ? 1 : 0);
     EXPECT_EQ(folded, report["parameterization"]["non_positive_triangles"].get<int>() > 0 ? 1 : 0);
-    EXPECT_EQ(static_cast<int>(report["warnings"].size()), refined + folded);
+    const bool valid = map["non_positive_triangles"] == 0 && map["wrong_windings"] == 0;
+    EXPECT_EQ(invalid, valid && report["validity_retries"]["used"] == 0 ? 0 : 1);
+    EXPECT_EQ(static_cast<int>(report["warnings"].size()), refined + folded + invalid);
     EXPECT_EQ(map["non_positive_triangles"].get<int>(), static_cast<int>(map["flipped_faces"].size()));
     EXPECT_EQ(map["flipped_triangles"].get<int>(), flipped_triangles(mesh, uv).flipped);
     EXPECT_EQ(map["collapsed_triangles"].get<int>(), flipped_triangles(mesh, uv).collapsed);

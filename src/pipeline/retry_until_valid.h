@@ -1,0 +1,42 @@
+#pragma once
+// The loop of the validity retries (pipeline/validity_retries.h), shared by the param and the remesh job.
+#include <utility>
+#include <vector>
+
+#include "common/progress.h"
+#include "pipeline/parameterize_mesh.h"
+#include "pipeline/validity_retries.h"
+
+namespace quadcover {
+
+/// `first` (attempt 0, made with `given` minus its retries), or, while the best so far is worth_retrying, up to
+/// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The kept job's ParamJob
+/// (param_job(job)) records the attempts; a warning says when the kept one is not the first or none is valid. A
+/// time limit or Ctrl-C ends the retries (recorded as cut short). \pre first was made from `given`.
+template <class Job, class Run, class Judge>
+Job retry_until_valid(Job first, const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
+  Validity best_validity = judge(first);
+  std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};
+  const double h0 = param_job(first).options.param.edge_length;
+  int used = 0;
+  Job best = std::move(first);
+  for (int k = 1; k <= given.validity_retries && best_validity.worth_retrying(); ++k) {
+    if (progress.skip_improvements()) {
+      record_cut_short(param_job(best), "validity retries");
+      break;
+    }
+    progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
+    Job next = run(attempt_options(given, h0, k));
+    const Validity v = judge(next);
+    attempts.push_back({attempt_quads_factor(k), param_job(next).map.edge_length, v});
+    if (v < best_validity) best = std::move(next), best_validity = v, used = k;
+  }
+  ParamJob& kept = param_job(best);
+  kept.validity_attempts = attempts;
+  kept.validity_attempt_used = used;
+  kept.options.validity_retries = given.validity_retries;  // the attempts ran without; the job had these
+  if (used > 0 || !best_validity.valid()) kept.warnings.push_back(validity_warning(attempts, used));
+  return best;
+}
+
+}  // namespace quadcover

@@ -1,0 +1,73 @@
+#include "pipeline/validity_retries.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "param/ring_winding.h"
+#include "param/seams.h"
+
+namespace quadcover {
+
+std::vector<int> wrong_winding_vertices(const Mesh& mesh, const Parameterization& map) {
+  Eigen::VectorXi target = Eigen::VectorXi::Zero(mesh.num_vertices());
+  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  const Eigen::VectorXi wound = map_quarter_index(mesh, map.uv);
+  std::vector<int> out;
+  for (int p = 0; p < mesh.num_vertices(); ++p)
+    if (!mesh.is_boundary_vertex(p) && wound[p] != target[p]) out.push_back(p);
+  return out;
+}
+
+Validity map_validity(const Mesh& mesh, const Parameterization& map) {
+  Validity v;
+  v.non_positive = flipped_triangles(mesh, map.uv).non_positive;
+  v.wrong_windings = static_cast<int>(wrong_winding_vertices(mesh, map).size());
+  return v;
+}
+
+double attempt_quads_factor(int k) { return 1 + 0.04 * ((k + 1) / 2) * (k % 2 == 1 ? 1 : -1); }
+
+PipelineOptions attempt_options(const PipelineOptions& given, double first_edge_length, int k) {
+  PipelineOptions o = given;
+  o.validity_retries = 0;
+  const double factor = attempt_quads_factor(k);
+  if (o.param.target_quads > 0)
+    o.param.target_quads = std::max(1, static_cast<int>(std::lround(o.param.target_quads * factor)));
+  else
+    o.param.edge_length = first_edge_length / std::sqrt(factor);
+  return o;
+}
+
+namespace {
+
+std::string describe(const Validity& v) {
+  std::string s = std::to_string(v.non_positive) + " non-positive triangles, " + std::to_string(v.wrong_windings) +
+                  " vertices wound other than the field";
+  if (v.topology_changes > 0) s += ", the quad mesh's topology changed";
+  return s;
+}
+
+std::string percent(double factor) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%+.0f%%", 100 * (factor - 1));
+  return buf;
+}
+
+}  // namespace
+
+std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int used) {
+  const ValidityAttempt& kept = attempts[static_cast<std::size_t>(used)];
+  if (attempts.size() == 1)
+    return "the result is not valid: " + describe(kept.validity) +
+           (kept.validity.worth_retrying() ? " (retries off)" : " (wrong windings alone are not retried)") +
+           "; see the report's parameterization.wrong_winding_vertices and flipped_faces";
+  std::string tried;
+  for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + percent(attempts[k].quads_factor);
+  const std::string first = "the result at the requested density was not valid (" + describe(attempts[0].validity) +
+                            "); retried at " + tried + " quads and kept ";
+  const std::string which = kept.validity.valid() ? "a valid result" : "the best, with " + describe(kept.validity);
+  return first + which + " at " + percent(kept.quads_factor) + " quads (see the report's validity_retries)";
+}
+
+}  // namespace quadcover

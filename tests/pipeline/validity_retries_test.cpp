@@ -1,0 +1,221 @@
+// Validity retries (pipeline/validity_retries.h, retry_until_valid.h): the density sequence, the order of
+// Validity, the loop on a stub job whose validity is a table of the density, and a real remesh whose thin handle no
+// nearby density resolves (every attempt reported, a warning, never a silent change of topology).
+#include "pipeline/validity_retries.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "param/seams.h"
+#include "pipeline/remesh_mesh.h"
+#include "pipeline/retry_until_valid.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+TEST(ValidityRetries, DensitiesAlternateAroundTheFirstInStepsOfFourPercent) {
+  const double expected[] = {1.0, 1.04, 0.96, 1.08, 0.92, 1.12};
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(attempt_quads_factor(k), expected[k], 1e-12) << k;
+}
+
+TEST(ValidityRetries, AttemptOptionsScaleTheRequestedCountOrTheFirstEdgeLength) {
+  PipelineOptions count;
+  count.param.target_quads = 1000;
+  count.validity_retries = 3;
+  EXPECT_EQ(attempt_options(count, 0.5, 1).param.target_quads, 1040);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).param.target_quads, 960);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).param.edge_length, 0.0);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).validity_retries, 0);
+  const PipelineOptions by_default;  // the default density: attempt 0's h is the reference
+  const PipelineOptions finer = attempt_options(by_default, 0.1, 1);
+  EXPECT_NEAR(finer.param.edge_length, 0.1 / std::sqrt(1.04), 1e-15);
+  EXPECT_EQ(finer.param.target_quads, 0);
+  EXPECT_NO_THROW(validate(finer));
+}
+
+TEST(ValidityRetries, TopologyComesFirstThenFoldsThenWindingsThenNonQuads) {
+  auto v = [](int topology, int folds, int windings, int non_quads) {
+    Validity x;
+    x.topology_changes = topology, x.non_positive = folds, x.wrong_windings = windings, x.non_quads = non_quads;
+    return x;
+  };
+  EXPECT_LT(v(0, 9, 9, 9), v(1, 0, 0, 0));
+  EXPECT_LT(v(0, 0, 9, 9), v(0, 1, 0, 0));
+  EXPECT_LT(v(0, 0, 0, 9), v(0, 0, 1, 0));
+  EXPECT_LT(v(0, 0, 0, 1), v(0, 0, 0, 2));
+  EXPECT_TRUE(v(0, 0, 0, 5).valid());
+  EXPECT_FALSE(v(0, 0, 1, 0).valid());
+  EXPECT_FALSE(v(0, 0, 1, 0).worth_retrying());
+  EXPECT_TRUE(v(0, 1, 0, 0).worth_retrying());
+  EXPECT_TRUE(v(1, 0, 0, 0).worth_retrying());
+}
+
+/// A job that only knows its density; its validity is looked up by the density factor.
+struct StubJob {
+  ParamJob param;
+};
+ParamJob& param_job(StubJob& job) { return job.param; }
+
+struct StubRuns {
+  std::map<long, Validity> by_factor;  // key: round(1000 · factor)
+  int runs = 0;
+  StubJob run(const PipelineOptions& o) {
+    ++runs;
+    StubJob job;
+    job.param.options = o;
+    job.param.map.edge_length = o.param.edge_length;
+    return job;
+  }
+  Validity judge(const StubJob& job, double h0) const {
+    const double factor = std::pow(h0 / job.param.map.edge_length, 2);
+    return by_factor.at(std::lround(1000 * factor));
+  }
+};
+
+Validity folds(int n) {
+  Validity v;
+  v.non_positive = n;
+  return v;
+}
+
+StubJob run_stub(StubRuns& stub, int retries, ProgressSink& progress = null_progress()) {
+  PipelineOptions given;
+  given.validity_retries = retries;
+  PipelineOptions first = given;
+  first.validity_retries = 0;
+  first.param.edge_length = 0.2;  // attempt 0 fixed the default density to this h
+  return retry_until_valid(
+      stub.run(first), given, [&](const PipelineOptions& o) { return stub.run(o); },
+      [&](const StubJob& job) { return stub.judge(job, 0.2); }, progress);
+}
+
+TEST(ValidityRetries, StopsAtTheFirstValidAttemptAndSaysWhichWasKept) {
+  StubRuns stub;
+  stub.by_factor = {{1000, folds(3)}, {1040, folds(1)}, {960, folds(0)}, {1080, folds(0)}};
+  const StubJob job = run_stub(stub, 4);
+  EXPECT_EQ(stub.runs, 3);  // 1.0, 1.04, 0.96: the third is valid, 1.08 never runs
+  ASSERT_EQ(job.param.validity_attempts.size(), 3u);
+  EXPECT_EQ(job.param.validity_attempt_used, 2);
+  EXPECT_EQ(job.param.validity_attempts[1].validity.non_positive, 1);
+  EXPECT_NEAR(job.param.validity_attempts[2].quads_factor, 0.96, 1e-12);
+  EXPECT_NEAR(job.param.map.edge_length, 0.2 / std::sqrt(0.96), 1e-12);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("3 non-positive triangles"), std::string::npos) << job.param.warnings[0];
+  EXPECT_NE(job.param.warnings[0].find("kept a valid result at -4% quads"), std::string::npos)
+      << job.param.warnings[0];
+}
+
+TEST(ValidityRetries, WithoutAValidAttemptTheBestIsKeptAndItsDefectsAreSaid) {
+  StubRuns stub;
+  stub.by_factor = {{1000, folds(3)}, {1040, folds(1)}};
+  const StubJob job = run_stub(stub, 1);
+  EXPECT_EQ(stub.runs, 2);
+  EXPECT_EQ(job.param.validity_attempt_used, 1);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("kept the best, with 1 non-positive triangles"), std::string::npos)
+      << job.param.warnings[0];
+}
+
+TEST(ValidityRetries, AValidFirstAttemptRunsOnceWithoutAWarning) {
+  StubRuns stub;
+  stub.by_factor = {{1000, folds(0)}};
+  const StubJob job = run_stub(stub, 3);
+  EXPECT_EQ(stub.runs, 1);
+  EXPECT_EQ(job.param.validity_attempts.size(), 1u);
+  EXPECT_TRUE(job.param.warnings.empty());
+}
+
+TEST(ValidityRetries, WrongWindingsAloneAreSaidButNotRetried) {
+  StubRuns stub;
+  Validity wound;
+  wound.wrong_windings = 2;
+  stub.by_factor = {{1000, wound}};
+  const StubJob job = run_stub(stub, 3);
+  EXPECT_EQ(stub.runs, 1);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("2 vertices wound other than the field"), std::string::npos);
+  EXPECT_NE(job.param.warnings[0].find("not retried"), std::string::npos);
+}
+
+/// A sink past its time limit: the improving stages are skipped.
+struct PastLimit : ProgressSink {
+  void report(std::string_view, double, std::string_view) override {}
+  bool skip_improvements() const override { return true; }
+};
+
+TEST(ValidityRetries, APassedTimeLimitSkipsTheRetriesAndRecordsItAsCutShort) {
+  StubRuns stub;
+  stub.by_factor = {{1000, folds(2)}};
+  PastLimit past;
+  const StubJob job = run_stub(stub, 2, past);
+  EXPECT_EQ(stub.runs, 1);
+  ASSERT_EQ(job.param.cut_short.size(), 1u);
+  EXPECT_EQ(job.param.cut_short[0], "validity retries");
+}
+
+TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent) {
+  // A torus whose tube (circumference 0.5) is under three quad edges at 100 quads: no density nearby keeps it.
+  const Mesh torus = testing::make_torus(24, 6, 1.0, 0.08);
+  PipelineOptions options;
+  options.param.target_quads = 100;
+  options.validity_retries = 2;
+  const RemeshJob job = remesh_mesh(torus, options);
+  const auto& attempts = job.param.validity_attempts;
+  ASSERT_EQ(attempts.size(), 3u);
+  for (const ValidityAttempt& a : attempts) EXPECT_EQ(a.validity.topology_changes, 1);
+  EXPECT_FALSE(job.surface.same_topology);
+  // The kept attempt's numbers are the job's own, recounted.
+  const Validity& kept = attempts[static_cast<std::size_t>(job.param.validity_attempt_used)].validity;
+  EXPECT_EQ(kept.non_positive, flipped_triangles(job.param.mesh(torus), job.param.map.uv).non_positive);
+  EXPECT_EQ(kept.non_quads, job.surface.output.non_quads);
+  bool said = false;
+  for (const std::string& w : job.param.warnings) said = said || w.find("the quad mesh's topology changed") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+TEST(ValidityRetries, ACleanMapHasNoWrongWindingAndItsBranchPointsAreTheField) {
+  const Mesh torus = testing::make_torus(40, 16);
+  PipelineOptions options;
+  options.param.target_quads = 400;
+  const ParamJob job = parameterize_mesh(torus, options);
+  EXPECT_EQ(job.validity_attempts.size(), 1u);
+  EXPECT_TRUE(wrong_winding_vertices(job.mesh(torus), job.map).empty());
+  EXPECT_TRUE(map_validity(job.mesh(torus), job.map).valid());
+}
+
+TEST(ValidityRetries, AVertexMovedOutOfItsRingWindsZeroTimesAndIsFound) {
+  const Mesh torus = testing::make_torus(40, 16);
+  PipelineOptions options;
+  options.param.target_quads = 400;
+  ParamJob job = parameterize_mesh(torus, options);
+  const Mesh& mesh = job.mesh(torus);
+  int p = 0;  // an interior vertex that is not a branch point, with every corner in one chart
+  for (const BranchPoint& b : job.map.branch_points) ASSERT_NE(b.vertex, p);
+  // Move φ(p) by ten grid units in every corner of p: its ring no longer surrounds it, the angle sum is ~0.
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.F()(f, c) == p) job.map.uv(f, c) += Complex(10.0, 0.0);
+  // Direct recomputation: the signed corner angles at each vertex, 4·(1 − Θ/2π) against the field's index (0 here
+  // but at the branch points; the torus is closed).
+  std::vector<double> theta(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const Complex a = job.map.uv(f, c), b = job.map.uv(f, (c + 1) % 3), d = job.map.uv(f, (c + 2) % 3);
+      theta[mesh.F()(f, c)] += std::arg((d - a) / (b - a));
+    }
+  std::vector<int> target(theta.size(), 0), expected;
+  for (const BranchPoint& b : job.map.branch_points) target[b.vertex] = b.quarter_index;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (std::lround(4 * (1 - theta[v] / (2 * M_PI))) != target[v]) expected.push_back(v);
+  const std::vector<int> wrong = wrong_winding_vertices(mesh, job.map);
+  EXPECT_EQ(wrong, expected);
+  EXPECT_NE(std::find(wrong.begin(), wrong.end(), p), wrong.end());
+  EXPECT_GT(map_validity(mesh, job.map).non_positive, 0);
+}
+
+}  // namespace
+}  // namespace quadcover
