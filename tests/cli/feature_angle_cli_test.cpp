@@ -19,12 +19,13 @@ class FeatureAngleCli : public quadcover::testing::FolderTest {
  protected:
   FeatureAngleCli() : FolderTest("feature_angle_cli") {}
 
-  /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` and returns its report.
+  /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` and returns its report (no fold refinement or validity retries:
+  /// the feature curves are decided before them, and they cost most of a camelhead run).
   nlohmann::json report(const std::string& command, const std::string& mesh, const std::string& angle,
                         const std::string& extra = "") {
     const std::string json = path(command + "_" + mesh + "_" + angle + ".json");
     const std::string args = command + " " + quadcover::testing::data_path(mesh) + " -o " + path("out.obj") +
-                             " --optimize none --report " + json + " -q" +
+                             " --optimize none --refine-folds 0 --retries 0 --report " + json + " -q" +
                              (angle.empty() ? "" : " --feature-angle " + angle) + " " + extra;
     EXPECT_EQ(run_cli(args).code, 0) << args;
     return nlohmann::json::parse(slurp(json));
