@@ -251,12 +251,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
 }
 
 ParamJob parameterize_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
-  validate(options);
-  PipelineOptions first = options;
-  first.validity_retries = 0;
   return retry_until_valid(
-      parameterize_once(input, first, progress), options,
-      [&](const PipelineOptions& o) { return parameterize_once(input, o, progress); },
+      options, [&](const PipelineOptions& o) { return parameterize_once(input, o, progress); },
       [&](const ParamJob& job) { return map_validity(job.mesh(input), job.map); }, progress);
 }
 

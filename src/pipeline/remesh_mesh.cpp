@@ -74,12 +74,8 @@ Validity remesh_validity(const Mesh& input, const RemeshJob& job) {
 }  // namespace
 
 RemeshJob remesh_mesh(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
-  validate(options);
-  PipelineOptions first = options;
-  first.validity_retries = 0;
   return retry_until_valid(
-      remesh_once(input, first, progress), options,
-      [&](const PipelineOptions& o) { return remesh_once(input, o, progress); },
+      options, [&](const PipelineOptions& o) { return remesh_once(input, o, progress); },
       [&](const RemeshJob& job) { return remesh_validity(input, job); }, progress);
 }
 

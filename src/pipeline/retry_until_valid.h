@@ -9,12 +9,17 @@
 
 namespace quadcover {
 
-/// `first` (attempt 0, made with `given` minus its retries), or, while the best so far is worth_retrying, up to
+/// Attempt 0 = run(given minus its retries), then, while the best so far is worth_retrying, up to
 /// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The kept job's ParamJob
 /// (param_job(job)) records the attempts; a warning says when the kept one is not the first or none is valid. A
-/// time limit or Ctrl-C ends the retries (recorded as cut short). \pre first was made from `given`.
-template <class Job, class Run, class Judge>
-Job retry_until_valid(Job first, const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
+/// time limit or Ctrl-C ends the retries (recorded as cut short). \throw InputError for invalid options (validate).
+template <class Run, class Judge>
+auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
+  validate(given);
+  PipelineOptions once = given;
+  once.validity_retries = 0;
+  auto first = run(once);
+  using Job = decltype(first);
   Validity best_validity = judge(first);
   std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};
   const double h0 = param_job(first).options.param.edge_length;

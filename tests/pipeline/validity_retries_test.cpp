@@ -85,11 +85,9 @@ Validity folds(int n) {
 StubJob run_stub(StubRuns& stub, int retries, ProgressSink& progress = null_progress()) {
   PipelineOptions given;
   given.validity_retries = retries;
-  PipelineOptions first = given;
-  first.validity_retries = 0;
-  first.param.edge_length = 0.2;  // attempt 0 fixed the default density to this h
+  given.param.edge_length = 0.2;
   return retry_until_valid(
-      stub.run(first), given, [&](const PipelineOptions& o) { return stub.run(o); },
+      given, [&](const PipelineOptions& o) { return stub.run(o); },
       [&](const StubJob& job) { return stub.judge(job, 0.2); }, progress);
 }
 
