@@ -182,6 +182,13 @@ def check_param(binary, mesh_path, name, out, info, src):
     check(rep["energy_curl"] >= 0 and rep["energy_harmonic"] >= 0,
           f"{name}: negative energy E_D={rep['energy_curl']} E_H={rep['energy_harmonic']}")
     check(isinstance(report["field"]["branch_points"], list), f"{name}: report field.branch_points is not a list")
+    # Wrong windings, recomputed from the file: interior vertices whose UV angle sum is not 2 pi (1 - k/4) for the
+    # field's quarter index k (0 off the branch points). The report must list exactly these.
+    field_index = {b["vertex"]: b["quarter_index"] for b in report["field"]["branch_points"]}
+    wound = [v for v, q in objcheck.uv_quarter_indices(obj).items() if q != field_index.get(v, 0)]
+    check(rep["wrong_winding_vertices"] == wound and rep["wrong_windings"] == len(wound),
+          f"{name}: report wrong windings {rep['wrong_winding_vertices'][:10]}, re-measured from the file: "
+          f"{wound[:10]}")
     # Metrics re-read the written file: same flips, still seamless.
     p, _ = run(binary, ["metrics", obj_path, "--json"])
     met = json.loads(p.stdout)["parameterization"]
@@ -268,6 +275,7 @@ def key_metrics(param_rep, remesh_rep, topo):
     return {
         "branch_points": len(param_rep["field"]["branch_points"]),
         "param_non_positive_triangles": param_rep["parameterization"]["non_positive_triangles"],
+        "param_wrong_windings": param_rep["parameterization"]["wrong_windings"],
         "E_D_plus_E_H": param_rep["parameterization"]["energy_curl"] + param_rep["parameterization"]["energy_harmonic"],
         "arap": pq["arap"],
         "remesh_non_positive_triangles": pq["non_positive_triangles"],

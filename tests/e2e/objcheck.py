@@ -205,6 +205,23 @@ def uv_signed_areas(obj):
     return areas
 
 
+def uv_quarter_indices(obj):
+    """{interior vertex: 4 (1 - theta / 2 pi) rounded}, theta the sum of the signed UV corner angles of a triangle
+    map at the vertex (a corner with a side of zero length adds nothing): the map's winding around each vertex."""
+    theta = [0.0] * len(obj.v)
+    sides = {}
+    for face, ts in zip(obj.faces, obj.face_vt):
+        for c in range(3):
+            a, b, d = (obj.vt[ts[(c + k) % 3]] for k in range(3))
+            x1, y1, x2, y2 = b[0] - a[0], b[1] - a[1], d[0] - a[0], d[1] - a[1]
+            theta[face[c]] += math.atan2(x1 * y2 - y1 * x2, x1 * x2 + y1 * y2)
+            edge = (min(face[c], face[(c + 1) % 3]), max(face[c], face[(c + 1) % 3]))
+            sides[edge] = sides.get(edge, 0) + 1
+    boundary = {v for e, n in sides.items() if n == 1 for v in e}
+    used = {v for face in obj.faces for v in face}
+    return {v: round(4 * (1 - theta[v] / (2 * math.pi))) for v in sorted(used - boundary)}
+
+
 def face_areas(obj):
     """3D area of each face (fan triangulation)."""
     out = []
