@@ -97,27 +97,30 @@ def main():
             F = count_faces(m)
             print("running %s (%d faces)" % (os.path.basename(m), F), file=sys.stderr, flush=True)
             rep, secs, peak_kb = run_one(binary, m, a.extra.split(), work)
-            runs.append((os.path.basename(m), F, stage_rows(rep, secs, peak_kb)))
+            runs.append((os.path.basename(m), F, stage_rows(rep, secs, peak_kb),
+                         len(rep.get("validity_retries", {}).get("attempts", [None]))))
     runs.sort(key=lambda r: r[1])
     tail = ["optimize: set-up", "optimize: exact evaluations", "optimize: estimates (Σ threads)", "whole process"]
     names = []  # the stages of every run, in the order of the first run that has them; the summary rows last
-    for _, _, rows in runs:
+    for _, _, rows, _ in runs:
         names += [st for st in rows if st not in names and st not in tail]
     names += tail
-    print("| stage | " + " | ".join("%s (%.0fk F)" % (n, F / 1000) for n, F, _ in runs) + " | k |")
+    print("| stage | " + " | ".join("%s (%.0fk F)" % (n, F / 1000) for n, F, _, _ in runs) + " | k |")
     print("|---|" + "---:|" * (len(runs) + 1))
     for st in names:
         cells = []
-        for _, F, rows in runs:
+        for _, F, rows, _ in runs:
             t, mb = rows.get(st, (float("nan"), None))
             cells.append(("%.2f s" % t if not math.isnan(t) else "–") + (" / %.0f MB" % mb if mb else ""))
-        k = fit_k([(F, rows.get(st, (None,))[0]) for _, F, rows in runs])
+        k = fit_k([(F, rows.get(st, (None,))[0]) for _, F, rows, _ in runs])
         print("| %s | %s | %s |" % (st, " | ".join(cells), "%.2f" % k if k is not None else "–"))
-    per_face = [(n, rows["whole process"][1] * 1024 * 1024 / F) for n, F, rows in runs]
+    per_face = [(n, rows["whole process"][1] * 1024 * 1024 / F) for n, F, rows, _ in runs]
     print("\nWhole-process peak per face: " + ", ".join("%s %.1f KB" % (n, b / 1024) for n, b in per_face))
+    # The stage rows are the kept attempt's; the whole process ran every attempt (pipeline/validity_retries.h).
+    print("Whole jobs run (validity attempts): " + ", ".join("%s %d" % (n, k) for n, _, _, k in runs))
     if a.json:
         with open(a.json, "w") as f:
-            json.dump([{"mesh": n, "faces": F, "stages": rows} for n, F, rows in runs], f, indent=1)
+            json.dump([{"mesh": n, "faces": F, "stages": rows, "attempts": k} for n, F, rows, k in runs], f, indent=1)
 
 
 if __name__ == "__main__":
