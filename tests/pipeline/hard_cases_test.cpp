@@ -1,0 +1,77 @@
+// Meshes made in the test that are hard for a seamless map (issue 14): coarse triangulations with cones close
+// together, an inward-facing (inverted) surface, slivers, a coarse box with sharp creases. Each default remesh must
+// give a valid map (no flipped or collapsed triangle, no vertex wound other than the field says) and keep the
+// input's topology, all quads where the input is closed.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "param/seams.h"
+#include "pipeline/remesh_mesh.h"
+#include "pipeline/validity_retries.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+/// The same surface with every face's orientation reversed (normals inward).
+Mesh inverted(const Mesh& m) {
+  Eigen::MatrixX3i F = m.F();
+  F.col(1).swap(F.col(2));
+  return Mesh::from_triangles(m.V(), F);
+}
+
+/// A unit cube whose six squares are fans of four triangles around their centres: 14 vertices, 24 triangles, twelve
+/// 90° creases (sharp features) and eight corners of valence 3-6.
+Mesh coarse_cube() {
+  Eigen::MatrixX3d V(14, 3);
+  for (int k = 0; k < 8; ++k) V.row(k) << ((k >> 2) & 1), ((k >> 1) & 1), (k & 1);
+  const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  Eigen::MatrixX3i F(24, 3);
+  for (int q = 0; q < 6; ++q) {
+    V.row(8 + q).setZero();
+    for (int k = 0; k < 4; ++k) V.row(8 + q) += 0.25 * V.row(quads[q][k]);
+    for (int k = 0; k < 4; ++k) F.row(4 * q + k) << quads[q][k], quads[q][(k + 1) % 4], 8 + q;
+  }
+  return Mesh::from_triangles(V, F);
+}
+
+void expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what) {
+  SCOPED_TRACE(what);
+  PipelineOptions options;
+  options.param.target_quads = quads;
+  const RemeshJob job = remesh_mesh(mesh, options);
+  const Mesh& map_mesh = job.param.mesh(mesh);
+  EXPECT_EQ(flipped_triangles(map_mesh, job.param.map.uv).non_positive, 0);
+  EXPECT_TRUE(wrong_winding_vertices(map_mesh, job.param.map).empty());
+  EXPECT_TRUE(job.surface.same_topology);
+  EXPECT_GT(job.surface.output.faces, quads / 2);
+  EXPECT_LT(job.surface.output.faces, 2 * quads);
+  if (mesh.num_boundary_loops() == 0) EXPECT_EQ(job.surface.output.non_quads, 0);
+  for (const std::string& w : job.param.warnings) EXPECT_EQ(w.find("not valid"), std::string::npos) << w;
+}
+
+TEST(HardCases, CoarseSpheresWithManyQuadsPerTriangle) {
+  expect_valid_remesh(testing::make_ellipsoid(1), 100, "octahedron subdivided once, 100 quads");
+  expect_valid_remesh(testing::make_ellipsoid(2), 300, "subdivided twice, 300 quads");
+  expect_valid_remesh(testing::make_ellipsoid(2, 1.0, 0.6, 0.35), 300, "a flat ellipsoid");
+}
+
+TEST(HardCases, AnInwardFacingSurfaceIsAsValidAsTheOutwardOne) {
+  expect_valid_remesh(inverted(testing::make_ellipsoid(2)), 300, "inverted sphere");
+  expect_valid_remesh(inverted(testing::make_torus(16, 8)), 200, "inverted torus");
+}
+
+TEST(HardCases, CoarseTorusAndSlivers) {
+  expect_valid_remesh(testing::make_torus(10, 5, 1.0, 0.4), 200, "10 x 5 torus");
+  // 48 × 2 quads of aspect ratio 15 on an open cylinder: every triangle a sliver.
+  expect_valid_remesh(testing::make_cylinder(48, 2, 1.0, 4.0), 100, "sliver cylinder");
+}
+
+TEST(HardCases, ACoarseCubeWithSharpCreases) {
+  expect_valid_remesh(coarse_cube(), 60, "cube, 60 quads");
+  expect_valid_remesh(coarse_cube(), 200, "cube, 200 quads");
+}
+
+}  // namespace
+}  // namespace quadcover
