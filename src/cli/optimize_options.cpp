@@ -11,6 +11,35 @@
 
 namespace quadcover::cli {
 
+namespace {
+
+/// The repairs and retries that make the map valid (issue 14): cone merges and moves, fold refinement, retries.
+void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
+  cmd.add_option("--merge-cones", options.merge_cones,
+                 "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again "
+                 "when that leaves fewer flipped or collapsed triangles (true/false)")
+      ->capture_default_str();
+  cmd.add_option("--move-cones", options.move_cones,
+                 "Move the branch point of each fake cone pair (the map winds one turn too few or too many around it "
+                 "and the opposite turn around a vertex within 3 rings) to that vertex and solve the map again, kept "
+                 "while the map gets more valid (true/false; report untangling.moved_wound_cones)")
+      ->capture_default_str();
+  cmd.add_option("--refine-folds", options.refine_folds,
+                 "Rounds of edge splits around the triangles the untangling leaves flipped or collapsed, each "
+                 "followed by the untangling on the finer mesh (0 = off); the map then has more triangles (the "
+                 "input's vertices first, see the report's refinement and fold_refinement)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd.add_option("--retries", options.validity_retries,
+                 "While the result has a flipped or collapsed triangle or a quad mesh whose topology differs from "
+                 "the input's, run the job again at up to N nearby densities (+4%, -4%, +8%, ... quads) and keep the "
+                 "first valid one, else the best (0 = off; see the report's validity_retries)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+}
+
+}  // namespace
+
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--field", options.field,
                  "Guiding cross field: curvature = the principal curvature directions on the faces where they are "
@@ -55,23 +84,7 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "optimize.stopped_by says whether it converged or what stopped it")
       ->check(CLI::Range(-1L, std::numeric_limits<long>::max()))
       ->capture_default_str();
-  cmd.add_option("--merge-cones", options.merge_cones,
-                 "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again "
-                 "when that leaves fewer flipped or collapsed triangles (true/false)")
-      ->capture_default_str();
-  cmd.add_option("--refine-folds", options.refine_folds,
-                 "Rounds of edge splits around the triangles the untangling leaves flipped or collapsed, each "
-                 "followed by the untangling on the finer mesh (0 = off); the map then has more triangles (the "
-                 "input's vertices first, see the report's refinement and fold_refinement)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd.add_option("--retries", options.validity_retries,
-                 "While the result is not valid (a flipped or collapsed triangle, a vertex the map winds around "
-                 "other than the field says, or a quad mesh whose topology differs from the input's), run the job "
-                 "again at up to N nearby densities (+4%, -4%, +8%, ... quads) and keep the first valid one, else the "
-                 "best (0 = off; see the report's validity_retries)")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
+  add_validity_options(cmd, options);
   cmd.add_option("--keep-better", options.keep_better,
                  "Also parameterize the original field and keep whichever map has the lower E_D + E_H (6.1.1); "
                  "reported as optimize.kept. One extra parameterization; false always uses the optimized field")
@@ -134,6 +147,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.max_evaluations = cli.max_iterations;
   options.keep_better = cli.keep_better;
   options.merge_coincident_cones = cli.merge_cones;
+  options.move_wound_cones = cli.move_cones;
   options.fold_refinement_rounds = cli.refine_folds;
   options.validity_retries = cli.validity_retries;
   options.param.relaxation.iterations = cli.relaxation;

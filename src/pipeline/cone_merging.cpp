@@ -6,6 +6,7 @@
 #include "common/quarter_turn.h"
 #include "field/relocation.h"
 #include "field/smoothing.h"
+#include "param/ring_winding.h"
 
 namespace quadcover {
 
@@ -31,11 +32,66 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
   return merges;
 }
 
+namespace {
+
+/// Vertex neighbours from the edge list (ascending per vertex).
+std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh) {
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(mesh.num_vertices()));
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    out[mesh.E()(e, 0)].push_back(mesh.E()(e, 1));
+    out[mesh.E()(e, 1)].push_back(mesh.E()(e, 0));
+  }
+  for (std::vector<int>& n : out) std::sort(n.begin(), n.end());
+  return out;
+}
+
+/// The first vertex within kWoundRings rings of c (breadth first, neighbours ascending) for which `fits` holds, or -1.
+template <class Fits>
+int nearest_within_rings(const std::vector<std::vector<int>>& neighbours, int c, Fits fits) {
+  constexpr int kWoundRings = 3;
+  std::vector<int> ring{c}, seen{c};
+  for (int k = 0; k < kWoundRings; ++k) {
+    std::vector<int> next;
+    for (int v : ring)
+      for (int n : neighbours[v]) {
+        if (std::find(seen.begin(), seen.end(), n) != seen.end()) continue;
+        seen.push_back(n);
+        if (fits(n)) return n;
+        next.push_back(n);
+      }
+    ring.swap(next);
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization& map) {
+  const int nv = mesh.num_vertices();
+  Eigen::VectorXi target = Eigen::VectorXi::Zero(nv);
+  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  const Eigen::VectorXi excess = map_quarter_index(mesh, map.uv) - target;  // ±4: one turn off
+  std::vector<char> used(static_cast<std::size_t>(nv), 0);
+  std::vector<ConeMerge> moves;
+  std::vector<std::vector<int>> neighbours;
+  for (int c = 0; c < nv; ++c) {
+    if (target[c] % 4 == 0 || std::abs(excess[c]) != 4 || mesh.is_boundary_vertex(c) || used[c]) continue;
+    if (neighbours.empty()) neighbours = vertex_neighbours(mesh);
+    const int n = nearest_within_rings(neighbours, c, [&](int v) {
+      return target[v] == 0 && excess[v] == -excess[c] && !mesh.is_boundary_vertex(v) && !used[v];
+    });
+    if (n < 0) continue;
+    moves.push_back({c, n, mod4(target[c])});
+    used[c] = used[n] = 1;
+  }
+  return moves;
+}
+
 FrameField merge_cones(const Mesh& mesh, const FrameFieldResult& stage, const FrameField& field, double lambda,
                        const std::vector<ConeMerge>& merges) {
   FrameSmoother smoother(mesh, field, stage.stability, stage.trusted, stage.constrained, lambda);
   for (const ConeMerge& m : merges)
-    for (const MatchingChange& change : relocation_changes(mesh, {m.from, m.into}, m.quarters))
+    for (const MatchingChange& change : relocation_changes(mesh, relocation_path(mesh, m.from, m.into), m.quarters))
       smoother.change_matching(change.edge, change.delta);
   return smoother.rotated(smoother.solve());
 }

@@ -14,7 +14,8 @@
 
 namespace quadcover {
 
-/// One merge: the branch point `from` gives its index modulo 4 (`quarters` ∈ {1, 2, 3}) to the adjacent `into`.
+/// One merge: the branch point `from` gives its index modulo 4 (`quarters` ∈ {1, 2, 3}) to `into` (adjacent for the
+/// coincident merges), along field/relocation.h's relocation_path.
 struct ConeMerge {
   int from, into, quarters;
 };
@@ -23,6 +24,13 @@ struct ConeMerge {
 /// the pair, `from` the higher vertex number, skipping pairs that share a vertex with an earlier merge or whose
 /// edge is a boundary edge. \pre map was made on mesh (map.uv #F by 3).
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map);
+
+/// The moves that follow the map's winding (issue 14): a branch point c around which φ winds one turn too few or too
+/// many gives its index modulo 4 to the nearest interior vertex n within 3 rings that is no branch point and carries
+/// the opposite turn (a fake cone pair: the map gives c's cone angle ± 2π and n 2π ∓ 2π, every triangle positive),
+/// along the shortest interior edge path; branch points in vertex order, each vertex in at most one move.
+/// \pre map was made on mesh.
+std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization& map);
 
 /// `field` with the merges applied to its matching and its frames smoothed again for that matching (the field
 /// stage's weights, trusted and constrained faces and λ; field/smoothing.h).

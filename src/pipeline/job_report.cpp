@@ -31,7 +31,7 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
-          {"merge_coincident_cones", o.merge_coincident_cones},
+          {"merge_coincident_cones", o.merge_coincident_cones}, {"move_wound_cones", o.move_wound_cones},
           {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries}, {"feature_angle", o.param.features.sharp_angle_degrees},
           {"fill", to_string(o.fill)}};
 }
@@ -183,6 +183,8 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["untangling"] = untangling_to_json(map);
   r["untangling"]["merged_cone_pairs"] = job.merged_cone_pairs;
   r["untangling"]["cone_merge_rounds"] = job.merge_rounds;
+  r["untangling"]["moved_wound_cones"] = job.moved_wound_cones;
+  r["untangling"]["wound_cone_rounds"] = job.wound_cone_rounds;
   r["aligned_curves"] = curves_json(map);
   r["extraction"] = nullptr;
   r["quad_mesh"] = nullptr;

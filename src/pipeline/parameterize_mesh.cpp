@@ -52,26 +52,48 @@ void note_cut_short(const ProgressSink& progress, bool unfinished, ParamJob& job
   if (unfinished && progress.skip_improvements()) record_cut_short(job, stage);
 }
 
-/// Merges the branch point pairs the map puts on one point (pipeline/cone_merging.h) and solves the map again, at
-/// most kMergeRounds times and only while that leaves fewer non-positive triangles.
-void merge_coincident_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, ParamJob& job,
-                            ProgressSink& progress) {
-  constexpr int kMergeRounds = 3;
-  for (int round = 0; round < kMergeRounds; ++round) {
-    const std::vector<ConeMerge> merges = coincident_cone_merges(mesh, job.map);
-    if (merges.empty()) break;
+/// Rounds of cone moves (pipeline/cone_merging.h): `find` gives the moves on the job's map, the field with them
+/// applied is smoothed and the map solved again, kept while `better(new map, old map)`; at most 3 rounds. Adds the
+/// kept moves to `moved` and the rounds run to `rounds`.
+template <class Find, class Better>
+void cone_move_rounds(const Mesh& mesh, const FrameFieldResult& stage, double lambda, ParamJob& job,
+                      ProgressSink& progress, const char* name, Find find, Better better, int& moved, int& rounds) {
+  constexpr int kRounds = 3;
+  for (int round = 0; round < kRounds; ++round) {
+    const std::vector<ConeMerge> moves = find(mesh, job.map);
+    if (moves.empty()) break;
     if (progress.skip_improvements()) {
-      record_cut_short(job, "cone merging");
+      record_cut_short(job, name);
       break;
     }
-    FrameField field = merge_cones(mesh, stage, job.field, lambda, merges);
+    FrameField field = merge_cones(mesh, stage, job.field, lambda, moves);
     Parameterization map = parameterize(mesh, field, job.options.param, progress);
-    ++job.merge_rounds;
-    if (map.untangling.non_positive_after >= job.map.untangling.non_positive_after) break;
+    ++rounds;
+    if (!better(map, job.map)) break;
     job.field = std::move(field);
     job.map = std::move(map);
-    job.merged_cone_pairs += static_cast<int>(merges.size());
+    moved += static_cast<int>(moves.size());
   }
+}
+
+/// Merges the branch point pairs the map puts on one point (coincident_cone_merges) while that leaves fewer
+/// non-positive triangles, then moves the branch points of fake cone pairs to the vertex the map winds around
+/// (wound_cone_moves) while the map gets more valid (fewer non-positive triangles, then fewer wrong windings).
+void move_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, ParamJob& job, ProgressSink& progress) {
+  if (job.options.merge_coincident_cones)
+    cone_move_rounds(
+        mesh, stage, lambda, job, progress, "cone merging", coincident_cone_merges,
+        [](const Parameterization& next, const Parameterization& now) {
+          return next.untangling.non_positive_after < now.untangling.non_positive_after;
+        },
+        job.merged_cone_pairs, job.merge_rounds);
+  if (job.options.move_wound_cones)
+    cone_move_rounds(
+        mesh, stage, lambda, job, progress, "wound cone moves", wound_cone_moves,
+        [&](const Parameterization& next, const Parameterization& now) {
+          return map_validity(mesh, next) < map_validity(mesh, now);
+        },
+        job.moved_wound_cones, job.wound_cone_rounds);
 }
 
 /// The fold refinement stage (pipeline/fold_refinement.h) on the map's mesh; a kept result replaces the job's mesh,
@@ -237,8 +259,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
   meter.restart();
-  if (options.merge_coincident_cones) merge_coincident_cones(mesh, field, oo.lambda, job, finishing);
-  if (job.merge_rounds > 0) lap(meter, job, "cone_merging");
+  move_cones(mesh, field, oo.lambda, job, finishing);
+  if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);
   meter.restart();
   const std::size_t curve_splits = job.refinement.split.size();

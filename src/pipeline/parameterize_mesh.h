@@ -46,6 +46,9 @@ struct ParamJob {
   /// Branch point pairs on one lattice point merged into one cone, and the maps solved again for that
   /// (pipeline/cone_merging.h).
   int merged_cone_pairs = 0, merge_rounds = 0;
+  /// Branch points of fake cone pairs moved to the vertex the map winds around, and the maps solved again for that
+  /// (pipeline/cone_merging.h wound_cone_moves).
+  int moved_wound_cones = 0, wound_cone_rounds = 0;
   std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
   /// The improving stages (ProgressSink::skip_improvements) a Ctrl-C or time limit skipped or cut short, in job
   /// order; the result is complete and checked, but a full run would improve it (the CLI exits with 3 then).

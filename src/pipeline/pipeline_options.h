@@ -30,6 +30,9 @@ struct PipelineOptions {
   /// Merge branch point pairs that the map puts on one lattice point into one cone and solve the map again
   /// (pipeline/cone_merging.h).
   bool merge_coincident_cones = true;
+  /// Move the branch point of each fake cone pair (a cone wound one turn off next to a vertex wound the opposite
+  /// turn) to that vertex and solve the map again, kept while the map gets more valid (pipeline/cone_merging.h).
+  bool move_wound_cones = true;
   /// Rounds of the refinement around the triangles the untangling leaves non-positive (pipeline/fold_refinement.h;
   /// 0 = off); the map then lives on a finer triangulation (ParamJob::mesh).
   int fold_refinement_rounds = 6;

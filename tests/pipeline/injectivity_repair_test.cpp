@@ -8,6 +8,8 @@
 #include "pipeline/cone_merging.h"
 #include "pipeline/curve_refinement.h"
 #include "pipeline/parameterize_mesh.h"
+#include "pipeline/validity_retries.h"
+#include "support/angle_sums.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -106,6 +108,37 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
     return ((s % 4) + 4) % 4;
   };
   EXPECT_EQ(sum_mod4(with.map), sum_mod4(without.map));
+}
+
+TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) {
+  const Mesh mesh = testing::load_test_mesh("couplingdown_genus9");
+  PipelineOptions plain;  // one density for both jobs
+  plain.validity_retries = 0;
+  plain.move_wound_cones = false;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  const Mesh& m0 = without.mesh(mesh);
+  const std::size_t wrong_before = wrong_winding_vertices(m0, without.map).size();
+  ASSERT_GT(wrong_before, 0u) << "the case this test is about no longer occurs";
+  // Every move pairs a branch point wound one turn off with a regular interior vertex wound the opposite turn,
+  // recomputed from the corner angles.
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, without.map.uv);
+  std::vector<int> target(static_cast<std::size_t>(m0.num_vertices()), 0);
+  for (const BranchPoint& b : without.map.branch_points) target[b.vertex] = b.quarter_index;
+  const std::vector<ConeMerge> moves = wound_cone_moves(m0, without.map);
+  ASSERT_FALSE(moves.empty());
+  for (const ConeMerge& m : moves) {
+    EXPECT_NE(target[m.from], 0);
+    EXPECT_EQ(target[m.into], 0);
+    EXPECT_EQ(std::abs(wound[m.from] - target[m.from]), 4);
+    EXPECT_EQ(wound[m.into] - target[m.into], -(wound[m.from] - target[m.from]));
+    EXPECT_EQ(m.quarters, ((target[m.from] % 4) + 4) % 4);
+  }
+  PipelineOptions move = plain;
+  move.move_wound_cones = true;
+  const ParamJob with = parameterize_mesh(mesh, move);
+  EXPECT_GT(with.moved_wound_cones, 0);
+  EXPECT_LT(wrong_winding_vertices(with.mesh(mesh), with.map).size(), wrong_before);
+  EXPECT_LE(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
 }
 
 }  // namespace

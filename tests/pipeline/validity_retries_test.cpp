@@ -12,6 +12,7 @@
 #include "param/seams.h"
 #include "pipeline/remesh_mesh.h"
 #include "pipeline/retry_until_valid.h"
+#include "support/angle_sums.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -197,18 +198,12 @@ TEST(ValidityRetries, AVertexMovedOutOfItsRingWindsZeroTimesAndIsFound) {
   for (int f = 0; f < mesh.num_faces(); ++f)
     for (int c = 0; c < 3; ++c)
       if (mesh.F()(f, c) == p) job.map.uv(f, c) += Complex(10.0, 0.0);
-  // Direct recomputation: the signed corner angles at each vertex, 4·(1 − Θ/2π) against the field's index (0 here
-  // but at the branch points; the torus is closed).
-  std::vector<double> theta(static_cast<std::size_t>(mesh.num_vertices()), 0.0);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Complex a = job.map.uv(f, c), b = job.map.uv(f, (c + 1) % 3), d = job.map.uv(f, (c + 2) % 3);
-      theta[mesh.F()(f, c)] += std::arg((d - a) / (b - a));
-    }
-  std::vector<int> target(theta.size(), 0), expected;
+  // Direct recomputation from the corner angles, against the field's index (0 but at the branch points; closed).
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(mesh, job.map.uv);
+  std::vector<int> target(static_cast<std::size_t>(mesh.num_vertices()), 0), expected;
   for (const BranchPoint& b : job.map.branch_points) target[b.vertex] = b.quarter_index;
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (std::lround(4 * (1 - theta[v] / (2 * M_PI))) != target[v]) expected.push_back(v);
+    if (wound[v] != target[v]) expected.push_back(v);
   const std::vector<int> wrong = wrong_winding_vertices(mesh, job.map);
   EXPECT_EQ(wrong, expected);
   EXPECT_NE(std::find(wrong.begin(), wrong.end(), p), wrong.end());
