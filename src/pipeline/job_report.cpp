@@ -173,7 +173,8 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
                   {"quads", job.density.quads},
                   {"resolves", job.density.resolves}};
   r["field"] = field_json(job);
-  r["field"]["features"] = features_json(mesh, job.options);
+  // The input's sharp edges and the faces they constrain: a refinement's split halves are not new features.
+  r["field"]["features"] = features_json(input_mesh, job.options);
   r["parameterization"] = map_json(mesh, map, uv);
   r["parameterization"]["h_sym"] = map.h_sym;
   r["optimize"] = job.optimize;

@@ -3,10 +3,13 @@
 // the same job without it on a shipped mesh where the cause occurs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pipeline/cone_merging.h"
 #include "pipeline/curve_refinement.h"
+#include "field/feature_alignment.h"
+#include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
 #include "support/angle_sums.h"
@@ -139,6 +142,17 @@ TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) 
   EXPECT_GT(with.moved_wound_cones, 0);
   EXPECT_LT(wrong_winding_vertices(with.mesh(mesh), with.map).size(), wrong_before);
   EXPECT_LE(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
+}
+
+TEST(FeatureCounts, TheReportCountsTheInputsSharpEdgesNotTheRefinedHalves) {
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  const ParamJob job = parameterize_mesh(mesh, PipelineOptions{});
+  ASSERT_GT(job.refinement.split.size(), 0u) << "the case this test is about (a refined map) no longer occurs";
+  const nlohmann::json r = param_report(mesh, job, job.map.uv, "fandisk");
+  const FeatureConstraints input = feature_constraints(mesh, field_stage_options(job.options).features);
+  EXPECT_EQ(r["field"]["features"]["sharp_edges"].get<std::size_t>(), input.feature_edges.size());
+  EXPECT_EQ(r["field"]["features"]["constrained_faces"].get<long>(),
+            std::count(input.constrained.begin(), input.constrained.end(), 1));
 }
 
 }  // namespace
