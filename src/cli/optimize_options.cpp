@@ -13,17 +13,20 @@ namespace quadcover::cli {
 
 namespace {
 
+/// A true/false option (CLI11 parses true/false, 1/0, yes/no) whose help ends with "(true/false)" and shows its default.
+void add_switch(CLI::App& cmd, const std::string& name, bool& value, const std::string& help) {
+  cmd.add_option(name, value, help + " (true/false)")->capture_default_str();
+}
+
 /// The repairs and retries that make the map valid (issue 14): cone merges and moves, fold refinement, retries.
 void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
-  cmd.add_option("--merge-cones", options.merge_cones,
-                 "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again "
-                 "when that leaves fewer flipped or collapsed triangles (true/false)")
-      ->capture_default_str();
-  cmd.add_option("--move-cones", options.move_cones,
-                 "Move the branch point of each fake cone pair (the map winds one turn too few or too many around it "
-                 "and the opposite turn around a vertex within 3 rings) to that vertex and solve the map again, kept "
-                 "while the map gets more valid (true/false; report untangling.moved_wound_cones)")
-      ->capture_default_str();
+  add_switch(cmd, "--merge-cones", options.merge_cones,
+             "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again when "
+             "that leaves fewer flipped or collapsed triangles");
+  add_switch(cmd, "--move-cones", options.move_cones,
+             "Move the branch point of each fake cone pair (the map winds one turn too few or too many around it and "
+             "the opposite turn around a vertex within 3 rings) to that vertex and solve the map again, kept while "
+             "the map gets more valid; report untangling.moved_wound_cones");
   cmd.add_option("--refine-folds", options.refine_folds,
                  "Rounds of edge splits around the triangles the untangling leaves flipped or collapsed, each "
                  "followed by the untangling on the finer mesh (0 = off); the map then has more triangles (the "
@@ -57,10 +60,8 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "features (boundaries are still followed)")
       ->type_name("DEG|off")
       ->capture_default_str();
-  cmd.add_option("--align", options.align,
-                 "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges "
-                 "(true/false)")
-      ->capture_default_str();
+  add_switch(cmd, "--align", options.align,
+             "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges");
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
                  "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "
