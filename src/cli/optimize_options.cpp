@@ -13,7 +13,7 @@ namespace quadcover::cli {
 
 namespace {
 
-/// A true/false option (CLI11 parses true/false, 1/0, yes/no) whose help ends with "(true/false)" and shows its default.
+/// A true/false option (CLI11 also takes 1/0, yes/no) whose help ends with "(true/false)" and shows its default.
 void add_switch(CLI::App& cmd, const std::string& name, bool& value, const std::string& help) {
   cmd.add_option(name, value, help + " (true/false)")->capture_default_str();
 }

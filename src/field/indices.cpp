@@ -81,4 +81,10 @@ std::vector<BranchPoint> branch_points(const Mesh& mesh, const FrameField& field
   return out;
 }
 
+Eigen::VectorXi quarter_index_of(int num_vertices, const std::vector<BranchPoint>& points) {
+  Eigen::VectorXi q = Eigen::VectorXi::Zero(num_vertices);
+  for (const BranchPoint& b : points) q[b.vertex] = b.quarter_index;
+  return q;
+}
+
 }  // namespace quadcover

@@ -28,4 +28,8 @@ Eigen::VectorXi vector_field_index(const Mesh& mesh, const Eigen::VectorXcd& X);
 /// \pre field belongs to mesh. \throw NumericalError as cross_field_quarter_index.
 std::vector<BranchPoint> branch_points(const Mesh& mesh, const FrameField& field);
 
+/// The inverse of branch_points(): per vertex the quarter index of `points`, 0 at every other vertex. \return
+/// num_vertices entries. \pre every point's vertex is in [0, num_vertices).
+Eigen::VectorXi quarter_index_of(int num_vertices, const std::vector<BranchPoint>& points);
+
 }  // namespace quadcover

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "common/quarter_turn.h"
+#include "field/indices.h"
 #include "field/relocation.h"
 #include "field/smoothing.h"
 #include "param/ring_winding.h"
@@ -11,8 +12,7 @@
 namespace quadcover {
 
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map) {
-  std::vector<int> quarter(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (const BranchPoint& b : map.branch_points) quarter[b.vertex] = b.quarter_index;
+  const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), map.branch_points);
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   std::vector<ConeMerge> merges;
   std::vector<int> faces = map.untangling.stuck_faces;
@@ -34,26 +34,25 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
 
 namespace {
 
-/// Vertex neighbours from the edge list (ascending per vertex).
-std::vector<std::vector<int>> vertex_neighbours(const Mesh& mesh) {
-  std::vector<std::vector<int>> out(static_cast<std::size_t>(mesh.num_vertices()));
-  for (int e = 0; e < mesh.num_edges(); ++e) {
-    out[mesh.E()(e, 0)].push_back(mesh.E()(e, 1));
-    out[mesh.E()(e, 1)].push_back(mesh.E()(e, 0));
-  }
-  for (std::vector<int>& n : out) std::sort(n.begin(), n.end());
+/// The vertices sharing an edge with v (the other corners of its fan's faces), ascending.
+std::vector<int> sorted_neighbours(const Mesh& mesh, int v) {
+  std::vector<int> out;
+  for (const Mesh::FanCorner& c : mesh.fan(v))
+    for (int k = 1; k < 3; ++k) out.push_back(mesh.F()(c.face, (c.corner + k) % 3));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
 /// The first vertex within kWoundRings rings of c (breadth first, neighbours ascending) for which `fits` holds, or -1.
 template <class Fits>
-int nearest_within_rings(const std::vector<std::vector<int>>& neighbours, int c, Fits fits) {
+int nearest_within_rings(const Mesh& mesh, int c, Fits fits) {
   constexpr int kWoundRings = 3;
   std::vector<int> ring{c}, seen{c};
   for (int k = 0; k < kWoundRings; ++k) {
     std::vector<int> next;
     for (int v : ring)
-      for (int n : neighbours[v]) {
+      for (int n : sorted_neighbours(mesh, v)) {
         if (std::find(seen.begin(), seen.end(), n) != seen.end()) continue;
         seen.push_back(n);
         if (fits(n)) return n;
@@ -68,16 +67,13 @@ int nearest_within_rings(const std::vector<std::vector<int>>& neighbours, int c,
 
 std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization& map) {
   const int nv = mesh.num_vertices();
-  Eigen::VectorXi target = Eigen::VectorXi::Zero(nv);
-  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  const Eigen::VectorXi target = quarter_index_of(nv, map.branch_points);
   const Eigen::VectorXi excess = map_quarter_index(mesh, map.uv) - target;  // ±4: one turn off
   std::vector<char> used(static_cast<std::size_t>(nv), 0);
   std::vector<ConeMerge> moves;
-  std::vector<std::vector<int>> neighbours;
   for (int c = 0; c < nv; ++c) {
     if (target[c] % 4 == 0 || std::abs(excess[c]) != 4 || mesh.is_boundary_vertex(c) || used[c]) continue;
-    if (neighbours.empty()) neighbours = vertex_neighbours(mesh);
-    const int n = nearest_within_rings(neighbours, c, [&](int v) {
+    const int n = nearest_within_rings(mesh, c, [&](int v) {
       return target[v] == 0 && excess[v] == -excess[c] && !mesh.is_boundary_vertex(v) && !used[v];
     });
     if (n < 0) continue;

@@ -32,7 +32,8 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
           {"merge_coincident_cones", o.merge_coincident_cones}, {"move_wound_cones", o.move_wound_cones},
-          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries}, {"feature_angle", o.param.features.sharp_angle_degrees},
+          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries},
+          {"feature_angle", o.param.features.sharp_angle_degrees},
           {"fill", to_string(o.fill)}};
 }
 

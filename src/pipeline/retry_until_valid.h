@@ -10,9 +10,10 @@
 namespace quadcover {
 
 /// Attempt 0 = run(given minus its retries), then, while the best so far is worth_retrying, up to
-/// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The kept job's ParamJob
-/// (param_job(job)) records the attempts; a warning says when the kept one is not the first or none is valid. A
-/// time limit or Ctrl-C ends the retries (recorded as cut short). \throw InputError for invalid options (validate).
+/// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The
+/// kept job's ParamJob (param_job(job)) records the attempts; a warning says when the kept one is not the first or
+/// is not valid. A time limit or Ctrl-C ends the retries (recorded as cut short).
+/// \throw InputError for invalid options (validate).
 template <class Run, class Judge>
 auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
   validate(given);

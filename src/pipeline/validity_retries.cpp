@@ -4,14 +4,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "field/indices.h"
 #include "param/ring_winding.h"
 #include "param/seams.h"
 
 namespace quadcover {
 
 std::vector<int> wrong_winding_vertices(const Mesh& mesh, const Parameterization& map) {
-  Eigen::VectorXi target = Eigen::VectorXi::Zero(mesh.num_vertices());
-  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  const Eigen::VectorXi target = quarter_index_of(mesh.num_vertices(), map.branch_points);
   const Eigen::VectorXi wound = map_quarter_index(mesh, map.uv);
   std::vector<int> out;
   for (int p = 0; p < mesh.num_vertices(); ++p)

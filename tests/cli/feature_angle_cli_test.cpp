@@ -13,7 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using quadcover::testing::run_cli;
-using quadcover::testing::slurp;
 
 class FeatureAngleCli : public quadcover::testing::FolderTest {
  protected:
@@ -23,12 +22,11 @@ class FeatureAngleCli : public quadcover::testing::FolderTest {
   /// the feature curves are decided before them, and they cost most of a camelhead run).
   nlohmann::json report(const std::string& command, const std::string& mesh, const std::string& angle,
                         const std::string& extra = "") {
-    const std::string json = path(command + "_" + mesh + "_" + angle + ".json");
-    const std::string args = command + " " + quadcover::testing::data_path(mesh) + " -o " + path("out.obj") +
-                             " --optimize none --refine-folds 0 --retries 0 --report " + json + " -q" +
-                             (angle.empty() ? "" : " --feature-angle " + angle) + " " + extra;
-    EXPECT_EQ(run_cli(args).code, 0) << args;
-    return nlohmann::json::parse(slurp(json));
+    return quadcover::testing::run_cli_report(
+        command + " " + quadcover::testing::data_path(mesh) + " -o " + path("out.obj") +
+            " --optimize none --refine-folds 0 --retries 0 -q" + (angle.empty() ? "" : " --feature-angle " + angle) +
+            " " + extra,
+        path(command + "_" + mesh + "_" + angle + ".json"));
   }
 };
 

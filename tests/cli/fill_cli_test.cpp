@@ -21,10 +21,9 @@ class FillCli : public quadcover::testing::FolderTest {
 
   /// Runs `COMMAND bunny_3k -o NAME.obj --report NAME.json --optimize none EXTRA`; returns the report.
   nlohmann::json run(const std::string& command, const std::string& name, const std::string& extra) {
-    const std::string args = command + " " + quadcover::testing::data_path("bunny_3k") + " -o " + path(name + ".obj") +
-                             " --report " + path(name + ".json") + " --optimize none -q " + extra;
-    EXPECT_EQ(run_cli(args).code, 0) << args;
-    return nlohmann::json::parse(slurp(path(name + ".json")));
+    return quadcover::testing::run_cli_report(command + " " + quadcover::testing::data_path("bunny_3k") + " -o " +
+                                                  path(name + ".obj") + " --optimize none -q " + extra,
+                                              path(name + ".json"));
   }
 };
 

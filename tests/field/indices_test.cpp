@@ -63,6 +63,17 @@ TEST_P(ClosedMeshes, CurvatureFieldIndices) {
   check_indices(mesh, field);
 }
 
+TEST_P(ClosedMeshes, QuarterIndexOfTheBranchPointsIsTheCrossFieldIndexOffTheRegularVertices) {
+  const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
+  const FrameField field = cross_field_with_straightest_matching(mesh, principal_curvature_frames(mesh).direction);
+  const Eigen::VectorXi cross = cross_field_quarter_index(mesh, field);
+  const std::vector<BranchPoint> points = branch_points(mesh, field);
+  const Eigen::VectorXi q = quarter_index_of(mesh.num_vertices(), points);
+  ASSERT_EQ(q.size(), mesh.num_vertices());
+  EXPECT_EQ(static_cast<std::size_t>((q.array() != 0).count()), points.size());
+  for (int v = 0; v < mesh.num_vertices(); ++v) EXPECT_EQ(q[v], cross[v] % 4 != 0 ? cross[v] : 0) << v;
+}
+
 TEST_P(ClosedMeshes, RandomFieldIndices) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
   const FrameField field = cross_field_with_straightest_matching(mesh, random_directions(mesh.num_faces(), 7));

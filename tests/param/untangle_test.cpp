@@ -196,12 +196,7 @@ TEST(Untangle, GeneratedHardCases) {
     Mesh mesh;
     int quads;
   };
-  Mesh inverted = testing::load_test_mesh("bunny_3k");
-  {
-    Eigen::MatrixX3i F = inverted.F();
-    F.col(1).swap(F.col(2));
-    inverted = Mesh::from_triangles(inverted.V(), F);
-  }
+  const Mesh inverted = testing::with_faces_reversed(testing::load_test_mesh("bunny_3k"));
   std::vector<Case> cases;
   cases.push_back({"coarse sphere", testing::make_ellipsoid(1), 40});
   cases.push_back({"coarse sphere, denser grid", testing::make_ellipsoid(2), 60});

@@ -172,7 +172,8 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
   EXPECT_EQ(kept.non_positive, flipped_triangles(job.param.mesh(torus), job.param.map.uv).non_positive);
   EXPECT_EQ(kept.non_quads, job.surface.output.non_quads);
   bool said = false;
-  for (const std::string& w : job.param.warnings) said = said || w.find("the quad mesh's topology changed") != std::string::npos;
+  for (const std::string& w : job.param.warnings)
+    said = said || w.find("the quad mesh's topology changed") != std::string::npos;
   EXPECT_TRUE(said);
 }
 

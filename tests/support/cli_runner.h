@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -66,6 +67,13 @@ inline CliRun run_cli(const std::string& args, const std::string& stderr_file = 
   int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   if (timeout_seconds > 0 && (code == 124 || code == 137)) code = -1;
   return {code, out, stderr_file.empty() ? std::string() : slurp(stderr_file)};
+}
+
+/// Runs `quadcover ARGS --report JSON`, expects exit 0 (the failure names the command) and returns the report.
+inline nlohmann::json run_cli_report(const std::string& args, const std::string& json) {
+  const std::string full = args + " --report " + json;
+  EXPECT_EQ(run_cli(full).code, 0) << full;
+  return nlohmann::json::parse(slurp(json));
 }
 
 }  // namespace quadcover::testing

@@ -128,4 +128,10 @@ Mesh make_torus_and_cylinder() {
   return Mesh::from_triangles(V, F);
 }
 
+Mesh with_faces_reversed(const Mesh& mesh) {
+  Eigen::MatrixX3i F = mesh.F();
+  F.col(1).swap(F.col(2));
+  return Mesh::from_triangles(mesh.V(), F);
+}
+
 }  // namespace quadcover::testing

@@ -29,4 +29,7 @@ Mesh make_ellipsoid(int level, double a = 1.0, double b = 1.0, double c = 1.0);
 /// vertices of valence n.
 Mesh make_fan(int n, bool closed, double height = 0.3);
 
+/// The same surface with every face's orientation reversed (normals flipped: a closed mesh faces inward).
+Mesh with_faces_reversed(const Mesh& mesh);
+
 }  // namespace quadcover::testing
