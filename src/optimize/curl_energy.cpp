@@ -59,11 +59,13 @@ CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const Smoothin
 CurlEnergy::~CurlEnergy() = default;
 CurlEnergy::CurlEnergy(CurlEnergy&&) noexcept = default;
 
-// Natural boundary conditions: parameterize() has v = 0 on boundary edges (1.2.4), so on meshes with boundary this
-// E_D is not yet the reported one (issue 17 item 6: pinning here too changed the maps of bunny_20k_holes and
-// mech_holes_shark for the worse). On closed meshes the two agree up to the shift (tests/optimize/one_energy_test).
+// 𝔏̄* + εI with v = 0 on boundary edges (1.2.4), as parameterize() solves it: a boundary edge's row and column keep
+// only their diagonal and its right-hand side is 0 (rhs()), so v_b = 0 and it adds nothing to E_D.
 Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
   Eigen::SparseMatrix<Complex> A = complex_nonconforming_stiffness(*mesh_, smoother_->matching());
+  A.prune([&](Eigen::Index i, Eigen::Index j, const Complex&) {
+    return i == j || (!mesh_->is_boundary_edge(static_cast<int>(i)) && !mesh_->is_boundary_edge(static_cast<int>(j)));
+  });
   double mean = 0;
   for (int i = 0; i < A.rows(); ++i) mean += std::abs(A.coeff(i, i));
   mean /= std::max<Eigen::Index>(1, A.rows());
@@ -108,7 +110,7 @@ StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
   const int mu_new = layer_after(e, new_matching);
   const double area = mesh_->face_areas()[g];
   for (int b = 0; b < 3; ++b) {
-    if (b == a) continue;
+    if (b == a || mesh_->is_boundary_edge(mesh_->FE()(g, b))) continue;  // pinned rows do not couple
     // 𝔏̄*(e, e_b) from face g = K_ab i^{μ_b - μ_a} (3.8), K_ab = ⟨e_a, e_b⟩ / A_g (1.5).
     const double K = std::real(std::conj(mesh_->edge_vector_local(g, a)) * mesh_->edge_vector_local(g, b)) / area;
     c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu(g, b) - mu_new) - ipow(mu(g, b) - mu(g, a)))});
@@ -208,6 +210,8 @@ Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
     const Complex X = std::polar(1.0, alpha[f]) * X0_[f];
     for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += term(f, k, X, mu_(f, k));
   }
+  for (int e = 0; e < mesh_->num_edges(); ++e)
+    if (mesh_->is_boundary_edge(e)) b[e] = 0;  // v = 0 there (shifted_stiffness)
   return b;
 }
 
@@ -313,6 +317,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
     const Complex Xn = dalpha == 0.0 ? X : std::polar(1.0, alpha_[f] + dalpha) * X0_[f];
     for (int k = 0; k < 3; ++k) {
       const int e = mesh_->FE()(f, k);
+      if (mesh_->is_boundary_edge(e)) continue;  // pinned: its right-hand side stays 0
       const Complex d = term(f, k, Xn, layer(f, k)) - term(f, k, X, mu_(f, k));
       if (ws.edge_stamp[static_cast<std::size_t>(e)] != ws.stamp) {
         ws.edge_stamp[static_cast<std::size_t>(e)] = ws.stamp;

@@ -1,8 +1,8 @@
 #pragma once
 // Fast re-evaluation of the curl distortion E_D = ½‖X̃_C‖² = xᴴx, L x = -curl*X, 𝔏̄* = LᴴL (thesis 6.1.1, 6.2.1)
-// after changes of the matching, with Cholesky up/downdates instead of refactorization. On closed meshes this is the
-// E_D parameterize() reports (Parameterization::energy_curl / scale², up to the shift below); with boundary it is
-// not yet: here v is free on boundary edges, there v = 0 (1.2.4) (tests/optimize/one_energy_test.cpp).
+// after changes of the matching, with Cholesky up/downdates instead of refactorization. It is the E_D parameterize()
+// reports (Parameterization::energy_curl / scale², up to the shift below), with v = 0 on boundary edges (1.2.4) as
+// there (tests/optimize/one_energy_test.cpp).
 //
 // One evaluation (Table 6.1): the matching changes at some edges; the frame field is re-smoothed by minimizing
 // E(α) (5.3) with the new matching (5.2.2, FrameSmoother: two right-hand side entries per edge, one solve); curl*
