@@ -67,10 +67,9 @@ void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs, const std
       ->check(path_or_stdin);
 }
 
-void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::string& output,
-                     const std::string& output_help, const std::string& input_help) {
-  add_input_option(cmd, inputs, input_help);
-  cmd.add_option("-o,--output", output, output_help);
+void add_mesh_inputs(CLI::App& cmd, MeshFiles& files, const std::string& output_help, const std::string& input_help) {
+  add_input_option(cmd, files.inputs, input_help);
+  cmd.add_option("-o,--output", files.output, output_help);
 }
 
 // ---- cancellation -------------------------------------------------------------------------------------------

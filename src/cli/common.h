@@ -5,13 +5,12 @@
 // ---- Guide for command authors (src/cli/<name>.cpp) -------------------------------------------------------------
 //
 //   namespace {
-//   struct XOptions { std::vector<std::string> inputs; std::string output; };
+//   struct XOptions : MeshFiles { double knob = 1; };
 //
 //   void register_x(CLI::App& app, GlobalOptions& global, int& exit_code) {
 //     auto opt = std::make_shared<XOptions>();
 //     CLI::App* cmd = app.add_subcommand("x", "One line saying what x does");
-//     add_input_option(*cmd, opt->inputs);                  // MESH... : files and/or folders
-//     cmd->add_option("-o,--output", opt->output, "Output file (one input) or folder (several inputs)");
+//     add_mesh_inputs(*cmd, *opt, "Output file (one input) or folder (several inputs)");  // MESH... -o OUT
 //     add_global_options(*cmd, global);   // --json -q -v --time-limit -j --overwrite-input --skip-existing --format
 //     cmd->callback([opt, &global, &exit_code] {
 //       BatchSpec spec;
@@ -70,10 +69,15 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global);
 void add_input_option(CLI::App& cmd, std::vector<std::string>& inputs,
                       const std::string& description = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
-/// Adds the positional mesh inputs (add_input_option) bound to `inputs` and -o/--output bound to `output` (a file
-/// for one input, a folder for several), described by `output_help`. \pre inputs and output outlive cmd.
-void add_mesh_inputs(CLI::App& cmd, std::vector<std::string>& inputs, std::string& output,
-                     const std::string& output_help,
+/// The files of a command that reads meshes and writes one output per mesh.
+struct MeshFiles {
+  std::vector<std::string> inputs;  ///< files and/or folders, as given
+  std::string output;               ///< a file for one input, a folder for several; empty: next to the input
+};
+
+/// Adds the positional mesh inputs (add_input_option) and -o/--output, described by `output_help`, bound to
+/// `files`. \pre files outlives cmd.
+void add_mesh_inputs(CLI::App& cmd, MeshFiles& files, const std::string& output_help,
                      const std::string& input_help = "Input mesh files (.obj .off .ply .stl) or folders of them");
 
 // ---- cancellation -------------------------------------------------------------------------------------------

@@ -18,9 +18,7 @@ namespace quadcover::cli {
 
 namespace {
 
-struct FieldCmdOptions {
-  std::vector<std::string> inputs;
-  std::string output;
+struct FieldCmdOptions : MeshFiles {
   std::string method = "hp";
   double csm_radius = CurvatureOptions{}.csm_radius;
   double trusted = FieldOptions{}.trusted_fraction;
@@ -174,7 +172,7 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
 
 void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<FieldCmdOptions>();
-  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+  add_mesh_inputs(*cmd, *opt,
                   "Output FIELD.json (one input) or folder (several inputs); default: next to the input as "
                   "NAME.field.json");
   cmd->add_option("--method", opt->method,

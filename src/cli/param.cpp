@@ -20,9 +20,7 @@ namespace quadcover::cli {
 
 namespace {
 
-struct ParamCmdOptions {
-  std::vector<std::string> inputs;
-  std::string output;
+struct ParamCmdOptions : MeshFiles {
   std::string report;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
@@ -140,7 +138,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
 
 void register_param(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<ParamCmdOptions>();
-  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+  add_mesh_inputs(*cmd, *opt,
                   "Output: .obj with per-corner vt (Blender, MeshLab and most tools read it), or .ply (binary) with "
                   "per-corner 'texcoord' (float32, as MeshLab reads it; Blender's PLY importer ignores it) (one "
                   "input), or a folder (several inputs); default: next to the input as NAME.param.obj");

@@ -20,9 +20,7 @@ namespace quadcover::cli {
 
 namespace {
 
-struct RemeshOptions {
-  std::vector<std::string> inputs;
-  std::string output;
+struct RemeshOptions : MeshFiles {
   std::string report;
   std::string param_output;
   bool ply_quality = false;
@@ -95,7 +93,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
 
 void register_remesh(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RemeshOptions>();
-  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+  add_mesh_inputs(*cmd, *opt,
                   "Output mesh, format by extension: .obj, .off, .ply (binary), .stl (triangulated) (one input), or "
                   "a folder (several inputs); default: next to the input as NAME.quad.obj");
   cmd->add_flag("--ply-quality", opt->ply_quality,

@@ -16,9 +16,7 @@ namespace quadcover::cli {
 
 namespace {
 
-struct RenderCmdOptions {
-  std::vector<std::string> inputs;
-  std::string output;
+struct RenderCmdOptions : MeshFiles {
   std::string view = "front";
   std::string size = "800x800";
   std::string texture = "checker";
@@ -110,7 +108,7 @@ void write_report_page(const std::string& input, const std::string& html, const 
 
 void register_render(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RenderCmdOptions>();
-  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+  add_mesh_inputs(*cmd, *opt,
                   "Output PNG (one input) or folder (several inputs: <name>.png inside; default: next to each input)",
                   "Input meshes (OBJ with optional vt, OFF, PLY, STL) or folders of them");
   cmd->add_option("--view", opt->view,

@@ -13,10 +13,7 @@ namespace quadcover::cli {
 
 namespace {
 
-struct RepairOptions {
-  std::vector<std::string> inputs;
-  std::string output;
-};
+struct RepairOptions : MeshFiles {};
 
 nlohmann::json run_repair(const std::string& input, const std::string& output) {
   const std::string format = mesh_output_format(output);  // a bad output name fails before the work
@@ -43,7 +40,7 @@ nlohmann::json run_repair(const std::string& input, const std::string& output) {
 
 void register_repair(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto opt = std::make_shared<RepairOptions>();
-  add_mesh_inputs(*cmd, opt->inputs, opt->output,
+  add_mesh_inputs(*cmd, *opt,
                   "Output mesh .obj/.off/.ply/.stl (one input) or folder (several inputs); default: next to the "
                   "input as NAME.repaired.obj");
   add_global_options(*cmd, global);

@@ -46,14 +46,11 @@ PolygonSoup PolygonSoup::from_polygons(const Eigen::MatrixX3d& V, const std::vec
 }
 
 PolygonSoup triangulate_polygons(const PolygonSoup& soup) {
-  PolygonSoup out;
-  out.file = soup.file;
-  out.positions = soup.positions;
-  out.vertex_lines = soup.vertex_lines;
-  out.location_unit = soup.location_unit;
-  out.vertex_element = soup.vertex_element;
-  out.index_base = soup.index_base;
-  out.uv = soup.uv;
+  PolygonSoup out = soup;  // the vertices and the file's numbering; the faces are written anew below
+  out.face_offsets = {0};
+  out.face_vertices.clear();
+  out.face_uv.clear();
+  out.face_lines.clear();
   const bool uv = soup.has_uv();
   for (std::size_t f = 0; f < soup.num_faces(); ++f) {
     const std::int64_t* c = soup.face_begin(f);

@@ -7,7 +7,9 @@
 #include <cstring>
 #include <limits>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "common/errors.h"
 #include "io/read_mesh.h"
@@ -18,6 +20,9 @@ namespace quadcover {
 namespace {
 
 enum class PlyType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64 };
+/// The C++ type of each PlyType, in the enum's order.
+using PlyCppTypes = std::tuple<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t, std::uint32_t,
+                               std::int64_t, std::uint64_t, float, double>;
 
 bool parse_type(std::string_view s, PlyType& t) {
   static constexpr std::pair<std::string_view, PlyType> kNames[] = {
@@ -100,33 +105,17 @@ class BinaryCursor {
     return value;
   }
 
-  /// Reads one value of type t and hands it to f in its own C++ type (the one switch over the PLY types).
+  /// Reads one value of type t and hands it to f in its own C++ type (PlyCppTypes, in PlyType's order).
   template <class F>
   auto read_as(PlyType t, F&& f) {
     need(type_size(t));
-    switch (t) {
-      case PlyType::Int8:
-        return f(raw<std::int8_t>());
-      case PlyType::UInt8:
-        return f(raw<std::uint8_t>());
-      case PlyType::Int16:
-        return f(raw<std::int16_t>());
-      case PlyType::UInt16:
-        return f(raw<std::uint16_t>());
-      case PlyType::Int32:
-        return f(raw<std::int32_t>());
-      case PlyType::UInt32:
-        return f(raw<std::uint32_t>());
-      case PlyType::Int64:
-        return f(raw<std::int64_t>());
-      case PlyType::UInt64:
-        return f(raw<std::uint64_t>());
-      case PlyType::Float32:
-        return f(raw<float>());
-      case PlyType::Float64:
-        return f(raw<double>());
-    }
-    return f(std::uint8_t{0});  // not reached: every PlyType is listed
+    return read_as(static_cast<std::size_t>(t), f, std::make_index_sequence<std::tuple_size_v<PlyCppTypes>>{});
+  }
+  template <class F, std::size_t... I>
+  auto read_as(std::size_t t, F& f, std::index_sequence<I...>) {
+    decltype(f(std::uint8_t{0})) value{};
+    ((t == I && (value = f(raw<std::tuple_element_t<I, PlyCppTypes>>()), true)) || ...);
+    return value;
   }
 
   double as_double(PlyType t) {

@@ -14,40 +14,27 @@ nlohmann::json map_json(const M& m) {
 }
 }  // namespace
 
+// The scalars under their own names; the histograms, the maps and the topology are added by to_json below.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParamQuality, scale, arap, arap_max, arap_p95, flipped_triangles,
+                                   collapsed_triangles, non_positive_triangles, uv_area, energy_curl, energy_harmonic,
+                                   branch_points, max_transition_error, max_translation_defect,
+                                   max_branch_point_offset)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(QuadQuality, vertices, faces, quads, non_quads, mean_edge_length, rsd_edge_length,
+                                   mean_corner_angle, rsd_corner_angle, irregular_vertices, boundary_vertices,
+                                   irregular_boundary_vertices)
+
 nlohmann::json to_json(const ParamQuality& q) {
-  return {{"scale", q.scale},
-          {"arap", q.arap},
-          {"arap_max", q.arap_max},
-          {"arap_p95", q.arap_p95},
-          {"arap_histogram", {{"upper_bounds", q.arap_bins}, {"counts", q.arap_histogram}}},
-          {"flipped_triangles", q.flipped_triangles},
-          {"degenerate_triangles", q.collapsed_triangles},
-          {"collapsed_triangles", q.collapsed_triangles},
-          {"non_positive_triangles", q.non_positive_triangles},
-          {"uv_area", q.uv_area},
-          {"energy_curl", q.energy_curl},
-          {"energy_harmonic", q.energy_harmonic},
-          {"branch_points", q.branch_points},
-          {"branch_points_by_index", map_json(q.branch_points_by_index)},
-          {"max_transition_error", q.max_transition_error},
-          {"max_translation_defect", q.max_translation_defect},
-          {"max_branch_point_offset", q.max_branch_point_offset}};
+  nlohmann::json j = q;
+  j["arap_histogram"] = {{"upper_bounds", q.arap_bins}, {"counts", q.arap_histogram}};
+  j["degenerate_triangles"] = q.collapsed_triangles;  // the older name of the collapsed count
+  j["branch_points_by_index"] = map_json(q.branch_points_by_index);
+  return j;
 }
 
 nlohmann::json to_json(const QuadQuality& q) {
-  nlohmann::json j = {{"vertices", q.vertices},
-                      {"faces", q.faces},
-                      {"quads", q.quads},
-                      {"non_quads", q.non_quads},
-                      {"face_sizes", map_json(q.face_sizes)},
-                      {"mean_edge_length", q.mean_edge_length},
-                      {"rsd_edge_length", q.rsd_edge_length},
-                      {"mean_corner_angle", q.mean_corner_angle},
-                      {"rsd_corner_angle", q.rsd_corner_angle},
-                      {"valence_histogram", map_json(q.valence_histogram)},
-                      {"irregular_vertices", q.irregular_vertices},
-                      {"boundary_vertices", q.boundary_vertices},
-                      {"irregular_boundary_vertices", q.irregular_boundary_vertices}};
+  nlohmann::json j = q;
+  j["face_sizes"] = map_json(q.face_sizes);
+  j["valence_histogram"] = map_json(q.valence_histogram);
   const nlohmann::json topology = to_json(q.topology);  // mesh/surface_counts.h
   for (const char* key : {"manifold", "oriented", "closed", "components", "boundary_loops", "genus",
                           "euler_characteristic", "boundary_edges", "non_manifold_edges", "non_manifold_vertices"})
@@ -160,27 +147,24 @@ nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const
           {"max_displacement", r.max_displacement}};
 }
 
+// The counters of the untangling and the stiffening under their own names; their prices under the thesis-style
+// symbols (E_U, E_K) the reports have always used.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Parameterization::Untangling, iterations, polish_iterations, non_positive_before,
+                                   non_positive_after, stuck_faces, unresolved_faces, released_vertices,
+                                   rewound_vertices, min_det)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Parameterization::Stiffening, iterations, kept_iteration, flipped_before,
+                                   flipped_after)
+
 nlohmann::json untangling_to_json(const Parameterization& p) {
-  const auto& u = p.untangling;
-  return {{"iterations", u.iterations},
-          {"polish_iterations", u.polish_iterations},
-          {"non_positive_before", u.non_positive_before},
-          {"non_positive_after", u.non_positive_after},
-          {"stuck_faces", u.stuck_faces},
-          {"unresolved_faces", u.unresolved_faces},
-          {"released_vertices", u.released_vertices},
-          {"rewound_vertices", u.rewound_vertices},
-          {"min_det", u.min_det},
-          {"E_U", u.energy}};
+  nlohmann::json j = p.untangling;
+  j["E_U"] = p.untangling.energy;
+  return j;
 }
 
 nlohmann::json stiffening_to_json(const Parameterization& p) {
-  const auto& s = p.stiffening;
-  return {{"iterations", s.iterations},
-          {"kept_iteration", s.kept_iteration},
-          {"flipped_before", s.flipped_before},
-          {"flipped_after", s.flipped_after},
-          {"E_K", s.energy}};
+  nlohmann::json j = p.stiffening;
+  j["E_K"] = p.stiffening.energy;
+  return j;
 }
 
 }  // namespace quadcover

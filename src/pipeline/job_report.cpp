@@ -14,6 +14,10 @@
 
 namespace quadcover {
 
+// (Outside the anonymous namespace: nlohmann finds it by argument-dependent lookup.)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FoldRefinementReport, rounds, kept_rounds, split_edges, added_faces,
+                                   non_positive_before, non_positive_after, untangle_iterations, seconds)
+
 namespace {
 
 nlohmann::json mesh_json(const Mesh& mesh) {
@@ -107,17 +111,11 @@ nlohmann::json refinement_json(const Mesh& input, const ParamJob& job) {
           {"split", split}};
 }
 
-/// What the fold refinement did (pipeline/fold_refinement.h).
+/// What the fold refinement did (pipeline/fold_refinement.h), its price E_F under that name.
 nlohmann::json fold_refinement_json(const FoldRefinementReport& f) {
-  return {{"rounds", f.rounds},
-          {"kept_rounds", f.kept_rounds},
-          {"split_edges", f.split_edges},
-          {"added_faces", f.added_faces},
-          {"non_positive_before", f.non_positive_before},
-          {"non_positive_after", f.non_positive_after},
-          {"untangle_iterations", f.untangle_iterations},
-          {"E_F", f.energy},
-          {"seconds", f.seconds}};
+  nlohmann::json j = f;
+  j["E_F"] = f.energy;
+  return j;
 }
 
 /// The validity retries (pipeline/validity_retries.h): every attempt's density and validity, and the one kept.
