@@ -34,8 +34,10 @@ def strip(src):
         else: out.append(c); i+=1
     return ''.join(out)
 CONTAINER=re.compile(r'^\s*(template\s*<.*>\s*)?(class|struct|union|enum|namespace|extern)\b',re.S)
+# A macro invocation standing alone (NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(...)) ends a statement without a ';'.
+MACRO_CALL=re.compile(r'^[ \t]*[A-Z][A-Z0-9_]*\([^;{}]*?\)[ \t]*$',re.M|re.S)
 def funcs(path):
-    s=strip(open(path).read()); res=[]
+    s=MACRO_CALL.sub(lambda m: re.sub(r'[^\n]',' ',m.group(0)), strip(open(path).read())); res=[]
     i=0;n=len(s);stmt_start=0
     def match(i):
         d=0
