@@ -55,8 +55,7 @@ std::unique_ptr<BenchMesh> load(const std::string& path) {
   b->field = compute_frame_field_detailed(b->mesh);
   b->smoother = std::make_unique<FrameSmoother>(b->mesh, b->field.field, b->field.stability, b->field.trusted,
                                                 b->field.constrained, FieldOptions{}.lambda);
-  b->energy = std::make_unique<CurlEnergy>(
-      b->mesh, *b->smoother, SmoothingWeights{FieldOptions{}.lambda, b->field.stability, b->field.trusted});
+  b->energy = std::make_unique<CurlEnergy>(b->mesh, *b->smoother);
   for (int e = 0; e < b->mesh.num_edges(); ++e)
     if (!b->mesh.is_boundary_edge(e)) b->edges.push_back(e);
   return b;
@@ -233,8 +232,7 @@ void BM_OptimizedPipeline(benchmark::State& state, std::string path) {
 // How far the re-smoothing Δα = A⁻¹Δb of one matching change reaches (5.4): relative error of the patch solution
 // (Dirichlet 0 outside `rings` face rings) against the full solve, per ring count, mean and max over 20 edges.
 void print_decay(BenchMesh& b) {
-  const SmoothingSystem A(b.mesh, *b.smoother,
-                          SmoothingWeights{FieldOptions{}.lambda, b.field.stability, b.field.trusted});
+  const SmoothingSystem A(b.mesh, *b.smoother);
   std::mt19937 rng(3);
   LocalSmoothingWork w;
   std::printf("%s: rings, patch faces, mean / max relative error of Δα_P\n", b.name.c_str());

@@ -28,8 +28,8 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const FrameField& input, const Ei
 namespace {
 
 // Alignment weights a_t = ω_t A_t on the trusted faces, normalized by their mean over them.
-Eigen::VectorXd alignment_weights(const Mesh& mesh, const Eigen::VectorXd& stability,
-                                  const std::vector<char>& trusted) {
+Eigen::VectorXd trusted_alignment_weights(const Mesh& mesh, const Eigen::VectorXd& stability,
+                                          const std::vector<char>& trusted) {
   const int nf = mesh.num_faces();
   Eigen::VectorXd align = Eigen::VectorXd::Zero(nf);
   double sum = 0;
@@ -116,7 +116,7 @@ FrameSmoother::FrameSmoother(const Mesh& mesh, const Eigen::VectorXd& stability,
       (!fixed.empty() && fixed.size() != static_cast<std::size_t>(nf)))
     throw std::invalid_argument("FrameSmoother: input sizes do not match the mesh");
   omega_ = smoothing_edge_weights(mesh);
-  align_ = alignment_weights(mesh, stability, trusted);
+  align_ = trusted_alignment_weights(mesh, stability, trusted);
   beta_ = Eigen::VectorXd::Zero(nf);
   fixed_.assign(static_cast<std::size_t>(nf), 0);
   for (std::size_t t = 0; t < fixed.size(); ++t) fixed_[t] = fixed[t];
@@ -175,6 +175,15 @@ Eigen::VectorXd FrameSmoother::solve() const {
   const Eigen::VectorXd x = solver_->cholesky.solve(b_);
   for (std::size_t i = 0; i < unknowns_.size(); ++i) alpha[unknowns_[i]] = x[static_cast<Eigen::Index>(i)];
   return alpha;
+}
+
+Eigen::VectorXd FrameSmoother::solve_system(const Eigen::VectorXd& r) const {
+  Eigen::VectorXd rhs(num_unknowns()), x = Eigen::VectorXd::Zero(r.size());
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) rhs[static_cast<Eigen::Index>(i)] = r[unknowns_[i]];
+  if (unknowns_.empty()) return x;
+  const Eigen::VectorXd y = solver_->cholesky.solve(rhs);
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) x[unknowns_[i]] = y[static_cast<Eigen::Index>(i)];
+  return x;
 }
 
 FrameField FrameSmoother::rotated(const Eigen::VectorXd& alpha) const {

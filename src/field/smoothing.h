@@ -68,6 +68,14 @@ class FrameSmoother {
   const std::vector<char>& fixed_faces() const { return fixed_; }
   int num_unknowns() const { return static_cast<int>(unknowns_.size()); }  ///< \pre none
 
+  // The system A α = b of (5.4), for the optimizer's re-smoothing (optimize/local_smoothing.h).
+  double lambda() const { return lambda_; }  ///< λ of (5.3) \pre none
+  const Eigen::VectorXd& edge_weights() const { return omega_; }  ///< ω_e, #E \pre none
+  const Eigen::VectorXd& alignment_weights() const { return align_; }  ///< a_t, #F (0 off the trusted faces) \pre none
+  /// x = A⁻¹ r with the factorization of A: r and x per face (#F), 0 at the fixed faces.
+  /// \pre r has #F entries. \throw NumericalError if the solve fails.
+  Eigen::VectorXd solve_system(const Eigen::VectorXd& r) const;
+
  private:
   struct Solver;
   const Mesh* mesh_;

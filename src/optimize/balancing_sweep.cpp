@@ -10,7 +10,7 @@ std::vector<BalancingSweepRow> balancing_sweep(const Mesh& mesh, const FrameFiel
                                                const BalancingSweepOptions& options, ProgressSink& progress) {
   const OptimizeOptions& oo = options.optimize;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, oo.lambda);
-  CurlEnergy energy(mesh, smoother, SmoothingWeights{oo.lambda, field.stability, field.trusted}, oo.energy);
+  CurlEnergy energy(mesh, smoother, oo.energy);
   CurlReductionOptions ro = curl_reduction_options(oo);
   ro.allow_creation = options.allow_creation;  // with creation: the right end of Figure 6.5
   CurlReductionResult r = reduce_curl(mesh, energy, ro, progress);

@@ -44,16 +44,9 @@ struct CurlEnergy::Workspaces {
 };
 
 CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options)
-    : workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother), options_(options) {
+    : system_(mesh, smoother), workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother),
+      options_(options) {
   recompute_from_scratch();
-}
-
-CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
-                       const CurlEnergyOptions& options)
-    : workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother), options_(options) {
-  // The state (smoothing solve, 𝔏̄* factorization) and the estimates' system (5.4) are independent.
-  tbb::parallel_invoke([&] { recompute_from_scratch(); },
-                       [&] { system_ = std::make_unique<SmoothingSystem>(mesh, smoother, weights); });
 }
 
 CurlEnergy::~CurlEnergy() = default;
@@ -239,7 +232,6 @@ Eigen::VectorXd CurlEnergy::distortion_shares() const {
 // ∇_α E_D: E_D = bᴴ𝔏̄*⁻¹b, so ∂E_D/∂α_f = 2 Re(vᴴ ∂b/∂α_f) with v = 𝔏̄*⁻¹b; ∂/∂α_f of face f's term c_fk is
 // -i·c_fk (the term is linear in conj(X_f) = e^{-iα_f} conj(X⁰_f)). z = A⁻¹∇_α E_D (5.4).
 void CurlEnergy::prepare_estimates() {
-  if (!system_) throw std::logic_error("CurlEnergy::estimate needs the SmoothingWeights constructor");
   if (estimates_ready_) return;
   // Stale by fewer than estimate_refresh commits: the far-field correction of the screening estimates uses the
   // older ∇_α E_D and z (the local part of every estimate always uses the current factor and field).
@@ -251,14 +243,14 @@ void CurlEnergy::prepare_estimates() {
   const Eigen::VectorXcd& v = solution();
   grad_ = Eigen::VectorXd::Zero(mesh_->num_faces());
   for (int f = 0; f < mesh_->num_faces(); ++f) {
-    if (!system_->is_free(f)) continue;
+    if (!system_.is_free(f)) continue;
     const Complex X = std::polar(1.0, alpha_[f]) * X0_[f];
     double g = 0;
     for (int k = 0; k < 3; ++k)
       g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * term(f, k, X, mu_(f, k)));
     grad_[f] = 2 * g;
   }
-  adjoint_ = system_->solve(grad_);
+  adjoint_ = system_.solve(grad_);
   estimates_ready_ = true;
   commits_since_prepare_ = 0;
   timings_.prepare += seconds_since(t0);
@@ -290,7 +282,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
     for (auto& [e, v] : ws.theta_override)
       if (e == c.edge) theta = v;
     FaceEntry fe[2];
-    const int n = system_->rhs_change(c.edge, c.delta, theta, fe);  // Δb of (5.4), θ_e updated
+    const int n = system_.rhs_change(c.edge, c.delta, theta, fe);  // Δb of (5.4), θ_e updated
     ws.db_smooth.insert(ws.db_smooth.end(), fe, fe + n);
     // Star change of 𝔏̄* one edge at a time with the layers as changed so far (6.2.1).
     ok = ok && ws.trial.add_star_change(factor_, star_change(c.edge, m + c.delta, layer));
@@ -305,7 +297,7 @@ double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWor
   if (!ok) return std::numeric_limits<double>::infinity();
   t0 = Clock::now();
   // Local re-smoothing Δα_P (SmoothingSystem::solve_local).
-  system_->solve_local(ws.db_smooth, rings, options_.local_tolerance, ws.smoothing);
+  system_.solve_local(ws.db_smooth, rings, options_.local_tolerance, ws.smoothing);
   ws.timings.smoothing += seconds_since(t0);
   t0 = Clock::now();
   // Δ(-curl*X) on the edges of the faces whose angle or layers changed: a sparse right-hand side change.

@@ -71,12 +71,9 @@ class CurlEnergy {
   /// Factors 𝔏̄* of the smoother's current matching and evaluates E_D of the re-smoothed field.
   /// Keeps pointers to mesh and smoother, which must outlive this object; the smoother's matching is changed by
   /// commit() only (evaluate() restores it).
+  /// The estimates re-smooth with the smoother's own matrix (5.4) (SmoothingSystem).
   /// \throw NumericalError if 𝔏̄* cannot be factored.
   CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options = {});
-  /// As above, plus the data of the smoother's matrix (5.4) (λ, stability, trusted), which enables estimate().
-  /// \throw std::invalid_argument if the weights' sizes do not match the mesh; NumericalError if 𝔏̄* or A cannot be factored.
-  CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const SmoothingWeights& weights,
-             const CurlEnergyOptions& options = {});
   ~CurlEnergy();
   CurlEnergy(CurlEnergy&&) noexcept;
 
@@ -86,12 +83,9 @@ class CurlEnergy {
   /// \return +infinity if an update lost positive definiteness (never expected for valid matchings).
   /// \pre every change names an edge of the mesh (boundary edges and delta 0 are skipped). \throw NumericalError if the smoothing solve fails.
   double evaluate(std::span<const MatchingChange> changes);
-  /// True if constructed with SmoothingWeights (estimate() available). \pre none
-  bool can_estimate() const { return system_ != nullptr; }
   /// Computes ∇_α E_D and the adjoint z of the current state (one back substitution with 𝔏̄*, one solve with A);
   /// needed after every commit before estimate(ws). No-op if current or if fewer than
-  /// CurlEnergyOptions::estimate_refresh commits happened since the last computation (stale far field). \throw
-  /// std::logic_error without SmoothingWeights.
+  /// CurlEnergyOptions::estimate_refresh commits happened since the last computation (stale far field).
   void prepare_estimates();
   /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
   /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
@@ -102,7 +96,7 @@ class CurlEnergy {
   const CurlEnergyOptions& options() const { return options_; }  ///< \pre none
   /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
   /// not depend on the thread count. Calls prepare_estimates().
-  /// \pre out.size() == candidates.size(). \throw std::logic_error without SmoothingWeights.
+  /// \pre out.size() == candidates.size().
   void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out, int threads = 0);
   /// Timings and sizes of all estimates so far (summed over the workspaces). \pre none
   CurlEnergyTimings estimate_timings() const;
@@ -133,7 +127,7 @@ class CurlEnergy {
   StarChange star_change(int e, int new_matching, Layer mu) const;
   Complex contribution(int f, int k, double alpha, int mu) const;
   Complex term(int f, int k, Complex rotated, int mu) const;
-  std::unique_ptr<SmoothingSystem> system_;
+  SmoothingSystem system_;
   Eigen::VectorXd grad_, adjoint_;  // ∇_α E_D and z = A⁻¹∇_α E_D of the current state (prepare_estimates)
   bool estimates_ready_ = false;
   int commits_since_prepare_ = 0;

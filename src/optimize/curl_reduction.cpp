@@ -118,7 +118,7 @@ class Reducer {
   void undo_indices(const Path& path) {
     for (const auto& c : path) q_[mesh_.E()(c.edge, 0)] -= c.delta, q_[mesh_.E()(c.edge, 1)] += c.delta;
   }
-  bool estimating() const { return opt_.local_estimates && ed_.can_estimate(); }
+  bool estimating() const { return opt_.local_estimates; }
   // Exact E_D after `path` (full re-smoothing, CurlEnergy::evaluate): the value a commit is based on.
   double evaluate_exact(const Path& path) {
     ++res_.exact_evaluations;

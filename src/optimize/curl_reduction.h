@@ -29,9 +29,9 @@ struct CurlReductionOptions {
   /// Stop after this many E_D evaluations (0 = unlimited) or seconds (0 = unlimited), with the best state so far.
   long max_evaluations = 0;
   double time_limit_seconds = 0;
-  /// Screen candidates with CurlEnergy::estimate() (local re-smoothing, reach-limited solve; needs the
-  /// SmoothingWeights constructor) and evaluate exactly only the promising ones before accepting. Off or without
-  /// weights: every candidate is evaluated exactly (thesis). Either way E_D never increases over accepted moves.
+  /// Screen candidates with CurlEnergy::estimate() (local re-smoothing, reach-limited solve) and evaluate exactly
+  /// only the promising ones before accepting. Off: every candidate is evaluated exactly (thesis). Either way E_D
+  /// never increases over accepted moves.
   bool local_estimates = true;
   /// A cancellation path (Step 1) is evaluated exactly when its estimate is below E_D·(1 + path_screening_margin):
   /// paths move several edges and their estimates err more (on eight_genus2 an improving cancellation of -1.6%

@@ -5,61 +5,25 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "calculus/sparse_cholesky.h"
 #include "field/matching.h"
 
 namespace quadcover {
 
-struct SmoothingSystem::Factor {
-  SparseCholesky<double> cholesky;
-};
-
-SmoothingSystem::~SmoothingSystem() = default;
-SmoothingSystem::SmoothingSystem(SmoothingSystem&&) noexcept = default;
-SmoothingSystem& SmoothingSystem::operator=(SmoothingSystem&&) noexcept = default;
-
-SmoothingSystem::SmoothingSystem(const Mesh& mesh, const FrameSmoother& smoother, const SmoothingWeights& w)
-    : mesh_(&mesh), lambda_(w.lambda), fixed_(smoother.fixed_faces()) {
-  const int nf = mesh.num_faces(), ne = mesh.num_edges();
-  if (w.stability.size() != nf || w.trusted.size() != static_cast<std::size_t>(nf) ||
-      fixed_.size() != static_cast<std::size_t>(nf))
-    throw std::invalid_argument("SmoothingSystem: sizes do not match the mesh");
-  omega_ = smoothing_edge_weights(mesh);
-  // a_t = ω_t^stable A_t normalized by its mean over the trusted faces (field/smoothing.h).
-  Eigen::VectorXd align = Eigen::VectorXd::Zero(nf);
-  double sum = 0;
-  int count = 0;
-  for (int t = 0; t < nf; ++t)
-    if (w.trusted[static_cast<std::size_t>(t)])
-      align[t] = w.stability[t] * mesh.face_areas()[t], sum += align[t], ++count;
-  if (sum > 0) align *= count / sum;
-  unknown_of_face_.assign(static_cast<std::size_t>(nf), -1);
-  for (int t = 0; t < nf; ++t)
-    if (!fixed_[static_cast<std::size_t>(t)]) {
-      unknown_of_face_[static_cast<std::size_t>(t)] = static_cast<int>(unknowns_.size());
-      unknowns_.push_back(t);
-    }
-  // A (5.4): λ Σ_e ω_e (e_s - e_t)(e_s - e_t)ᵀ + (1-λ) diag(a), restricted to the free faces.
+SmoothingSystem::SmoothingSystem(const Mesh& mesh, const FrameSmoother& smoother)
+    : mesh_(&mesh), smoother_(&smoother), lambda_(smoother.lambda()), omega_(smoother.edge_weights()),
+      fixed_(smoother.fixed_faces()) {
+  const int nf = mesh.num_faces();
+  if (fixed_.size() != static_cast<std::size_t>(nf) || omega_.size() != mesh.num_edges())
+    throw std::invalid_argument("SmoothingSystem: the smoother does not match the mesh");
+  // A_tt (5.4): λ Σ_e ω_e over the interior edges of t + (1-λ) a_t, at the free faces.
   diag_ = Eigen::VectorXd::Zero(nf);
-  std::vector<Eigen::Triplet<double>> t;
   for (int f = 0; f < nf; ++f)
-    if (!fixed_[static_cast<std::size_t>(f)]) diag_[f] = (1 - lambda_) * align[f];
-  for (int e = 0; e < ne; ++e) {
+    if (is_free(f)) diag_[f] = (1 - lambda_) * smoother.alignment_weights()[f];
+  for (int e = 0; e < mesh.num_edges(); ++e) {
     if (mesh.is_boundary_edge(e)) continue;
-    const int s = mesh.EF()(e, 0), u = mesh.EF()(e, 1);
-    const double we = lambda_ * omega_[e];
-    if (!fixed_[static_cast<std::size_t>(s)]) diag_[s] += we;
-    if (!fixed_[static_cast<std::size_t>(u)]) diag_[u] += we;
-    const int is = unknown_of_face_[static_cast<std::size_t>(s)], iu = unknown_of_face_[static_cast<std::size_t>(u)];
-    if (is >= 0 && iu >= 0) t.emplace_back(is, iu, -we), t.emplace_back(iu, is, -we);
+    for (const int f : {mesh.EF()(e, 0), mesh.EF()(e, 1)})
+      if (is_free(f)) diag_[f] += lambda_ * omega_[e];
   }
-  for (std::size_t i = 0; i < unknowns_.size(); ++i)
-    t.emplace_back(static_cast<int>(i), static_cast<int>(i), diag_[unknowns_[i]]);
-  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(unknowns_.size()),
-                                static_cast<Eigen::Index>(unknowns_.size()));
-  A.setFromTriplets(t.begin(), t.end());
-  factor_ = std::make_unique<Factor>();
-  factor_->cholesky.compute(A, "optimizer smoothing system (5.4)");
 }
 
 int SmoothingSystem::rhs_change(int e, int k, double& theta, FaceEntry out[2]) const {
@@ -74,18 +38,12 @@ int SmoothingSystem::rhs_change(int e, int k, double& theta, FaceEntry out[2]) c
   return n;
 }
 
-Eigen::VectorXd SmoothingSystem::solve(const Eigen::VectorXd& rhs) const {
-  Eigen::VectorXd r(static_cast<Eigen::Index>(unknowns_.size())), out = Eigen::VectorXd::Zero(rhs.size());
-  for (std::size_t i = 0; i < unknowns_.size(); ++i) r[static_cast<Eigen::Index>(i)] = rhs[unknowns_[i]];
-  if (unknowns_.empty()) return out;
-  const Eigen::VectorXd x = factor_->cholesky.solve(r);
-  for (std::size_t i = 0; i < unknowns_.size(); ++i) out[unknowns_[i]] = x[static_cast<Eigen::Index>(i)];
-  return out;
-}
+Eigen::VectorXd SmoothingSystem::solve(const Eigen::VectorXd& rhs) const { return smoother_->solve_system(rhs); }
 
 Eigen::VectorXd SmoothingSystem::multiply(const Eigen::VectorXd& x) const {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(x.size());
-  for (int f : unknowns_) {
+  for (int f = 0; f < mesh_->num_faces(); ++f) {
+    if (!is_free(f)) continue;
     double s = diag_[f] * x[f];
     for (int k = 0; k < 3; ++k) {
       const int g = mesh_->neighbor(f, k);

@@ -8,7 +8,6 @@
 // of the changed edges (zero outside P, conjugate gradients); the far field is accounted for to first order by
 // the caller with an adjoint vector z = A⁻¹ g (CurlEnergy).
 #include <Eigen/Core>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -17,14 +16,6 @@
 
 namespace quadcover {
 
-/// What the FrameSmoother was built from, needed to assemble its matrix A (5.4) (the smoother keeps A private).
-struct SmoothingWeights {
-  double lambda = 0.5;        ///< λ of (5.3)
-  Eigen::VectorXd stability;  ///< #F, ω_t^stable (5.2)
-  std::vector<char> trusted;  ///< #F, faces of E_A
-};
-
-/// One face-local right-hand side entry Δb_t.
 struct FaceEntry {
   int face;
   double value;
@@ -40,18 +31,15 @@ struct LocalSmoothingWork {
 
 class SmoothingSystem {
  public:
-  /// Assembles A (5.4) with the normalized alignment weights of field/smoothing.h and the smoother's fixed faces.
-  /// \throw std::invalid_argument for wrong sizes; NumericalError if A cannot be factored.
-  SmoothingSystem(const Mesh& mesh, const FrameSmoother& smoother, const SmoothingWeights& weights);
-  ~SmoothingSystem();
-  SmoothingSystem(SmoothingSystem&&) noexcept;
-  SmoothingSystem& operator=(SmoothingSystem&&) noexcept;
+  /// The smoother's A (5.4): its weights, fixed faces and factorization (no copy of the matrix is assembled).
+  /// \pre smoother outlives this. \throw std::invalid_argument if the smoother was built for another mesh.
+  SmoothingSystem(const Mesh& mesh, const FrameSmoother& smoother);
 
   /// Δb of m_e += k given the current θ_e (5.2.2): {(s, -λω_e d), (t, +λω_e d)} for free s, t; θ_e is updated to
   /// the wrapped value so that repeated changes of one edge compose. \return number of entries written (0..2).
   /// \pre 0 <= e < #E
   int rhs_change(int e, int k, double& theta_e, FaceEntry out[2]) const;
-  /// Δα = A⁻¹ Δb on all faces (one factorization, two triangular solves); 0 at fixed faces.
+  /// Δα = A⁻¹ Δb on all faces (the smoother's factorization: two triangular solves); 0 at fixed faces.
   /// \pre rhs has #F entries. \throw NumericalError if the solve fails.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Δα on the patch of free faces within `rings` face-rings of the faces of `rhs` (Dirichlet 0 outside), by
@@ -64,12 +52,10 @@ class SmoothingSystem {
 
  private:
   const Mesh* mesh_;
+  const FrameSmoother* smoother_;  // its A (5.4) and factorization: solve()
   double lambda_;
   Eigen::VectorXd omega_, diag_;  // ω_e (#E), A_tt (#F, 0 at fixed faces)
   std::vector<char> fixed_;
-  std::vector<int> unknown_of_face_, unknowns_;
-  struct Factor;
-  std::unique_ptr<Factor> factor_;
 };
 
 }  // namespace quadcover

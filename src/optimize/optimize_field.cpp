@@ -42,7 +42,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   out.field = field.field;
   if (options.mode == OptimizeMode::None) return out;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
-  CurlEnergy energy(mesh, smoother, SmoothingWeights{options.lambda, field.stability, field.trusted}, options.energy);
+  CurlEnergy energy(mesh, smoother, options.energy);
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CurlReductionOptions ro = curl_reduction_options(options);
   const long budget =

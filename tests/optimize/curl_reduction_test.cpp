@@ -20,17 +20,14 @@ struct ReductionRun {
   std::unique_ptr<FrameSmoother> smoother;
   std::unique_ptr<CurlEnergy> energy;
   CurlReductionResult result;
-  // with_weights: CurlEnergy can estimate (local screening, the default path of optimize_field); otherwise every
-  // candidate is evaluated exactly as in the thesis.
-  ReductionRun(const char* name, const CurlReductionOptions& o, bool with_weights = true)
+  // screened: local screening (the default path of optimize_field); otherwise every candidate is evaluated
+  // exactly as in the thesis.
+  ReductionRun(const char* name, CurlReductionOptions o, bool screened = true)
       : mesh(testing::load_test_mesh(name)), field(compute_frame_field_detailed(mesh)) {
     smoother = std::make_unique<FrameSmoother>(mesh, field.field, field.stability, field.trusted, field.constrained,
                                                FieldOptions{}.lambda);
-    if (with_weights)
-      energy = std::make_unique<CurlEnergy>(mesh, *smoother,
-                                            SmoothingWeights{FieldOptions{}.lambda, field.stability, field.trusted});
-    else
-      energy = std::make_unique<CurlEnergy>(mesh, *smoother);
+    energy = std::make_unique<CurlEnergy>(mesh, *smoother);
+    o.local_estimates = o.local_estimates && screened;
     result = reduce_curl(mesh, *energy, o);
   }
 };
@@ -159,7 +156,7 @@ TEST(CurlReduction, NoTriangleGetsABranchPointAtEachCorner) {
   const FieldOptions fo = field_options(FieldStyle::Smooth);
   const FrameFieldResult field = compute_frame_field_detailed(mesh, fo);
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, fo.lambda);
-  CurlEnergy energy(mesh, smoother, SmoothingWeights{fo.lambda, field.stability, field.trusted});
+  CurlEnergy energy(mesh, smoother);
   CurlReductionOptions o;
   ASSERT_TRUE(o.separate_branch_points);
   const CurlReductionResult r = reduce_curl(mesh, energy, o);

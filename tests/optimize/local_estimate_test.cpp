@@ -1,4 +1,4 @@
-// Local evaluation of E_D (beyond thesis 6.2.1): the optimizer's copy of the smoothing matrix (5.4) reproduces the
+// Local evaluation of E_D (beyond thesis 6.2.1): the optimizer's view of the smoothing matrix (5.4) reproduces the
 // FrameSmoother's re-smoothing, the local estimate equals the exact evaluation when the patch is the whole mesh,
 // stays within a stated tolerance of it with the default patch, and batches do not depend on the thread count.
 #include <gtest/gtest.h>
@@ -17,12 +17,10 @@ struct FieldCase {
   Mesh mesh;
   FrameFieldResult field;
   FrameSmoother smoother;
-  SmoothingWeights weights;
   explicit FieldCase(const char* name)
       : mesh(testing::load_test_mesh(name)),
         field(compute_frame_field_detailed(mesh)),
-        smoother(mesh, field.field, field.stability, field.trusted, field.constrained, FieldOptions{}.lambda),
-        weights{FieldOptions{}.lambda, field.stability, field.trusted} {}
+        smoother(mesh, field.field, field.stability, field.trusted, field.constrained, FieldOptions{}.lambda) {}
 };
 
 std::vector<int> interior_edges(const Mesh& mesh) {
@@ -58,7 +56,7 @@ std::vector<std::vector<MatchingChange>> random_changes(const Mesh& mesh, int co
 // that covers the whole mesh.
 TEST(SmoothingSystem, ReproducesTheSmoothersReSmoothing) {
   FieldCase s("bunny_3k");
-  const SmoothingSystem A(s.mesh, s.smoother, s.weights);
+  const SmoothingSystem A(s.mesh, s.smoother);
   const Eigen::VectorXd alpha0 = s.smoother.solve();
   const Eigen::VectorXd residual = A.multiply(alpha0);
   EXPECT_GT(residual.norm(), 0);
@@ -90,7 +88,7 @@ TEST(LocalEstimate, EqualsExactEvaluationWhenThePatchIsTheWholeMesh) {
   CurlEnergyOptions o;
   o.local_rings = 1 << 20;
   o.local_tolerance = 1e-14;
-  CurlEnergy ed(s.mesh, s.smoother, s.weights, o);
+  CurlEnergy ed(s.mesh, s.smoother, o);
   ed.prepare_estimates();
   EstimateWorkspace ws;
   for (const auto& c : random_changes(s.mesh, 12, 5)) {
@@ -109,7 +107,7 @@ TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
     FieldCase s(name);
     CurlEnergyOptions first_order;
     first_order.local_rings = 0;
-    CurlEnergy ed(s.mesh, s.smoother, s.weights), ed0(s.mesh, s.smoother, s.weights, first_order);
+    CurlEnergy ed(s.mesh, s.smoother), ed0(s.mesh, s.smoother, first_order);
     ed.prepare_estimates(), ed0.prepare_estimates();
     const double e0 = ed.energy();
     EstimateWorkspace ws;
@@ -128,7 +126,7 @@ TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
 // estimate_batch is deterministic: 1 thread and 2 threads give bitwise identical values, equal to serial calls.
 TEST(LocalEstimate, BatchDoesNotDependOnTheThreadCount) {
   FieldCase s("bunny_3k");
-  CurlEnergy ed(s.mesh, s.smoother, s.weights);
+  CurlEnergy ed(s.mesh, s.smoother);
   const auto cands = random_changes(s.mesh, 64, 21);
   std::vector<double> one(cands.size()), two(cands.size());
   ed.estimate_batch(cands, one, 1);

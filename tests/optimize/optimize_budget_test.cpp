@@ -98,15 +98,14 @@ TEST(OptimizeBudget, ReportSaysWhetherTheRunConvergedOrStoppedOnTheBudget) {
 TEST(OptimizeBudget, StaleFarFieldRefreshesEveryFewCommitsAndAcceptedMovesStayExact) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   const FrameFieldResult field = compute_frame_field_detailed(mesh);
-  const SmoothingWeights w{FieldOptions{}.lambda, field.stability, field.trusted};
   CurlReductionOptions ro;
   ro.max_evaluations = 600;
   long prepares[2] = {0, 0}, accepted[2] = {0, 0};
   for (int refresh : {1, 8}) {
-    FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, w.lambda);
+    FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, FieldOptions{}.lambda);
     CurlEnergyOptions eo;
     eo.estimate_refresh = refresh;
-    CurlEnergy energy(mesh, smoother, w, eo);
+    CurlEnergy energy(mesh, smoother, eo);
     const CurlReductionResult r = reduce_curl(mesh, energy, ro);
     const int k = refresh == 1 ? 0 : 1;
     prepares[k] = energy.timings().prepares, accepted[k] = r.accepted;
