@@ -93,7 +93,7 @@ const Parameterization& bench_param(long target) {
   static std::map<long, Parameterization> params;
   if (!params.count(target)) {
     ParamOptions po;
-    po.target_quads = static_cast<int>(target);
+    po.density.target_quads = static_cast<int>(target);
     params[target] = parameterize(bench_mesh(), compute_frame_field(bench_mesh()), po);
   }
   return params[target];

@@ -43,8 +43,8 @@ void print_table() {
     for (int div : kDivisors) {
       ParamOptions o;
       o.lattice = Lattice::Unit;
-      o.align_curves = false;
-      o.target_quads = std::max(16, mesh.num_faces() / div);
+      o.alignment.enabled = false;
+      o.density.target_quads = std::max(16, mesh.num_faces() / div);
       std::vector<double> e(ns);
       double direct = 0;
       bool exact_done = false;
@@ -93,7 +93,7 @@ void BM_ParamRounding(benchmark::State& state, RoundingStrategy s) {
   static const Mesh mesh = load("bunny_20k_holes");
   static const FrameField field = compute_frame_field(mesh);
   ParamOptions o;
-  o.align_curves = false;
+  o.alignment.enabled = false;
   o.rounding.strategy = s;
   for (auto _ : state) benchmark::DoNotOptimize(parameterize(mesh, field, o).energy_harmonic);
 }

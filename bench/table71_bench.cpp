@@ -56,7 +56,7 @@ qc::RemeshJob pipeline(const qc::Mesh& mesh, const Setup& setup, int quads) {
   po.field_style = setup.field;
   po.optimize = setup.mode;
   po.max_evaluations = setup.max_evaluations;
-  po.param.target_quads = quads;
+  po.param.density.target_quads = quads;
   po.param.rounding.strategy = setup.rounding;
   po.smoothing.iterations = setup.smooth_rounds;
   return qc::remesh_mesh(mesh, po);
@@ -163,7 +163,7 @@ void print_table(const std::vector<Column>& cols) {
 void BM_Extract(benchmark::State& state) {
   const qc::Mesh mesh = load();
   qc::PipelineOptions po;  // the map of the library's parameterization job, then extraction alone is timed
-  po.param.target_quads = static_cast<int>(state.range(0));
+  po.param.density.target_quads = static_cast<int>(state.range(0));
   const qc::ParamJob job = qc::parameterize_mesh(mesh, po);
   int quads = 0;
   for (auto _ : state) {

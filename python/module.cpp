@@ -150,8 +150,8 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   if (a.quads > 0 && a.faces > 0 && a.quads != a.faces)
     throw InputError("faces/quads", 0, "give the target quad count once (faces= or its alias quads=)");
   PipelineOptions o;
-  o.param.edge_length = a.edge_length;
-  o.param.target_quads = a.faces > 0 ? a.faces : a.quads;
+  o.param.density.edge_length = a.edge_length;
+  o.param.density.target_quads = a.faces > 0 ? a.faces : a.quads;
   o.param.lattice = parse_lattice(a.lattice);
   o.param.rounding.strategy = parse_rounding_strategy(a.rounding);
   o.field_style = parse_field_style(a.field);
@@ -162,7 +162,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.stiffening.max_iterations = a.stiffening;
   o.param.relaxation.iterations = a.relaxation;
   o.param.features.sharp_angle_degrees = a.feature_angle;
-  o.param.align_curves = a.align_curves;
+  o.param.alignment.enabled = a.align_curves;
   o.fold_refinement_rounds = a.fold_refinement_rounds;
   o.validity_retries = a.validity_retries;
   validate(o);  // ValueError naming the keyword before any work

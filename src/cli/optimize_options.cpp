@@ -139,8 +139,8 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
     }
   };
   options.param.lattice = parse_lattice(cli.lattice);
-  options.param.edge_length = cli.edge_length;
-  options.param.target_quads = cli.quads;
+  options.param.density.edge_length = cli.edge_length;
+  options.param.density.target_quads = cli.quads;
   options.field_style = flag("--field", [&] { return parse_field_style(cli.field); });
   options.fill = parse_fill_option(cli.fill);
   options.optimize = flag("--optimize", [&] { return parse_optimize_mode(cli.optimize); });
@@ -155,7 +155,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
   options.param.features.sharp_angle_degrees = parse_feature_angle(cli.feature_angle);
-  options.param.align_curves = cli.align;
+  options.param.alignment.enabled = cli.align;
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

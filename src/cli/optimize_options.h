@@ -35,7 +35,7 @@ struct OptimizeCliOptions {
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
   std::string feature_angle = "35";  ///< sharp feature angle in degrees, or "off" (= 0), field/feature_alignment.h
-  bool align = true;                 ///< see ParamOptions::align_curves
+  bool align = true;                 ///< see ParamOptions::alignment
 };
 
 /// --fill as FieldOptions::fill. \throw InputError naming --fill for another word.

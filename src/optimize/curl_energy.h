@@ -86,6 +86,7 @@ class CurlEnergy {
   /// Computes ∇_α E_D and the adjoint z of the current state (one back substitution with 𝔏̄*, one solve with A);
   /// needed after every commit before estimate(ws). No-op if current or if fewer than
   /// CurlEnergyOptions::estimate_refresh commits happened since the last computation (stale far field).
+  /// \throw NumericalError if a solve fails.
   void prepare_estimates();
   /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
   /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.

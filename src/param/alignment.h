@@ -42,6 +42,17 @@ struct CurveLimits {
   double max_spread = std::numeric_limits<double>::infinity();  ///< max − min of the coordinate along the line
 };
 
+/// Which curves are put on integer iso-lines (ParamOptions::alignment): boundary edges and the sharp edges of the
+/// features, where the field is aligned with them.
+struct CurveAlignmentOptions {
+  bool enabled = true;
+  /// A curve edge counts as aligned when a frame vector is within this angle of it.
+  double tolerance_degrees = 2.0;
+  /// Straightening a line wigglier than max_spread bends the map around it (BENCHMARKS.md, "Option defaults");
+  /// pinning crease fragments shorter than min_length costs distortion and folds for no visible gain.
+  CurveLimits limits{.max_shift = 0.35, .min_length = 3.0, .max_spread = 1.0};
+};
+
 /// The alignment constraints of one map (which real component of u is fixed where, and to what), built once from the
 /// unconstrained solution u0, then solved with any matrix of 𝔏̄'s pattern (e.g. the weighted 𝔏̄_w of local
 /// stiffening, param/stiffening.h): the first solve analyses the real system, later ones only refactorize.

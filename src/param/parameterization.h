@@ -60,7 +60,7 @@ struct Parameterization {
   /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration
   /// (|two endpoint estimates of a translation| on the curl-free field): diagnostics, round-off sized.
   double max_translation_residual = 0, integration_mismatch = 0;
-  /// Boundary / feature curves put on integer iso-lines (ParamOptions::align_curves), each with its largest
+  /// Boundary / feature curves put on integer iso-lines (ParamOptions::alignment), each with its largest
   /// deviation; and the number of lines left free because they close on themselves inconsistently.
   struct Curve {
     std::vector<int> edges;

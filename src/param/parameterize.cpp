@@ -138,22 +138,6 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
 
 }  // namespace
 
-double target_edge_length(const Mesh& mesh, const ParamOptions& options, int branch_points) {
-  if (options.edge_length < 0 || options.target_quads < 0)
-    throw InputError("", 0, "the edge length and the number of quads must be positive");
-  if (options.edge_length > 0) return options.edge_length;
-  if (options.target_quads > 0) return std::sqrt(mesh.total_area() / options.target_quads);
-  double h = options.default_edge_factor * mesh.mean_edge_length();
-  if (options.min_quads_per_branch_point > 0 && branch_points > 0)
-    h = std::min(h, std::sqrt(mesh.total_area() / (options.min_quads_per_branch_point * branch_points)));
-  return h;
-}
-
-void fix_default_density(const Mesh& mesh, const FrameField& field, ParamOptions& options) {
-  if (options.edge_length > 0 || options.target_quads > 0) return;
-  options.edge_length = target_edge_length(mesh, options, static_cast<int>(branch_points(mesh, field).size()));
-}
-
 /// The steps of parameterize() that report progress (its calls of lap()).
 constexpr double kParamSteps = 11;
 
@@ -211,7 +195,7 @@ FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverC
   for (int f = 0; f < nf; ++f) rms += mesh.face_areas()[f] * 0.5 * (std::norm(field.X[f]) + std::norm(field.Y[f]));
   rms = std::sqrt(rms / mesh.total_area());
   if (!(rms > 0) || !std::isfinite(rms)) throw InputError("", 0, "parameterize: the frame field is zero or not finite");
-  P.edge_length = target_edge_length(mesh, options, static_cast<int>(P.branch_points.size()));
+  P.edge_length = target_edge_length(mesh, options.density, static_cast<int>(P.branch_points.size()));
   P.scale = 1.0 / (P.edge_length * rms);
   FramePairs Z(nf, 2);
   for (int f = 0; f < nf; ++f) {
@@ -316,13 +300,13 @@ double correction_energy(const Mesh& mesh, const HarmonicCorrection& correction,
 void align_curves(const Mesh& mesh, const CoverCut& cc, const FramePairs& Z, const HarmonicCorrection& correction,
                   const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u_free, const ParamOptions& options,
                   std::optional<AlignedCorrection>& aligned) {
-  if (!options.align_curves) return;
+  if (!options.alignment.enabled) return;
   const FeatureConstraints features = feature_constraints(mesh, options.features);
   const std::vector<CurveSlot> slots =
-      aligned_curve_slots(mesh, Z, features.feature_edges, options.align_tolerance_degrees);
+      aligned_curve_slots(mesh, Z, features.feature_edges, options.alignment.tolerance_degrees);
   if (!slots.empty())
     aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
-                    CurveLimits{options.align_max_shift, options.align_min_length, options.align_max_spread});
+                    options.alignment.limits);
 }
 
 /// The inputs of the refinements of the harmonic correction u (beyond the thesis).

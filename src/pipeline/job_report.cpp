@@ -33,7 +33,7 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"max_iterations", o.max_evaluations},         {"keep_better", o.keep_better},
           {"lattice", to_string(o.param.lattice)},       {"rounding", to_string(o.param.rounding.strategy)},
           {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
-          {"align_curves", o.param.align_curves},        {"smooth_quads", o.smoothing.iterations},
+          {"align_curves", o.param.alignment.enabled},        {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
           {"merge_coincident_cones", o.merge_coincident_cones}, {"move_wound_cones", o.move_wound_cones},
           {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries},

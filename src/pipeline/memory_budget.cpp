@@ -10,9 +10,9 @@
 namespace quadcover {
 
 double requested_quads(const Mesh& mesh, const ParamOptions& options) {
-  if (options.target_quads > 0) return options.target_quads;
+  if (options.density.target_quads > 0) return options.density.target_quads;
   const double h =
-      options.edge_length > 0 ? options.edge_length : options.default_edge_factor * mesh.mean_edge_length();
+      options.density.edge_length > 0 ? options.density.edge_length : options.density.default_edge_factor * mesh.mean_edge_length();
   return h > 0 ? mesh.total_area() / (h * h) : 0;
 }
 

@@ -143,10 +143,10 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t cu
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
   ParamOptions& param = job.options.param;
   DensityReport d;
-  d.target_quads = param.target_quads;
+  d.target_quads = param.density.target_quads;
   d.quads = d.first_quads = parameter_area(mesh, job.map.uv);
-  if (param.target_quads <= 0 || d.first_quads <= 0) return d;
-  const double target = param.target_quads;
+  if (param.density.target_quads <= 0 || d.first_quads <= 0) return d;
+  const double target = param.density.target_quads;
   StageMeter meter;
   // Quad count ≈ c / h²: re-solve the kept field (field and matching stay) at the h this predicts, interpolating in
   // log h between the closest tries below and above N once both exist (the periods round to the lattice, so the
@@ -162,8 +162,8 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
     } else {
       h *= std::sqrt(count / target);
     }
-    param.edge_length = h;
-    param.target_quads = 0;
+    param.density.edge_length = h;
+    param.density.target_quads = 0;
     Parameterization map = parameterize(mesh, job.field, param, progress);
     count = parameter_area(mesh, map.uv);
     note(h, count);
@@ -174,7 +174,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
     }
     if (progress.skip_improvements()) break;
   }
-  param.edge_length = job.map.edge_length;
+  param.density.edge_length = job.map.edge_length;
   note_cut_short(progress, std::abs(d.quads / target - 1) > kDensityTolerance && d.resolves < kDensityResolves, job,
                  "density re-solves");
   if (d.resolves > 0) lap(meter, job, "density");
@@ -223,7 +223,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.options = options;
   ParamOptions& param = job.options.param;
   StageMeter meter;
-  if (options.refine_curve_triangles && param.align_curves) {
+  if (options.refine_curve_triangles && param.alignment.enabled) {
     job.refinement = refine_for_curves(input, param.features);
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
@@ -231,7 +231,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   lap(meter, job, "field");
-  fix_default_density(mesh, field.field, param);  // one scale for the optimization, keep-better and the map
+  fix_default_density(mesh, field.field, param.density);  // one scale for the optimization, keep-better and the map
   OptimizeOptions oo = optimize_stage_options(options, param);
   const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
   const std::string mode = to_string(options.optimize);

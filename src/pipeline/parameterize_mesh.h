@@ -18,7 +18,7 @@
 
 namespace quadcover {
 
-/// How the job met a requested quad count N (ParamOptions::target_quads): h = sqrt(area / N) gives a map whose
+/// How the job met a requested quad count N (DensityOptions::target_quads): h = sqrt(area / N) gives a map whose
 /// quad count Σ|area(φ(t))| is off by the field's non-uniform scale; while the count is off by more than
 /// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
 /// above N), at most kDensityResolves times, keeping the closest.

@@ -8,9 +8,9 @@ namespace quadcover {
 
 void validate(const PipelineOptions& o) {
   const ParamOptions& p = o.param;
-  if (p.edge_length < 0) throw InputError("edge_length", 0, "must be > 0 (0 = default density)");
-  if (p.target_quads < 0) throw InputError("quads", 0, "must be > 0 (0 = default density)");
-  if (p.edge_length > 0 && p.target_quads > 0)
+  if (p.density.edge_length < 0) throw InputError("edge_length", 0, "must be > 0 (0 = default density)");
+  if (p.density.target_quads < 0) throw InputError("quads", 0, "must be > 0 (0 = default density)");
+  if (p.density.edge_length > 0 && p.density.target_quads > 0)
     throw InputError("edge_length/quads", 0, "give either an edge length or a quad count, not both");
   if (p.stiffening.max_iterations < 0) throw InputError("stiffening", 0, "must be >= 0 (0 = off)");
   if (o.fold_refinement_rounds < 0) throw InputError("fold_refinement", 0, "must be >= 0 (0 = off)");

@@ -23,7 +23,7 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   using Job = decltype(first);
   Validity best_validity = judge(first);
   std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};
-  const double h0 = param_job(first).options.param.edge_length;
+  const double h0 = param_job(first).options.param.density.edge_length;
   int used = 0;
   Job best = std::move(first);
   for (int k = 1; k <= given.validity_retries && best_validity.worth_retrying(); ++k) {

@@ -32,10 +32,10 @@ PipelineOptions attempt_options(const PipelineOptions& given, double first_edge_
   PipelineOptions o = given;
   o.validity_retries = 0;
   const double factor = attempt_quads_factor(k);
-  if (o.param.target_quads > 0)
-    o.param.target_quads = std::max(1, static_cast<int>(std::lround(o.param.target_quads * factor)));
+  if (o.param.density.target_quads > 0)
+    o.param.density.target_quads = std::max(1, static_cast<int>(std::lround(o.param.density.target_quads * factor)));
   else
-    o.param.edge_length = first_edge_length / std::sqrt(factor);
+    o.param.density.edge_length = first_edge_length / std::sqrt(factor);
   return o;
 }
 

@@ -29,11 +29,11 @@ TEST_P(WithCurves, CurvesLieOnIntegerIsoLines) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
   const FrameField field = compute_frame_field(mesh);
   ParamOptions free_opt;
-  free_opt.align_curves = false;
+  free_opt.alignment.enabled = false;
   const Parameterization F = parameterize(mesh, field, free_opt);
   ParamOptions all_opt;
-  all_opt.align_min_length = 0;  // every curve, however short (the default leaves short fragments free)
-  all_opt.align_max_spread = INFINITY;  // and however wiggly
+  all_opt.alignment.limits.min_length = 0;  // every curve, however short (the default leaves short fragments free)
+  all_opt.alignment.limits.max_spread = INFINITY;  // and however wiggly
   const Parameterization P = parameterize(mesh, field, all_opt);
   ASSERT_FALSE(P.aligned_curves.empty());
   EXPECT_TRUE(F.aligned_curves.empty());
@@ -78,17 +78,17 @@ TEST_P(WithCurves, CurvesLieOnIntegerIsoLines) {
   EXPECT_GT(off, 0);
 }
 
-// ParamOptions::align_min_length: short curves (in grid units, measured on the unconstrained map) stay free, so the
+// CurveLimits::min_length: short curves (in grid units, measured on the unconstrained map) stay free, so the
 // default enforces a subset of the lines enforced with no minimum, each at least that long, and E_H can only drop.
 TEST_P(WithCurves, ShortCurvesStayFree) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
   const FrameField field = compute_frame_field(mesh);
   ParamOptions all_opt;
-  all_opt.align_min_length = 0;
-  all_opt.align_max_spread = INFINITY;
+  all_opt.alignment.limits.min_length = 0;
+  all_opt.alignment.limits.max_spread = INFINITY;
   const Parameterization A = parameterize(mesh, field, all_opt);
   const Parameterization D = parameterize(mesh, field);  // default minimum length
-  ASSERT_GT(ParamOptions{}.align_min_length, 0);
+  ASSERT_GT(ParamOptions{}.alignment.limits.min_length, 0);
   int enforced_all = 0, enforced_default = 0;
   for (const auto& c : A.aligned_curves) enforced_all += c.enforced;
   for (const auto& c : D.aligned_curves) {
@@ -104,23 +104,23 @@ TEST_P(WithCurves, ShortCurvesStayFree) {
       while (mesh.F()(f, k1) != mesh.E()(e, 1)) ++k1;
       length += std::abs(D.uv(f, k1) - D.uv(f, k0));
     }
-    EXPECT_GT(length, 0.5 * ParamOptions{}.align_min_length) << GetParam().mesh;
+    EXPECT_GT(length, 0.5 * ParamOptions{}.alignment.limits.min_length) << GetParam().mesh;
   }
   EXPECT_LE(enforced_default, enforced_all) << GetParam().mesh;
   EXPECT_LE(D.energy_harmonic, A.energy_harmonic * (1 + 1e-9)) << GetParam().mesh;
 }
 
-// ParamOptions::align_max_spread: on the closed-up base rim of bunny_3k at the Table 7.1 density the crease lines
+// CurveLimits::max_spread: on the closed-up base rim of bunny_3k at the Table 7.1 density the crease lines
 // wiggle across more than a grid unit in the free map; pinning them costs E_H and rigidity, so the default leaves
 // them free (a subset of the lines, lower E_H, a less distorted map).
 TEST(CurveAlignment, WigglyLinesStayFree) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   const FrameField field = compute_frame_field(mesh);
   ParamOptions wiggly;
-  wiggly.target_quads = 6500;
-  wiggly.align_max_spread = INFINITY;
+  wiggly.density.target_quads = 6500;
+  wiggly.alignment.limits.max_spread = INFINITY;
   ParamOptions straight = wiggly;
-  straight.align_max_spread = ParamOptions{}.align_max_spread;
+  straight.alignment.limits.max_spread = ParamOptions{}.alignment.limits.max_spread;
   const Parameterization W = parameterize(mesh, field, wiggly);
   const Parameterization S = parameterize(mesh, field, straight);
   int enforced_wiggly = 0, enforced_straight = 0;

@@ -68,7 +68,7 @@ TEST(EvenBranchFix, ParameterizeLeavesNoEvenBranchPointAtHalfIntegers) {
     o.relaxation.iterations = 0;
     o.stiffening.max_iterations = 0;
     o.untangle.enabled = false;
-    o.align_curves = false;
+    o.alignment.enabled = false;
     const Parameterization P = parameterize(mesh, field, o);
     const CoverCut cc = build_cover_cut(mesh, field.matching);
     const Eigen::VectorXcd c = cut_translations(mesh, cc, P.uv);

@@ -112,7 +112,7 @@ TEST_P(OnTestMeshes, SymmetricPeriodCount) {
 // Density: with --quads N the parameter area (number of unit squares) is N up to the field's area distortion.
 TEST_P(OnTestMeshes, DensityFollowsTargetQuadCount) {
   ParamOptions opt;
-  opt.target_quads = 500;
+  opt.density.target_quads = 500;
   const Parameterization P = parameterize(mesh, field, opt);
   const FlipReport flips = flipped_triangles(mesh, P.uv);
   EXPECT_GT(flips.parameter_area, 0.5 * 500);

@@ -60,7 +60,7 @@ TEST(PeriodMatrix, PredictsHarmonicEnergyOfTheMap) {
     const FrameField field = compute_frame_field(mesh);
     ParamOptions o;
     o.lattice = Lattice::Unit;
-    o.align_curves = false;
+    o.alignment.enabled = false;
     for (RoundingStrategy s : {RoundingStrategy::Greedy, RoundingStrategy::Search3}) {
       o.rounding.strategy = s;
       const Parameterization P = parameterize(mesh, field, o);

@@ -44,7 +44,7 @@ TEST(ReferenceStack, CurlRemovalOnTheCoverEqualsTheHodgeCoexactPart) {
     o.relaxation.iterations = 0;
     o.stiffening.max_iterations = 0;
     o.untangle.enabled = false;
-    o.align_curves = false;
+    o.alignment.enabled = false;
     o.rounding.strategy = RoundingStrategy::Direct;
     const Parameterization P = parameterize(mesh, field, o);
     const HodgeDecomposer hodge(mesh);

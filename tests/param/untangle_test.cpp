@@ -80,8 +80,8 @@ TEST_P(FoldedMaps, UntanglesInsideTheSeamlessSubspace) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
   const FrameField field = compute_frame_field(mesh);
   ParamOptions options;
-  options.align_curves = false;
-  options.target_quads = GetParam().quads;
+  options.alignment.enabled = false;
+  options.density.target_quads = GetParam().quads;
   const Parameterization P = parameterize(mesh, field, options);
   const CoverCut cc = build_cover_cut(mesh, field.matching);
   const HarmonicCorrection correction(mesh, cc, std::vector<char>(mesh.num_components(), 0));
@@ -205,7 +205,7 @@ TEST(Untangle, GeneratedHardCases) {
   cases.push_back({"inverted bunny_3k", inverted, 0});
   for (const Case& c : cases) {
     ParamOptions o;
-    o.target_quads = c.quads;
+    o.density.target_quads = c.quads;
     const Parameterization P = parameterize(c.mesh, compute_frame_field(c.mesh), o);
     expect_untangled(c.mesh, P, c.name);
   }

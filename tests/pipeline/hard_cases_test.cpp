@@ -32,7 +32,7 @@ Mesh coarse_cube() {
 void expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what) {
   SCOPED_TRACE(what);
   PipelineOptions options;
-  options.param.target_quads = quads;
+  options.param.density.target_quads = quads;
   const RemeshJob job = remesh_mesh(mesh, options);
   const Mesh& map_mesh = job.param.mesh(mesh);
   EXPECT_EQ(flipped_triangles(map_mesh, job.param.map.uv).non_positive, 0);

@@ -38,7 +38,7 @@ TEST(JobMemory, RemeshReportHasAPeakForEveryTimedStage) {
 TEST(JobMemory, AddedStageJoinsSecondsAndMemoryAndRaisesTheProcessPeak) {
   const Mesh mesh = testing::make_torus(30, 12);
   PipelineOptions options;
-  options.param.target_quads = 300;
+  options.param.density.target_quads = 300;
   nlohmann::json r = remesh_report(mesh, remesh_mesh(mesh, options));
   const std::int64_t peak_before = r["memory"]["peak_bytes"].get<std::int64_t>();
   const std::size_t stages_before = r["memory"]["stages"].size();

@@ -24,9 +24,9 @@ nlohmann::json without_costs(nlohmann::json r) {
 
 TEST(PipelineOptions, EveryContradictoryOrOutOfRangeOptionIsNamed) {
   const std::vector<std::pair<std::function<void(PipelineOptions&)>, std::string>> cases = {
-      {[](PipelineOptions& o) { o.param.edge_length = 0.1, o.param.target_quads = 100; }, "edge_length/quads"},
-      {[](PipelineOptions& o) { o.param.edge_length = -1; }, "edge_length"},
-      {[](PipelineOptions& o) { o.param.target_quads = -5; }, "quads"},
+      {[](PipelineOptions& o) { o.param.density.edge_length = 0.1, o.param.density.target_quads = 100; }, "edge_length/quads"},
+      {[](PipelineOptions& o) { o.param.density.edge_length = -1; }, "edge_length"},
+      {[](PipelineOptions& o) { o.param.density.target_quads = -5; }, "quads"},
       {[](PipelineOptions& o) { o.param.stiffening.max_iterations = -1; }, "stiffening"},
       {[](PipelineOptions& o) { o.param.relaxation.iterations = -1; }, "relaxation"},
       {[](PipelineOptions& o) { o.max_evaluations = -2; }, "max_iterations"},
@@ -51,8 +51,8 @@ TEST(ParameterizeMesh, FixesTheDensityOnceAndReportsTheMapAsMeasured) {
   PipelineOptions options;
   const ParamJob job = parameterize_mesh(mesh, options);
   // The default density is made explicit once, so the report says which h every stage used.
-  EXPECT_GT(job.options.param.edge_length, 0);
-  EXPECT_DOUBLE_EQ(job.options.param.edge_length, job.map.edge_length);
+  EXPECT_GT(job.options.param.density.edge_length, 0);
+  EXPECT_DOUBLE_EQ(job.options.param.density.edge_length, job.map.edge_length);
   const nlohmann::json r = param_report(mesh, job, job.map.uv, "eight");
   EXPECT_EQ(r["schema_version"], kReportSchemaVersion);
   EXPECT_EQ(r["mesh"]["genus"], 2);
@@ -74,7 +74,7 @@ TEST(ParameterizeMesh, FixesTheDensityOnceAndReportsTheMapAsMeasured) {
 TEST(RemeshMesh, ReportIsTheQuadMeshItReturns) {
   const Mesh mesh = testing::make_torus(40, 20);
   PipelineOptions options;
-  options.param.target_quads = 600;
+  options.param.density.target_quads = 600;
   const RemeshJob job = remesh_mesh(mesh, options);
   const nlohmann::json r = remesh_report(mesh, job);
   const QuadQuality q = quad_quality(job.extraction.mesh);
@@ -98,7 +98,7 @@ TEST(RemeshMesh, HitsTheRequestedQuadCount) {
   for (const auto& [name, mesh] : meshes)
     for (int target : {400, 1500}) {
       PipelineOptions options;
-      options.param.target_quads = target;
+      options.param.density.target_quads = target;
       const RemeshJob job = remesh_mesh(mesh, options);
       const double quads = job.extraction.mesh.num_faces();
       EXPECT_NEAR(quads / target, 1.0, 0.03) << name << " " << target << ": " << quads;
@@ -109,7 +109,7 @@ TEST(RemeshMesh, HitsTheRequestedQuadCount) {
 TEST(RemeshMesh, TooCoarseADensityIsAnInputErrorNotATinyMesh) {
   const Mesh mesh = testing::make_torus(40, 20);
   PipelineOptions options;
-  options.param.edge_length = 100;  // the torus is 5.4 across
+  options.param.density.edge_length = 100;  // the torus is 5.4 across
   EXPECT_THROW(remesh_mesh(mesh, options), InputError);
 }
 
@@ -117,7 +117,7 @@ TEST(RemeshMesh, TooCoarseADensityIsAnInputErrorNotATinyMesh) {
 TEST(ParameterizeMesh, RefusesADensityBeyondTheMemoryWithTheLargestThatFits) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   PipelineOptions options;
-  options.param.target_quads = 100000000;
+  options.param.density.target_quads = 100000000;
   options.max_memory_bytes = 200000000;  // 0.2 GB
   try {
     parameterize_mesh(mesh, options);
@@ -126,7 +126,7 @@ TEST(ParameterizeMesh, RefusesADensityBeyondTheMemoryWithTheLargestThatFits) {
     EXPECT_EQ(e.file(), "density");
     EXPECT_NE(std::string(e.what()).find("largest that fits is about"), std::string::npos) << e.what();
   }
-  options.param.target_quads = 2000;
+  options.param.density.target_quads = 2000;
   EXPECT_NO_THROW(parameterize_mesh(mesh, options));
   EXPECT_NEAR(requested_quads(mesh, options.param), 2000, 1e-9);
 }

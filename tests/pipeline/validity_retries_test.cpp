@@ -25,16 +25,16 @@ TEST(ValidityRetries, DensitiesAlternateAroundTheFirstInStepsOfFourPercent) {
 
 TEST(ValidityRetries, AttemptOptionsScaleTheRequestedCountOrTheFirstEdgeLength) {
   PipelineOptions count;
-  count.param.target_quads = 1000;
+  count.param.density.target_quads = 1000;
   count.validity_retries = 3;
-  EXPECT_EQ(attempt_options(count, 0.5, 1).param.target_quads, 1040);
-  EXPECT_EQ(attempt_options(count, 0.5, 2).param.target_quads, 960);
-  EXPECT_EQ(attempt_options(count, 0.5, 2).param.edge_length, 0.0);
+  EXPECT_EQ(attempt_options(count, 0.5, 1).param.density.target_quads, 1040);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).param.density.target_quads, 960);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).param.density.edge_length, 0.0);
   EXPECT_EQ(attempt_options(count, 0.5, 2).validity_retries, 0);
   const PipelineOptions by_default;  // the default density: attempt 0's h is the reference
   const PipelineOptions finer = attempt_options(by_default, 0.1, 1);
-  EXPECT_NEAR(finer.param.edge_length, 0.1 / std::sqrt(1.04), 1e-15);
-  EXPECT_EQ(finer.param.target_quads, 0);
+  EXPECT_NEAR(finer.param.density.edge_length, 0.1 / std::sqrt(1.04), 1e-15);
+  EXPECT_EQ(finer.param.density.target_quads, 0);
   EXPECT_NO_THROW(validate(finer));
 }
 
@@ -68,7 +68,7 @@ struct StubRuns {
     ++runs;
     StubJob job;
     job.param.options = o;
-    job.param.map.edge_length = o.param.edge_length;
+    job.param.map.edge_length = o.param.density.edge_length;
     return job;
   }
   Validity judge(const StubJob& job, double h0) const {
@@ -86,7 +86,7 @@ Validity folds(int n) {
 StubJob run_stub(StubRuns& stub, int retries, ProgressSink& progress = null_progress()) {
   PipelineOptions given;
   given.validity_retries = retries;
-  given.param.edge_length = 0.2;
+  given.param.density.edge_length = 0.2;
   return retry_until_valid(
       given, [&](const PipelineOptions& o) { return stub.run(o); },
       [&](const StubJob& job) { return stub.judge(job, 0.2); }, progress);
@@ -160,7 +160,7 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
   // A torus whose tube (circumference 0.5) is under three quad edges at 100 quads: no density nearby keeps it.
   const Mesh torus = testing::make_torus(24, 6, 1.0, 0.08);
   PipelineOptions options;
-  options.param.target_quads = 100;
+  options.param.density.target_quads = 100;
   options.validity_retries = 2;
   const RemeshJob job = remesh_mesh(torus, options);
   const auto& attempts = job.param.validity_attempts;
@@ -180,7 +180,7 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
 TEST(ValidityRetries, ACleanMapHasNoWrongWindingAndItsBranchPointsAreTheField) {
   const Mesh torus = testing::make_torus(40, 16);
   PipelineOptions options;
-  options.param.target_quads = 400;
+  options.param.density.target_quads = 400;
   const ParamJob job = parameterize_mesh(torus, options);
   EXPECT_EQ(job.validity_attempts.size(), 1u);
   EXPECT_TRUE(wrong_winding_vertices(job.mesh(torus), job.map).empty());
@@ -190,7 +190,7 @@ TEST(ValidityRetries, ACleanMapHasNoWrongWindingAndItsBranchPointsAreTheField) {
 TEST(ValidityRetries, AVertexMovedOutOfItsRingWindsZeroTimesAndIsFound) {
   const Mesh torus = testing::make_torus(40, 16);
   PipelineOptions options;
-  options.param.target_quads = 400;
+  options.param.density.target_quads = 400;
   ParamJob job = parameterize_mesh(torus, options);
   const Mesh& mesh = job.mesh(torus);
   int p = 0;  // an interior vertex that is not a branch point, with every corner in one chart

@@ -95,7 +95,7 @@ namespace {
 TEST(ShippedMeshes, BunnyAtTable71DensityIsClosedAllQuad) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   ParamOptions po;
-  po.target_quads = 6500;
+  po.density.target_quads = 6500;
   const Parameterization P = parameterize(mesh, compute_frame_field(mesh), po);
   const ExtractionResult res = extract_quads(mesh, P);
   const testing::PolygonCheck pc = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);
