@@ -27,6 +27,7 @@
 #include "io/read_mesh.h"
 #include "optimize/balancing_sweep.h"
 #include "optimize/curl_energy.h"
+#include "optimize/curl_estimator.h"
 #include "optimize/local_smoothing.h"
 #include "optimize/optimize_field.h"
 #include "param/period_rounding.h"
@@ -152,11 +153,12 @@ void BM_ReachLimited(benchmark::State& state, BenchMesh* b) {
 void BM_LocalEstimate(benchmark::State& state, BenchMesh* b) {
   std::mt19937 rng(4);
   std::uniform_int_distribution<std::size_t> pick(0, b->edges.size() - 1);
-  b->energy->prepare_estimates();
+  CurlEstimator estimator(*b->energy);
+  estimator.prepare();
   EstimateWorkspace ws;
   for (auto _ : state) {
     const MatchingChange c{b->edges[pick(rng)], rng() % 2 ? 1 : -1};
-    benchmark::DoNotOptimize(b->energy->estimate(std::span(&c, 1), ws));
+    benchmark::DoNotOptimize(estimator.estimate(std::span(&c, 1), ws));
   }
   const auto& t = ws.timings;
   set_ms(state, "minE_ms", t.smoothing, t.evaluations), set_ms(state, "curl_ms", t.curl, t.evaluations);
@@ -165,12 +167,13 @@ void BM_LocalEstimate(benchmark::State& state, BenchMesh* b) {
   state.counters["reach_columns"] = static_cast<double>(ws.reach_columns) / std::max(1L, t.evaluations);
 }
 
-// 64 candidates per batch on 2 threads (CurlEnergy::estimate_batch); time per candidate = time / 64.
+// 64 candidates per batch on 2 threads (CurlEstimator::estimate_batch); time per candidate = time / 64.
 void BM_EstimateBatch2(benchmark::State& state, BenchMesh* b) {
   std::mt19937 rng(6);
   std::uniform_int_distribution<std::size_t> pick(0, b->edges.size() - 1);
   std::vector<std::vector<MatchingChange>> cands(64);
   std::vector<double> out(cands.size());
+  CurlEstimator estimator(*b->energy);
   double seconds = 0;
   long n = 0;
   for (auto _ : state) {
@@ -178,7 +181,7 @@ void BM_EstimateBatch2(benchmark::State& state, BenchMesh* b) {
     for (auto& c : cands) c.assign(1, MatchingChange{b->edges[pick(rng)], rng() % 2 ? 1 : -1});
     state.ResumeTiming();
     const auto t = Clock::now();
-    b->energy->estimate_batch(cands, out, 2);
+    estimator.estimate_batch(cands, out, 2);
     seconds += since(t), n += static_cast<long>(cands.size());
   }
   set_ms(state, "per_candidate_ms", seconds, n);

@@ -11,9 +11,10 @@ std::vector<BalancingSweepRow> balancing_sweep(const Mesh& mesh, const FrameFiel
   const OptimizeOptions& oo = options.optimize;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, oo.lambda);
   CurlEnergy energy(mesh, smoother, oo.energy);
+  CurlEstimator screening(energy);
   CurlReductionOptions ro = curl_reduction_options(oo);
   ro.allow_creation = options.allow_creation;  // with creation: the right end of Figure 6.5
-  CurlReductionResult r = reduce_curl(mesh, energy, ro, progress);
+  CurlReductionResult r = reduce_curl(mesh, energy, ro, progress, &screening);
   long evaluations = r.evaluations;
   // Settle: Steps 1-3 without creation until nothing is accepted, so that every row is a local minimum for
   // single-edge moves and for the cancellations of Step 1 (those lower E_D and would otherwise fall into the
@@ -23,7 +24,7 @@ std::vector<BalancingSweepRow> balancing_sweep(const Mesh& mesh, const FrameFiel
     so.allow_creation = false;
     so.delta_eh = 0;  // no balancing while settling
     for (long accepted = 1; accepted > 0 && !progress.cancelled();) {
-      const CurlReductionResult s = reduce_curl(mesh, energy, so, progress);
+      const CurlReductionResult s = reduce_curl(mesh, energy, so, progress, &screening);
       evaluations += s.evaluations;
       accepted = s.accepted;
       r.final_branch_points = s.final_branch_points;
@@ -44,7 +45,7 @@ std::vector<BalancingSweepRow> balancing_sweep(const Mesh& mesh, const FrameFiel
   int bp = r.final_branch_points;
   while (!progress.cancelled() && bp > options.min_branch_points &&
          (options.max_rows <= 0 || static_cast<int>(rows.size()) < options.max_rows)) {
-    r = reduce_curl(mesh, energy, ro, progress);
+    r = reduce_curl(mesh, energy, ro, progress, &screening);
     evaluations += r.evaluations;
     if (r.cancelled_pairs == 0) break;
     settle();

@@ -1,51 +1,20 @@
 #include "optimize/curl_energy.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "common/errors.h"
+#include "common/seconds_since.h"
 #include "common/quarter_turn.h"
 #include "cover/complex_stiffness.h"
 
 namespace quadcover {
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Sizes the workspace's face/edge stamps for the mesh and starts a new stamp (clearing them only on wrap-around).
-void next_stamp(EstimateWorkspace& ws, int nf, int ne) {
-  if (static_cast<int>(ws.face_stamp.size()) != nf || static_cast<int>(ws.edge_stamp.size()) != ne) {
-    ws.face_stamp.assign(static_cast<std::size_t>(nf), 0);
-    ws.edge_stamp.assign(static_cast<std::size_t>(ne), 0);
-    ws.edge_slot.assign(static_cast<std::size_t>(ne), 0);
-    ws.stamp = 0;
-  }
-  if (++ws.stamp == 0) {
-    std::fill(ws.face_stamp.begin(), ws.face_stamp.end(), 0);
-    std::fill(ws.edge_stamp.begin(), ws.edge_stamp.end(), 0);
-    ws.stamp = 1;
-  }
-}
-
-}  // namespace
-
-struct CurlEnergy::Workspaces {
-  tbb::enumerable_thread_specific<EstimateWorkspace> per_thread;
-  EstimateWorkspace serial;
-};
-
 CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options)
-    : system_(mesh, smoother), workspaces_(std::make_unique<Workspaces>()), mesh_(&mesh), smoother_(&smoother),
-      options_(options) {
+    : mesh_(&mesh), smoother_(&smoother), options_(options) {
   recompute_from_scratch();
 }
 
@@ -79,9 +48,8 @@ double CurlEnergy::recompute_from_scratch() {
   factor_.set_rhs(rhs(alpha_));  // 𝔏̄* v = -curl* X (6.1)
   trial_ = FactorTrial(factor_.size());
   pending_valid_ = false;
-  estimates_ready_ = false;
   solution_valid_ = false;
-  commits_since_prepare_ = 0;
+  ++rebuilds_;
   return energy();
 }
 
@@ -91,24 +59,6 @@ int CurlEnergy::layer_after(int e, int m) const {
   const int s = mesh_->EF()(e, 0), t = mesh_->EF()(e, 1);
   const int r = std::min(s, t);
   return mod4(r == s ? -m : m);
-}
-
-template <class Layer>
-StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
-  StarChange c;
-  c.k = e;
-  const int g = std::max(mesh_->EF()(e, 0), mesh_->EF()(e, 1));  // non-reference face: its layer of e changes
-  int a = 0;
-  while (mesh_->FE()(g, a) != e) ++a;
-  const int mu_new = layer_after(e, new_matching);
-  const double area = mesh_->face_areas()[g];
-  for (int b = 0; b < 3; ++b) {
-    if (b == a || mesh_->is_boundary_edge(mesh_->FE()(g, b))) continue;  // pinned rows do not couple
-    // 𝔏̄*(e, e_b) from face g = K_ab i^{μ_b - μ_a} (3.8), K_ab = ⟨e_a, e_b⟩ / A_g (1.5).
-    const double K = std::real(std::conj(mesh_->edge_vector_local(g, a)) * mesh_->edge_vector_local(g, b)) / area;
-    c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu(g, b) - mu_new) - ipow(mu(g, b) - mu(g, a)))});
-  }
-  return c;
 }
 
 StarChange CurlEnergy::stiffness_change(int e, int delta) const {
@@ -123,7 +73,7 @@ double CurlEnergy::curvature(int e) const {
 
 double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   ++timings_.evaluations;
-  auto t0 = Clock::now();
+  auto t0 = SteadyClock::now();
   pending_.assign(changes.begin(), changes.end());
   pending_valid_ = false;
   // min E(α) with the new matching (5.2.2), then the rotated field; the smoother is restored afterwards.
@@ -132,7 +82,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   for (auto it = changes.rbegin(); it != changes.rend(); ++it) smoother_->change_matching(it->edge, -it->delta);
   timings_.smoothing += seconds_since(t0);
   // Star changes one edge at a time (a path may cross the same face twice: layers are updated as we go).
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   trial_.reset();
   bool ok = true;
   std::vector<std::tuple<int, int, int>> saved;  // (face, slot, old μ)
@@ -148,14 +98,14 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
     mu_(g, a) = layer_after(c.edge, field_.matching[c.edge]);
   }
   timings_.update += seconds_since(t0);
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   const Eigen::VectorXcd b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
   timings_.curl += seconds_since(t0);
   for (auto it = saved.rbegin(); it != saved.rend(); ++it) mu_(std::get<0>(*it), std::get<1>(*it)) = std::get<2>(*it);
   for (const auto& c : changes)
     if (!mesh_->is_boundary_edge(c.edge)) field_.matching[c.edge] -= c.delta;
   if (!ok) return std::numeric_limits<double>::infinity();
-  t0 = Clock::now();
+  t0 = SteadyClock::now();
   const double e = trial_.evaluate_full(factor_, b);
   timings_.solve += seconds_since(t0);
   pending_valid_ = true;
@@ -164,7 +114,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
 
 void CurlEnergy::commit() {
   if (!pending_valid_) throw NumericalError("curl reduction", "commit without a valid evaluation");
-  const auto t_commit = Clock::now();
+  const auto t_commit = SteadyClock::now();
   for (const auto& c : pending_) {
     if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
     smoother_->change_matching(c.edge, c.delta);
@@ -178,9 +128,8 @@ void CurlEnergy::commit() {
   trial_.commit(factor_);
   trial_.reset();
   pending_valid_ = false;
-  estimates_ready_ = false;
   solution_valid_ = false;
-  ++commits_since_prepare_;
+  ++commits_;
   timings_.commit += seconds_since(t_commit);
 }
 
@@ -210,7 +159,7 @@ Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
 
 const Eigen::VectorXcd& CurlEnergy::solution() const {
   if (!solution_valid_) {
-    const auto t0 = Clock::now();
+    const auto t0 = SteadyClock::now();
     solution_ = factor_.solve_full();  // v = 𝔏̄*⁻¹(-curl*X): the forward solution x, then the back substitution
     solution_valid_ = true;
     timings_.shares += seconds_since(t0);
@@ -227,140 +176,6 @@ Eigen::VectorXd CurlEnergy::distortion_shares() const {
     share[e] = std::abs(std::real(std::conj(v[e]) * bp[i]));
   }
   return share;
-}
-
-// ∇_α E_D: E_D = bᴴ𝔏̄*⁻¹b, so ∂E_D/∂α_f = 2 Re(vᴴ ∂b/∂α_f) with v = 𝔏̄*⁻¹b; ∂/∂α_f of face f's term c_fk is
-// -i·c_fk (the term is linear in conj(X_f) = e^{-iα_f} conj(X⁰_f)). z = A⁻¹∇_α E_D (5.4).
-void CurlEnergy::prepare_estimates() {
-  if (estimates_ready_) return;
-  // Stale by fewer than estimate_refresh commits: the far-field correction of the screening estimates uses the
-  // older ∇_α E_D and z (the local part of every estimate always uses the current factor and field).
-  if (commits_since_prepare_ > 0 && commits_since_prepare_ < options_.estimate_refresh) {
-    estimates_ready_ = true;
-    return;
-  }
-  const auto t0 = Clock::now();
-  const Eigen::VectorXcd& v = solution();
-  grad_ = Eigen::VectorXd::Zero(mesh_->num_faces());
-  for (int f = 0; f < mesh_->num_faces(); ++f) {
-    if (!system_.is_free(f)) continue;
-    const Complex X = std::polar(1.0, alpha_[f]) * X0_[f];
-    double g = 0;
-    for (int k = 0; k < 3; ++k)
-      g += std::real(std::conj(v[mesh_->FE()(f, k)]) * Complex(0, -1) * term(f, k, X, mu_(f, k)));
-    grad_[f] = 2 * g;
-  }
-  adjoint_ = system_.solve(grad_);
-  estimates_ready_ = true;
-  commits_since_prepare_ = 0;
-  timings_.prepare += seconds_since(t0);
-  ++timings_.prepares;
-}
-
-double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const {
-  return estimate(changes, ws, options_.local_rings);
-}
-
-double CurlEnergy::estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const {
-  if (!estimates_ready_) throw std::logic_error("CurlEnergy::estimate before prepare_estimates");
-  next_stamp(ws, mesh_->num_faces(), mesh_->num_edges());
-  auto t0 = Clock::now();
-  ws.m_override.clear(), ws.theta_override.clear(), ws.mu_override.clear(), ws.db_smooth.clear();
-  auto layer = [&](int f, int k) {
-    for (auto it = ws.mu_override.rbegin(); it != ws.mu_override.rend(); ++it)
-      if (std::get<0>(*it) == f && std::get<1>(*it) == k) return std::get<2>(*it);
-    return mu_(f, k);
-  };
-  ws.trial.reset();
-  bool ok = true;
-  for (const auto& c : changes) {
-    if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
-    int m = field_.matching[c.edge];
-    double theta = smoother_->curvature()[c.edge];
-    for (auto& [e, v] : ws.m_override)
-      if (e == c.edge) m = v;
-    for (auto& [e, v] : ws.theta_override)
-      if (e == c.edge) theta = v;
-    FaceEntry fe[2];
-    const int n = system_.rhs_change(c.edge, c.delta, theta, fe);  // Δb of (5.4), θ_e updated
-    ws.db_smooth.insert(ws.db_smooth.end(), fe, fe + n);
-    // Star change of 𝔏̄* one edge at a time with the layers as changed so far (6.2.1).
-    ok = ok && ws.trial.add_star_change(factor_, star_change(c.edge, m + c.delta, layer));
-    const int g = std::max(mesh_->EF()(c.edge, 0), mesh_->EF()(c.edge, 1));
-    int a = 0;
-    while (mesh_->FE()(g, a) != c.edge) ++a;
-    ws.mu_override.emplace_back(g, a, layer_after(c.edge, m + c.delta));
-    ws.m_override.emplace_back(c.edge, m + c.delta);
-    ws.theta_override.emplace_back(c.edge, theta);
-  }
-  ws.timings.update += seconds_since(t0);
-  if (!ok) return std::numeric_limits<double>::infinity();
-  t0 = Clock::now();
-  // Local re-smoothing Δα_P (SmoothingSystem::solve_local).
-  system_.solve_local(ws.db_smooth, rings, options_.local_tolerance, ws.smoothing);
-  ws.timings.smoothing += seconds_since(t0);
-  t0 = Clock::now();
-  // Δ(-curl*X) on the edges of the faces whose angle or layers changed: a sparse right-hand side change.
-  ws.db_curl.clear();
-  auto add_face = [&](int f, double dalpha) {
-    if (ws.face_stamp[static_cast<std::size_t>(f)] == ws.stamp) return;
-    ws.face_stamp[static_cast<std::size_t>(f)] = ws.stamp;
-    const Complex X = std::polar(1.0, alpha_[f]) * X0_[f];
-    const Complex Xn = dalpha == 0.0 ? X : std::polar(1.0, alpha_[f] + dalpha) * X0_[f];
-    for (int k = 0; k < 3; ++k) {
-      const int e = mesh_->FE()(f, k);
-      if (mesh_->is_boundary_edge(e)) continue;  // pinned: its right-hand side stays 0
-      const Complex d = term(f, k, Xn, layer(f, k)) - term(f, k, X, mu_(f, k));
-      if (ws.edge_stamp[static_cast<std::size_t>(e)] != ws.stamp) {
-        ws.edge_stamp[static_cast<std::size_t>(e)] = ws.stamp;
-        ws.edge_slot[static_cast<std::size_t>(e)] = static_cast<int>(ws.db_curl.size());
-        ws.db_curl.push_back({e, d});
-      } else {
-        ws.db_curl[static_cast<std::size_t>(ws.edge_slot[static_cast<std::size_t>(e)])].value += d;
-      }
-    }
-  };
-  const auto& patch = ws.smoothing.faces;
-  for (std::size_t i = 0; i < patch.size(); ++i) add_face(patch[i], ws.smoothing.x[i]);
-  for (const auto& o : ws.mu_override) add_face(std::get<0>(o), 0.0);  // layer changed, angle fixed or unchanged
-  ws.trial.add_rhs_change(factor_, ws.db_curl);
-  // First-order far field: zᵀΔb - (∇_α E_D)ᵀΔα_P.
-  double correction = 0;
-  for (const auto& fe : ws.db_smooth) correction += adjoint_[fe.face] * fe.value;
-  for (std::size_t i = 0; i < patch.size(); ++i) correction -= grad_[patch[i]] * ws.smoothing.x[i];
-  ws.timings.curl += seconds_since(t0);
-  t0 = Clock::now();
-  const double e_local = ws.trial.evaluate(factor_);  // reach-limited forward solve
-  ws.timings.solve += seconds_since(t0);
-  ++ws.timings.evaluations;
-  ws.patch_faces += static_cast<long>(patch.size());
-  ws.reach_columns += ws.trial.reach();
-  return e_local + correction;
-}
-
-void CurlEnergy::estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out,
-                                int threads) {
-  prepare_estimates();
-  if (candidates.size() <= 1 || threads == 1) {
-    for (std::size_t i = 0; i < candidates.size(); ++i) out[i] = estimate(candidates[i], workspaces_->serial);
-    return;
-  }
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, candidates.size(),
-                      [&](std::size_t i) { out[i] = estimate(candidates[i], workspaces_->per_thread.local()); });
-  });
-}
-
-CurlEnergyTimings CurlEnergy::estimate_timings() const {
-  CurlEnergyTimings t;
-  auto add = [&](const EstimateWorkspace& w) {
-    t.smoothing += w.timings.smoothing, t.curl += w.timings.curl, t.update += w.timings.update;
-    t.solve += w.timings.solve, t.evaluations += w.timings.evaluations;
-  };
-  add(workspaces_->serial);
-  for (const auto& w : workspaces_->per_thread) add(w);
-  return t;
 }
 
 }  // namespace quadcover

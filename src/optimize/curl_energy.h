@@ -10,20 +10,13 @@
 // applied to private copies of the affected factor columns); one forward solve gives E_D. Nothing is written
 // back unless the change is committed.
 //
-// Local estimate (beyond the thesis; estimate()): the re-smoothing is solved on a patch of a few face rings around
-// the changed edges only (SmoothingSystem::solve_local), curl* changes only on the patch's edges (a sparse
-// right-hand side), and E_D comes from the reach-limited forward solve on the etree paths of the changed rows
-// (FactorTrial::evaluate). The part of Δα outside the patch is added to first order with the adjoint
-// z = A⁻¹ ∇_α E_D:  E_D(α+Δα) ≈ E_D(α+Δα_P) + zᵀΔb - (∇_α E_D)ᵀΔα_P  (exact when the patch is the whole mesh).
-// Algorithm 6.1 screens candidates with estimates and confirms each accepted move with evaluate().
-#include <memory>
+// Local estimates of E_D for screening candidates: optimize/curl_estimator.h.
 #include <span>
-#include <tuple>
 #include <vector>
 
+#include "common/quarter_turn.h"
 #include "field/frame_field.h"
 #include "field/smoothing.h"
-#include "optimize/local_smoothing.h"
 #include "optimize/updatable_cholesky.h"
 
 namespace quadcover {
@@ -45,25 +38,10 @@ struct CurlEnergyOptions {
 struct CurlEnergyTimings {
   double smoothing = 0, curl = 0, update = 0, solve = 0, other = 0;
   long evaluations = 0;
-  /// Outside evaluate(): prepare_estimates() (back solve, ∇_α E_D, adjoint solve), distortion_shares() (back
+  /// Outside evaluate(): CurlEstimator::prepare() (back solve, ∇_α E_D, adjoint solve), distortion_shares() (back
   /// solve), commit() (writing the trial back). Wall seconds, accumulated.
   double prepare = 0, shares = 0, commit = 0;
   long prepares = 0;
-};
-
-/// Per-thread scratch of CurlEnergy::estimate() (sized on first use; reused without O(n) clears).
-struct EstimateWorkspace {
-  FactorTrial trial;
-  LocalSmoothingWork smoothing;
-  std::vector<FaceEntry> db_smooth;                    // Δb of (5.4)
-  std::vector<std::pair<int, int>> m_override;         // (edge, new m_e)
-  std::vector<std::pair<int, double>> theta_override;  // (edge, new θ_e)
-  std::vector<std::tuple<int, int, int>> mu_override;  // (face, slot, new μ)
-  std::vector<int> face_stamp, edge_stamp, edge_slot;
-  int stamp = 0;
-  std::vector<SparseEntry> db_curl;  // Δ(-curl*X) on the patch edges
-  CurlEnergyTimings timings;         // smoothing / curl / update / solve of the estimates made with this workspace
-  long patch_faces = 0, reach_columns = 0;  // summed over the estimates
 };
 
 class CurlEnergy {
@@ -71,7 +49,6 @@ class CurlEnergy {
   /// Factors 𝔏̄* of the smoother's current matching and evaluates E_D of the re-smoothed field.
   /// Keeps pointers to mesh and smoother, which must outlive this object; the smoother's matching is changed by
   /// commit() only (evaluate() restores it).
-  /// The estimates re-smooth with the smoother's own matrix (5.4) (SmoothingSystem).
   /// \throw NumericalError if 𝔏̄* cannot be factored.
   CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEnergyOptions& options = {});
   ~CurlEnergy();
@@ -83,24 +60,7 @@ class CurlEnergy {
   /// \return +infinity if an update lost positive definiteness (never expected for valid matchings).
   /// \pre every change names an edge of the mesh (boundary edges and delta 0 are skipped). \throw NumericalError if the smoothing solve fails.
   double evaluate(std::span<const MatchingChange> changes);
-  /// Computes ∇_α E_D and the adjoint z of the current state (one back substitution with 𝔏̄*, one solve with A);
-  /// needed after every commit before estimate(ws). No-op if current or if fewer than
-  /// CurlEnergyOptions::estimate_refresh commits happened since the last computation (stale far field).
-  /// \throw NumericalError if a solve fails.
-  void prepare_estimates();
-  /// Local estimate of E_D after `changes` (see the file comment). Const and thread-safe with one workspace per
-  /// thread; deterministic. \pre prepare_estimates() since the last commit. \return +infinity if an update failed.
-  double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws) const;
-  /// The same estimate on a patch of `rings` face rings (estimate() uses CurlEnergyOptions::local_rings).
-  /// \pre prepare_estimates() since the last commit. \throw std::logic_error otherwise.
-  double estimate(std::span<const MatchingChange> changes, EstimateWorkspace& ws, int rings) const;
   const CurlEnergyOptions& options() const { return options_; }  ///< \pre none
-  /// Estimates of several change sets, in parallel on up to `threads` threads (0 = all cores); the result does
-  /// not depend on the thread count. Calls prepare_estimates().
-  /// \pre out.size() == candidates.size().
-  void estimate_batch(std::span<const std::vector<MatchingChange>> candidates, std::span<double> out, int threads = 0);
-  /// Timings and sizes of all estimates so far (summed over the workspaces). \pre none
-  CurlEnergyTimings estimate_timings() const;
   /// Makes the last evaluate() the current state.
   /// \throw NumericalError if the last evaluate() failed or there was none since the last commit.
   void commit();
@@ -128,15 +88,11 @@ class CurlEnergy {
   StarChange star_change(int e, int new_matching, Layer mu) const;
   Complex contribution(int f, int k, double alpha, int mu) const;
   Complex term(int f, int k, Complex rotated, int mu) const;
-  SmoothingSystem system_;
-  Eigen::VectorXd grad_, adjoint_;  // ∇_α E_D and z = A⁻¹∇_α E_D of the current state (prepare_estimates)
-  bool estimates_ready_ = false;
-  int commits_since_prepare_ = 0;
+  friend class CurlEstimator;  // reads the state below to estimate around it (optimize/curl_estimator.h)
+  long commits_ = 0, rebuilds_ = 0;  // commit() and recompute_from_scratch() calls: the estimator's clock
   mutable Eigen::VectorXcd solution_;  // v = 𝔏̄*⁻¹(-curl*X) of the current state, when solution_valid_
   mutable bool solution_valid_ = false;
   const Eigen::VectorXcd& solution() const;
-  struct Workspaces;
-  std::unique_ptr<Workspaces> workspaces_;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
   Eigen::VectorXcd rhs(const Eigen::VectorXd& alpha) const;
 
@@ -157,5 +113,24 @@ class CurlEnergy {
   bool pending_valid_ = false;
   mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
+
+// A template: CurlEstimator calls it with its own layer lookup.
+template <class Layer>
+StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
+  StarChange c;
+  c.k = e;
+  const int g = std::max(mesh_->EF()(e, 0), mesh_->EF()(e, 1));  // non-reference face: its layer of e changes
+  int a = 0;
+  while (mesh_->FE()(g, a) != e) ++a;
+  const int mu_new = layer_after(e, new_matching);
+  const double area = mesh_->face_areas()[g];
+  for (int b = 0; b < 3; ++b) {
+    if (b == a || mesh_->is_boundary_edge(mesh_->FE()(g, b))) continue;  // pinned rows do not couple
+    // 𝔏̄*(e, e_b) from face g = K_ab i^{μ_b - μ_a} (3.8), K_ab = ⟨e_a, e_b⟩ / A_g (1.5).
+    const double K = std::real(std::conj(mesh_->edge_vector_local(g, a)) * mesh_->edge_vector_local(g, b)) / area;
+    c.d.push_back({mesh_->FE()(g, b), K * (ipow(mu(g, b) - mu_new) - ipow(mu(g, b) - mu(g, a)))});
+  }
+  return c;
+}
 
 }  // namespace quadcover

@@ -22,8 +22,11 @@ namespace {
 
 class Reducer {
  public:
-  Reducer(const Mesh& mesh, CurlEnergy& energy, const CurlReductionOptions& options, ProgressSink& progress)
-      : mesh_(mesh), ed_(energy), opt_(options), progress_(progress), start_(std::chrono::steady_clock::now()) {
+  Reducer(const Mesh& mesh, CurlEnergy& energy, CurlEstimator* screening, const CurlReductionOptions& options,
+          ProgressSink& progress)
+      : mesh_(mesh), ed_(energy), est_(screening), opt_(options), progress_(progress),
+        start_(std::chrono::steady_clock::now()) {
+    if (opt_.local_estimates && !est_) est_ = (own_est_ = std::make_unique<CurlEstimator>(energy)).get();
     q_ = matching_quarter_index(mesh, energy.matching());
     bp_ = count_branch_points(mesh, q_);
     // Vertex -> incident interior edges (CSR), for the breadth-first searches between branch points.
@@ -118,18 +121,18 @@ class Reducer {
   void undo_indices(const Path& path) {
     for (const auto& c : path) q_[mesh_.E()(c.edge, 0)] -= c.delta, q_[mesh_.E()(c.edge, 1)] += c.delta;
   }
-  bool estimating() const { return opt_.local_estimates; }
+  bool estimating() const { return opt_.local_estimates && est_; }
   // Exact E_D after `path` (full re-smoothing, CurlEnergy::evaluate): the value a commit is based on.
   double evaluate_exact(const Path& path) {
     ++res_.exact_evaluations;
     return ed_.evaluate(path);
   }
-  // Screening values of candidates: local estimates in parallel (deterministic, CurlEnergy::estimate_batch), or
+  // Screening values of candidates: local estimates in parallel (deterministic, CurlEstimator::estimate_batch), or
   // NaN when estimates are off (the caller then evaluates exactly, one at a time).
   std::vector<double> screen(const std::vector<Path>& paths) {
     std::vector<double> out(paths.size(), std::numeric_limits<double>::quiet_NaN());
     if (estimating()) {
-      ed_.estimate_batch(paths, out, opt_.threads);
+      est_->estimate_batch(paths, out, opt_.threads);
       res_.evaluations += static_cast<long>(paths.size());
     }
     return out;
@@ -313,6 +316,8 @@ class Reducer {
   static constexpr std::size_t kMinBatch = 4, kMaxBatch = 64;
   const Mesh& mesh_;
   CurlEnergy& ed_;
+  std::unique_ptr<CurlEstimator> own_est_;  // when the caller gave none
+  CurlEstimator* est_;
   const CurlReductionOptions& opt_;
   ProgressSink& progress_;
   std::chrono::steady_clock::time_point start_;
@@ -325,8 +330,8 @@ class Reducer {
 }  // namespace
 
 CurlReductionResult reduce_curl(const Mesh& mesh, CurlEnergy& energy, const CurlReductionOptions& options,
-                                ProgressSink& progress) {
-  return Reducer(mesh, energy, options, progress).run();
+                                ProgressSink& progress, CurlEstimator* screening) {
+  return Reducer(mesh, energy, screening, options, progress).run();
 }
 
 }  // namespace quadcover

@@ -8,6 +8,7 @@
 
 #include "common/progress.h"
 #include "optimize/curl_energy.h"
+#include "optimize/curl_estimator.h"
 
 namespace quadcover {
 
@@ -29,7 +30,7 @@ struct CurlReductionOptions {
   /// Stop after this many E_D evaluations (0 = unlimited) or seconds (0 = unlimited), with the best state so far.
   long max_evaluations = 0;
   double time_limit_seconds = 0;
-  /// Screen candidates with CurlEnergy::estimate() (local re-smoothing, reach-limited solve) and evaluate exactly
+  /// Screen candidates with CurlEstimator::estimate() (local re-smoothing, reach-limited solve) and evaluate exactly
   /// only the promising ones before accepting. Off: every candidate is evaluated exactly (thesis). Either way E_D
   /// never increases over accepted moves.
   bool local_estimates = true;
@@ -67,10 +68,12 @@ struct CurlReductionResult {
 };
 
 /// Runs Algorithm 6.1 on the state of `energy` (its matching and re-smoothed field are updated in place).
-/// E_D never increases except in balancing cancellations, each of which costs less than Δ_EH.
+/// E_D never increases except in balancing cancellations, each of which costs less than Δ_EH. With
+/// options.local_estimates, candidates are screened by `screening` (an estimator of `energy` kept across calls),
+/// or by one made for this call when it is null.
 /// \pre energy was built on mesh. \throw NumericalError if a commit or refactorization fails.
 CurlReductionResult reduce_curl(const Mesh& mesh, CurlEnergy& energy, const CurlReductionOptions& options = {},
-                                ProgressSink& progress = null_progress());
+                                ProgressSink& progress = null_progress(), CurlEstimator* screening = nullptr);
 
 /// 4·ind_p of the matching (Def. 3.2, field/indices.h) changes by +δ at E(e,0) and -δ at E(e,1) when m_e += δ.
 /// Branch points: interior vertices with quarter index ≠ 0 mod 4. \pre quarter_index has #V entries.

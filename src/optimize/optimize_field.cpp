@@ -43,6 +43,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   if (options.mode == OptimizeMode::None) return out;
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
   CurlEnergy energy(mesh, smoother, options.energy);
+  CurlEstimator screening(energy);  // one for the reduction and the balancing: its far field carries over
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CurlReductionOptions ro = curl_reduction_options(options);
   const long budget =
@@ -60,7 +61,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   if (options.mode == OptimizeMode::Full && budget > 0) ro.max_evaluations = std::max(1L, budget - budget / 3);
   // full: balancing (with its E_H measurement) gets the last third of the time limit, like the evaluations.
   ro.time_limit_seconds = options.mode == OptimizeMode::Full ? limit * 2 / 3 : limit;
-  out.reduction = reduce_curl(mesh, energy, ro, progress);
+  out.reduction = reduce_curl(mesh, energy, ro, progress, &screening);
   long evaluations = out.reduction.evaluations;
   const bool out_of_time = limit > 0 && elapsed() >= limit;
   if (options.mode == OptimizeMode::Full && !progress.cancelled() && !out_of_time) {
@@ -76,13 +77,13 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
       ro.delta_eh = out.delta_eh;
       if (budget > 0) ro.max_evaluations = std::max(1L, budget - evaluations);
       if (limit > 0) ro.time_limit_seconds = std::max(1e-3, limit - elapsed());
-      out.balancing = reduce_curl(mesh, energy, ro, progress);
+      out.balancing = reduce_curl(mesh, energy, ro, progress, &screening);
       evaluations += out.balancing.evaluations;
     }
   }
   out.field = energy.field();
   out.exact_timings = energy.timings();
-  out.estimate_timings = energy.estimate_timings();
+  out.estimate_timings = screening.timings();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.evaluations_per_second = out.seconds > 0 ? evaluations / out.seconds : 0;
   return out;

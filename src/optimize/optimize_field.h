@@ -55,7 +55,7 @@ struct OptimizeResult {
   double setup_seconds = 0;            ///< smoother, 𝔏̄* factorization and E_D before the first evaluation
   long max_evaluations = 0;            ///< the budget used (auto resolved; 0 = unlimited)
   double time_limit_seconds = 0;       ///< the time limit used (auto resolved; 0 = none)
-  CurlEnergyTimings exact_timings;     ///< exact evaluations, commits, prepare_estimates, shares (wall seconds)
+  CurlEnergyTimings exact_timings;     ///< exact evaluations, commits, CurlEstimator::prepare, shares (wall seconds)
   CurlEnergyTimings estimate_timings;  ///< screening estimates, summed over the threads
 };
 

@@ -8,6 +8,7 @@
 
 #include "field/compute_frame_field.h"
 #include "optimize/curl_energy.h"
+#include "optimize/curl_estimator.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -89,11 +90,12 @@ TEST(LocalEstimate, EqualsExactEvaluationWhenThePatchIsTheWholeMesh) {
   o.local_rings = 1 << 20;
   o.local_tolerance = 1e-14;
   CurlEnergy ed(s.mesh, s.smoother, o);
-  ed.prepare_estimates();
+  CurlEstimator est_ed(ed);
+  est_ed.prepare();
   EstimateWorkspace ws;
   for (const auto& c : random_changes(s.mesh, 12, 5)) {
     const double exact = ed.evaluate(c);
-    const double est = ed.estimate(c, ws);
+    const double est = est_ed.estimate(c, ws);
     EXPECT_NEAR(est, exact, 1e-9 * exact);
   }
 }
@@ -108,15 +110,16 @@ TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
     CurlEnergyOptions first_order;
     first_order.local_rings = 0;
     CurlEnergy ed(s.mesh, s.smoother), ed0(s.mesh, s.smoother, first_order);
-    ed.prepare_estimates(), ed0.prepare_estimates();
+    CurlEstimator est_ed(ed), est_ed0(ed0);
+    est_ed.prepare(), est_ed0.prepare();
     const double e0 = ed.energy();
     EstimateWorkspace ws;
     double worst = 0, worst0 = 0;
     for (const auto& c : random_changes(s.mesh, 40, 9)) {
       const double exact = ed.evaluate(c);
-      const double est = ed.estimate(c, ws);
+      const double est = est_ed.estimate(c, ws);
       worst = std::max(worst, std::abs(est - exact) / e0);
-      worst0 = std::max(worst0, std::abs(ed0.estimate(c, ws) - exact) / e0);
+      worst0 = std::max(worst0, std::abs(est_ed0.estimate(c, ws) - exact) / e0);
       EXPECT_LT(std::abs(est - exact), 0.02 * e0) << name << " change at edge " << c[0].edge;
     }
     EXPECT_LT(worst, worst0) << name;
@@ -127,16 +130,40 @@ TEST(LocalEstimate, DefaultPatchIsWithinTheStatedTolerance) {
 TEST(LocalEstimate, BatchDoesNotDependOnTheThreadCount) {
   FieldCase s("bunny_3k");
   CurlEnergy ed(s.mesh, s.smoother);
+  CurlEstimator est_ed(ed);
   const auto cands = random_changes(s.mesh, 64, 21);
   std::vector<double> one(cands.size()), two(cands.size());
-  ed.estimate_batch(cands, one, 1);
-  ed.estimate_batch(cands, two, 2);
+  est_ed.estimate_batch(cands, one, 1);
+  est_ed.estimate_batch(cands, two, 2);
   EstimateWorkspace ws;
   for (std::size_t i = 0; i < cands.size(); ++i) {
     EXPECT_EQ(one[i], two[i]) << i;
-    EXPECT_EQ(one[i], ed.estimate(cands[i], ws)) << i;
+    EXPECT_EQ(one[i], est_ed.estimate(cands[i], ws)) << i;
   }
-  EXPECT_EQ(ed.estimate_timings().evaluations, 128);
+  EXPECT_EQ(est_ed.timings().evaluations, 128);
+}
+
+// The estimator follows the energy's state: after a commit it must be prepared again, and a commit within
+// estimate_refresh keeps the stale far field (the estimate still differs from a fresh estimator's only there).
+TEST(LocalEstimate, EstimatesNeedAPrepareAfterEveryCommit) {
+  FieldCase s("bunny_3k");
+  CurlEnergy ed(s.mesh, s.smoother);
+  CurlEstimator est_ed(ed);
+  EstimateWorkspace ws;
+  const auto cands = random_changes(s.mesh, 2, 33);
+  EXPECT_THROW(est_ed.estimate(cands[0], ws), std::logic_error);
+  est_ed.prepare();
+  ed.evaluate(cands[0]);
+  ed.commit();
+  EXPECT_THROW(est_ed.estimate(cands[1], ws), std::logic_error);
+  est_ed.prepare();  // stale far field (1 commit < estimate_refresh)
+  CurlEstimator fresh(ed);
+  fresh.prepare();
+  const double stale = est_ed.estimate(cands[1], ws), current = fresh.estimate(cands[1], ws);
+  EXPECT_NE(stale, current);
+  EXPECT_NEAR(stale, current, 0.02 * ed.energy());
+  ed.recompute_from_scratch();  // a rebuild needs a full prepare
+  EXPECT_THROW(est_ed.estimate(cands[1], ws), std::logic_error);
 }
 
 }  // namespace

@@ -1,0 +1,14 @@
+#pragma once
+// Wall seconds since a time point of the steady clock, for the per-stage timings of the optimizer.
+#include <chrono>
+
+namespace quadcover {
+
+using SteadyClock = std::chrono::steady_clock;
+
+/// Seconds from t0 to now. \pre none
+inline double seconds_since(SteadyClock::time_point t0) {
+  return std::chrono::duration<double>(SteadyClock::now() - t0).count();
+}
+
+}  // namespace quadcover
