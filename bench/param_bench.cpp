@@ -64,7 +64,7 @@ void BM_Parameterize(benchmark::State& state) {
   options.relaxation.iterations = static_cast<int>(state.range(0));
   for (auto _ : state) {
     P = parameterize(bench_mesh(), bench_field(), options);
-    for (const auto& [stage, s] : P.stage_seconds) total[stage] += s;
+    for (const auto& [stage, s] : P.diagnostics.stage_seconds) total[stage] += s;
   }
   for (const auto& [stage, s] : total) state.counters[stage + "_ms"] = 1e3 * s / state.iterations();
   state.counters["faces"] = bench_mesh().num_faces();

@@ -51,15 +51,15 @@ void print_table() {
       for (int k = 0; k < ns; ++k) {
         o.rounding.strategy = kStrategies[k];
         const Parameterization P = parameterize(mesh, field, o);
-        if (P.rounding.variables == 0) break;
-        direct = P.rounding.energy_direct;
-        e[k] = P.rounding.energy_rounded;
-        if (k == 0) vars += P.rounding.variables;
-        for (const auto& [stage, sec] : P.stage_seconds)
+        if (P.diagnostics.rounding.variables == 0) break;
+        direct = P.diagnostics.rounding.energy_direct;
+        e[k] = P.diagnostics.rounding.energy_rounded;
+        if (k == 0) vars += P.diagnostics.rounding.variables;
+        for (const auto& [stage, sec] : P.diagnostics.stage_seconds)
           if (stage == "period_rounding") seconds += sec;
-        if (kStrategies[k] == RoundingStrategy::Exact && P.rounding.strategy == "exact") {
+        if (kStrategies[k] == RoundingStrategy::Exact && P.diagnostics.rounding.strategy == "exact") {
           exact_done = true;
-          proven += P.rounding.proven_optimal;
+          proven += P.diagnostics.rounding.proven_optimal;
         }
       }
       if (!(direct > 0)) continue;

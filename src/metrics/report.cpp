@@ -118,7 +118,7 @@ std::string to_text(const Report& r) {
 }
 
 nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterization& p) {
-  const auto& r = p.rounding;
+  const auto& r = p.diagnostics.rounding;
   return {{"strategy", to_string(options.rounding.strategy)},
           {"strategy_used", r.strategy},
           {"E_H", p.energy_harmonic},
@@ -132,7 +132,7 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
 }
 
 nlohmann::json relaxation_to_json(const Parameterization& p) {
-  const auto& r = p.relaxation;
+  const auto& r = p.diagnostics.relaxation;
   return {{"iterations", r.iterations},
           {"arap_before", r.rigidity_before},
           {"arap_after", r.rigidity_after},
@@ -149,21 +149,21 @@ nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const
 
 // The counters of the untangling and the stiffening under their own names; their prices under the thesis-style
 // symbols (E_U, E_K) the reports have always used.
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Parameterization::Untangling, iterations, polish_iterations, non_positive_before,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParamDiagnostics::Untangling, iterations, polish_iterations, non_positive_before,
                                    non_positive_after, stuck_faces, unresolved_faces, released_vertices,
                                    rewound_vertices, min_det)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Parameterization::Stiffening, iterations, kept_iteration, flipped_before,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParamDiagnostics::Stiffening, iterations, kept_iteration, flipped_before,
                                    flipped_after)
 
 nlohmann::json untangling_to_json(const Parameterization& p) {
-  nlohmann::json j = p.untangling;
-  j["E_U"] = p.untangling.energy;
+  nlohmann::json j = p.diagnostics.untangling;
+  j["E_U"] = p.diagnostics.untangling.energy;
   return j;
 }
 
 nlohmann::json stiffening_to_json(const Parameterization& p) {
-  nlohmann::json j = p.stiffening;
-  j["E_K"] = p.stiffening.energy;
+  nlohmann::json j = p.diagnostics.stiffening;
+  j["E_K"] = p.diagnostics.stiffening.energy;
   return j;
 }
 

@@ -11,34 +11,8 @@
 
 namespace quadcover {
 
-struct Parameterization {
-  /// #F by 3: φ = φ⁰ + iφ¹ at each corner (CornerData), in grid units: integer iso-lines are the quad edges.
-  Eigen::MatrixX3cd uv;
-  /// Per edge e (s = EF(e,0), t = EF(e,1)): across e the coordinates satisfy φ_t = i^{rotation_e} φ_s + translation_e,
-  /// with translation_e ∈ Z[i] (the seamless transition). Both 0 where φ is continuous and on boundary edges.
-  Eigen::VectorXi transition_rotation;      ///< #E, in 0..3
-  Eigen::VectorXcd transition_translation;  ///< #E
-  /// Edges of the cut along which φ may jump (#E, 1 = cut).
-  Eigen::VectorXi cut_edges;
-  /// Branch points of the guiding field (vertices with non-integer index).
-  std::vector<BranchPoint> branch_points;
-  /// Energies (thesis 6.1.1), measured on the covering M̃ in grid units: E_D = ½‖X̃_C‖² (curl part removed),
-  /// E_H = ½‖H̃_d‖² (harmonic correction); E_D + E_H = ½‖X̃ - ∇φ̃‖². On M this is Σ_t A_t |·|² of both frame
-  /// vectors (layers 2 and 3 repeat layers 0 and 1 with opposite sign).
-  double energy_curl = 0, energy_harmonic = 0;
-
-  /// #F: the quarter-turn gauge r_f of each face: on face f, ∇φ approximates scale · i^{r_f} Z_f (frame-complex i:
-  /// i(X, Y) = (-Y, X)), i.e. ∇φ⁰ ≈ the first and ∇φ¹ ≈ the second vector of the turned frame.
-  Eigen::VectorXi face_rotation;
-  /// Grid units per unit of |Z| per model length: the field is scaled by `scale` before integration.
-  double scale = 1;
-  /// Target quad edge length h in model units (scale = 1 / (h · RMS frame length)).
-  double edge_length = 0;
-  /// h_sym (4.1): the number of real symmetric periods that were rounded, and the complex periods b_j of the paths
-  /// before (after the constant gauge) and after rounding (one per path of the cut graph; the dependent path of each
-  /// component is made integral by the constant of φ at no cost).
-  int h_sym = 0;
-  std::vector<Complex> periods, rounded_periods;
+/// What the stages of parameterize() did and measured, beside the map itself (Parameterization).
+struct ParamDiagnostics {
   /// Rounding of the periods (6.3): the strategy that ran, the number of real variables, E_H = xᵀPx predicted by the
   /// period matrix for direct rounding and for the chosen periods (before the even-branch fix-up and the curve
   /// alignment), the candidates the search evaluated and whether the exact solver proved optimality.
@@ -60,21 +34,7 @@ struct Parameterization {
   /// Largest deviation of a cut translation from the lattice before snapping, and of the disk integration
   /// (|two endpoint estimates of a translation| on the curl-free field): diagnostics, round-off sized.
   double max_translation_residual = 0, integration_mismatch = 0;
-  /// Boundary / feature curves put on integer iso-lines (ParamOptions::alignment), each with its largest
-  /// deviation; and the number of lines left free because they close on themselves inconsistently.
-  struct Curve {
-    std::vector<int> edges;
-    /// Per edge, the coordinate (0: φ⁰, 1: φ¹) constant along it in its face EF(e,0) (or the boundary edge's face),
-    /// and the integer it should equal there (the line seen through the cut's transitions).
-    std::vector<int> edge_coordinates;
-    std::vector<double> edge_values;
-    int coordinate = 0;  ///< of the first edge
-    double value = 0, max_deviation = 0;
-    /// False for lines that cannot be integer iso-lines with the rounded periods (through two branch points at
-    /// different integers, or closing on themselves with another integer): left free, deviation reported.
-    bool enforced = true;
-  };
-  std::vector<Curve> aligned_curves;
+  /// Lines left free because they close on themselves inconsistently (Parameterization::aligned_curves).
   int alignment_conflicts = 0;
   /// ARAP relaxation of the final solve (param/relaxation.h): local/global rounds run, the mean ARAP distortion at
   /// the grid scale before and after, and its price E_R = ½‖X̃ − ∇φ̃‖² − E_D − E_H of the relaxed map.
@@ -109,6 +69,54 @@ struct Parameterization {
     /// the field's index says (param/ring_winding.h).
     std::vector<int> rewound_vertices;
   } untangling;
+  /// Wall-clock seconds and peak resident bytes per stage, in pipeline order (common/stage_meter.h).
+  StageSeconds stage_seconds;
+  StagePeakBytes stage_peak_bytes;
+};
+
+struct Parameterization {
+  /// #F by 3: φ = φ⁰ + iφ¹ at each corner (CornerData), in grid units: integer iso-lines are the quad edges.
+  Eigen::MatrixX3cd uv;
+  /// Per edge e (s = EF(e,0), t = EF(e,1)): across e the coordinates satisfy φ_t = i^{rotation_e} φ_s + translation_e,
+  /// with translation_e ∈ Z[i] (the seamless transition). Both 0 where φ is continuous and on boundary edges.
+  Eigen::VectorXi transition_rotation;      ///< #E, in 0..3
+  Eigen::VectorXcd transition_translation;  ///< #E
+  /// Edges of the cut along which φ may jump (#E, 1 = cut).
+  Eigen::VectorXi cut_edges;
+  /// Branch points of the guiding field (vertices with non-integer index).
+  std::vector<BranchPoint> branch_points;
+  /// Energies (thesis 6.1.1), measured on the covering M̃ in grid units: E_D = ½‖X̃_C‖² (curl part removed),
+  /// E_H = ½‖H̃_d‖² (harmonic correction); E_D + E_H = ½‖X̃ - ∇φ̃‖². On M this is Σ_t A_t |·|² of both frame
+  /// vectors (layers 2 and 3 repeat layers 0 and 1 with opposite sign).
+  double energy_curl = 0, energy_harmonic = 0;
+
+  /// #F: the quarter-turn gauge r_f of each face: on face f, ∇φ approximates scale · i^{r_f} Z_f (frame-complex i:
+  /// i(X, Y) = (-Y, X)), i.e. ∇φ⁰ ≈ the first and ∇φ¹ ≈ the second vector of the turned frame.
+  Eigen::VectorXi face_rotation;
+  /// Grid units per unit of |Z| per model length: the field is scaled by `scale` before integration.
+  double scale = 1;
+  /// Target quad edge length h in model units (scale = 1 / (h · RMS frame length)).
+  double edge_length = 0;
+  /// h_sym (4.1): the number of real symmetric periods that were rounded, and the complex periods b_j of the paths
+  /// before (after the constant gauge) and after rounding (one per path of the cut graph; the dependent path of each
+  /// component is made integral by the constant of φ at no cost).
+  int h_sym = 0;
+  std::vector<Complex> periods, rounded_periods;
+  /// Boundary / feature curves put on integer iso-lines (ParamOptions::alignment), each with its largest
+  /// deviation (ParamDiagnostics::alignment_conflicts counts the lines left free).
+  struct Curve {
+    std::vector<int> edges;
+    /// Per edge, the coordinate (0: φ⁰, 1: φ¹) constant along it in its face EF(e,0) (or the boundary edge's face),
+    /// and the integer it should equal there (the line seen through the cut's transitions).
+    std::vector<int> edge_coordinates;
+    std::vector<double> edge_values;
+    int coordinate = 0;  ///< of the first edge
+    double value = 0, max_deviation = 0;
+    /// False for lines that cannot be integer iso-lines with the rounded periods (through two branch points at
+    /// different integers, or closing on themselves with another integer): left free, deviation reported.
+    bool enforced = true;
+  };
+  std::vector<Curve> aligned_curves;
   /// The seamless affine subspace of the final map, the one the untangler moves in (param/untangle.h): for every
   /// covering function δu that is 0 on the fixed components, uv − i^{layer} δu (0 at branch points) keeps every
   /// transition, period, branch point and enforced curve of the map.
@@ -117,9 +125,8 @@ struct Parameterization {
     Eigen::VectorXi branch;   ///< #V: 1 at branch points (both components held)
     std::vector<char> fixed;  ///< 2·#V flags (x_p at p, y_p at #V + p), 1 = held
   } subspace;
-  /// Wall-clock seconds and peak resident bytes per stage, in pipeline order (common/stage_meter.h).
-  StageSeconds stage_seconds;
-  StagePeakBytes stage_peak_bytes;
+  /// The stages' reports: rounding, relaxation, stiffening, untangling, timings and round-off checks.
+  ParamDiagnostics diagnostics;
 };
 
 }  // namespace quadcover

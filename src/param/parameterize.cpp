@@ -103,14 +103,14 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   if (options.rounding.strategy == RoundingStrategy::Direct) return r;
   const std::function<bool()> stop = [&progress] { return progress.skip_improvements(); };
   r.pm = period_matrix(mesh, cc, correction, 32, stop);
-  P.rounding.stopped_early = progress.skip_improvements();
+  P.diagnostics.rounding.stopped_early = progress.skip_improvements();
   const int m = static_cast<int>(r.pm.paths.size());
   if (m == 0) return r;
   r.active = true;
   for (int a = 0; a < m; ++a) r.variable_of_path[r.pm.paths[a]] = a;
-  P.rounding.variables = 2 * m;
-  P.rounding.period_matrix_asymmetry = r.pm.asymmetry;
-  P.rounding.energy_direct = r.energy(P);
+  P.diagnostics.rounding.variables = 2 * m;
+  P.diagnostics.rounding.period_matrix_asymmetry = r.pm.asymmetry;
+  P.diagnostics.rounding.energy_direct = r.energy(P);
   const Eigen::MatrixXd T = lattice_basis(options.lattice, m);
   Eigen::VectorXd beta(2 * m);
   for (int a = 0; a < m; ++a) {
@@ -123,16 +123,16 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   try {
     rr = round_periods(T.transpose() * r.pm.P * T, T.partialPivLu().solve(beta), ro);
   } catch (const NumericalError&) {
-    P.rounding.energy_rounded = P.rounding.energy_direct;  // singular P: keep the direct rounding
+    P.diagnostics.rounding.energy_rounded = P.diagnostics.rounding.energy_direct;  // singular P: keep the direct rounding
     return r;
   }
   const Eigen::VectorXd x = T * rr.c.cast<double>();
   for (int a = 0; a < m; ++a) P.rounded_periods[r.pm.paths[a]] = Complex(x[a], x[m + a]);
-  P.rounding.strategy = to_string(rr.used);
-  P.rounding.candidates = rr.candidates;
-  P.rounding.proven_optimal = rr.proven_optimal;
-  P.rounding.stopped_early = rr.stopped_early;
-  P.rounding.energy_rounded = r.energy(P);
+  P.diagnostics.rounding.strategy = to_string(rr.used);
+  P.diagnostics.rounding.candidates = rr.candidates;
+  P.diagnostics.rounding.proven_optimal = rr.proven_optimal;
+  P.diagnostics.rounding.stopped_early = rr.stopped_early;
+  P.diagnostics.rounding.energy_rounded = r.energy(P);
   return r;
 }
 
@@ -143,14 +143,14 @@ constexpr double kParamSteps = 11;
 
 namespace {
 
-/// The stage meter of parameterize(): one lap per step into P.stage_seconds and P.stage_peak_bytes, and one
+/// The stage meter of parameterize(): one lap per step into P.diagnostics.stage_seconds and .stage_peak_bytes, and one
 /// progress bar for the whole stage, in the order of its steps (kParamSteps of them, numbered by the laps).
 class StageLaps {
  public:
   StageLaps(Parameterization& P, ProgressSink& progress) : P_(P), progress_(progress) {}
   void operator()(const char* stage) {
-    meter_.lap(stage, P_.stage_seconds, P_.stage_peak_bytes);
-    progress_.report("param", std::min(1.0, static_cast<double>(P_.stage_seconds.size()) / kParamSteps), stage);
+    meter_.lap(stage, P_.diagnostics.stage_seconds, P_.diagnostics.stage_peak_bytes);
+    progress_.report("param", std::min(1.0, static_cast<double>(P_.diagnostics.stage_seconds.size()) / kParamSteps), stage);
   }
 
  private:
@@ -276,7 +276,7 @@ Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const Ha
   if (rounding.active) lap("period_rounding");
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
     // The parity step with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
-    P.unfixed_even_branch_points = fix_even_branch_points(mesh, cc, P.rounded_periods, [&](int j) {
+    P.diagnostics.unfixed_even_branch_points = fix_even_branch_points(mesh, cc, P.rounded_periods, [&](int j) {
       return rounding.active && rounding.variable_of_path[j] >= 0 ? rounding.energy(P)
                                                                   : std::abs(P.rounded_periods[j] - P.periods[j]);
     });
@@ -349,20 +349,20 @@ void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInp
       return correction.solve(bw).col(0);
     };
     RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, in.known, in.Z, 1.0 / P.edge_length, u,
-                                                 resolve, solve, options.relaxation, progress, P.relaxation);
+                                                 resolve, solve, options.relaxation, progress, P.diagnostics.relaxation);
     u = std::move(relaxed.u);
     followed_gradient = std::move(relaxed.gradient_target);
     followed_target = std::move(relaxed.target);
     // ≥ 0: u_free minimizes it (round-off aside)
-    P.relaxation.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic;
-    if (P.relaxation.iterations > 0) lap("relaxation");
+    P.diagnostics.relaxation.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic;
+    if (P.diagnostics.relaxation.iterations > 0) lap("relaxation");
   }
   if (options.stiffening.max_iterations > 0) {
     u = stiffen_correction(mesh, cc.matching, correction, in.known, followed_gradient, followed_target, u, solve,
-                           options.stiffening, progress, P.stiffening);
-    if (P.stiffening.kept_iteration > 0)
-      P.stiffening.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic - P.relaxation.energy;
-    if (P.stiffening.iterations > 0) lap("stiffening");
+                           options.stiffening, progress, P.diagnostics.stiffening);
+    if (P.diagnostics.stiffening.kept_iteration > 0)
+      P.diagnostics.stiffening.energy = correction_energy(mesh, correction, in.Sigma, u) - P.energy_harmonic - P.diagnostics.relaxation.energy;
+    if (P.diagnostics.stiffening.iterations > 0) lap("stiffening");
   }
   // The seamless affine subspace: the kernel pins (or the curve constraints, which include them) fixed.
   const std::vector<char> releasable = aligned ? aligned->fixed_components() : std::vector<char>{};
@@ -372,13 +372,13 @@ void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInp
   if (options.untangle.enabled) {
     const double price_before = correction_energy(mesh, correction, in.Sigma, u);
     u = untangle_and_rewind(mesh, correction.layers(), in.known, in.Z, fixed, u, in.cone_index, options.untangle,
-                            progress, P.untangling, releasable);
-    if (P.untangling.iterations > 0) {
-      P.untangling.energy = correction_energy(mesh, correction, in.Sigma, u) - price_before;
+                            progress, P.diagnostics.untangling, releasable);
+    if (P.diagnostics.untangling.iterations > 0) {
+      P.diagnostics.untangling.energy = correction_energy(mesh, correction, in.Sigma, u) - price_before;
       lap("untangling");
     }
     const int nv = mesh.num_vertices();
-    for (int p : P.untangling.released_vertices)  // curve constraints given up there
+    for (int p : P.diagnostics.untangling.released_vertices)  // curve constraints given up there
       for (const int i : {p, nv + p})
         if (releasable[i] && !correction.layers().branch[p]) P.subspace.fixed[i] = 0;
   }
@@ -395,8 +395,8 @@ void assemble_transitions(const Mesh& mesh, const CoverCut& cc, Parameterization
     if (!cc.graph.cut[e]) continue;
     P.transition_rotation[e] = cc.rotation[e];
     P.transition_translation[e] = round_to_lattice(cfinal[e], Lattice::Unit);
-    P.max_translation_residual =
-        std::max(P.max_translation_residual, std::abs(cfinal[e] - P.transition_translation[e]));
+    P.diagnostics.max_translation_residual =
+        std::max(P.diagnostics.max_translation_residual, std::abs(cfinal[e] - P.transition_translation[e]));
   }
 }
 
@@ -413,7 +413,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   // ---- 1. cut through B and gauge (4.2)
   const CoverCut cc = cut_and_gauge(mesh, field, P);
   const std::vector<char> trivial = trivial_holonomy(mesh, cc);
-  P.holonomy_without_branch_points = holonomy_without_branch_points(mesh, trivial, P.branch_points);
+  P.diagnostics.holonomy_without_branch_points = holonomy_without_branch_points(mesh, trivial, P.branch_points);
   lap("cut");
   const FramePairs Z = scaled_frames(mesh, field, cc, options, P);
 
@@ -426,7 +426,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
 
   // ---- 3. integration over the cut disk and the periods
   Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
-  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.integration_mismatch);
+  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.diagnostics.integration_mismatch);
   lap("integrate");
 
   // ---- 4. rounding (4.2.2)
@@ -450,7 +450,7 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   refine_correction(mesh, cc, inputs, options, progress, lap, P, u);
   if (aligned) {
     P.aligned_curves = aligned->curves(u);
-    P.alignment_conflicts = aligned->conflicts();
+    P.diagnostics.alignment_conflicts = aligned->conflicts();
   }
 
   // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods

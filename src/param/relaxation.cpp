@@ -44,7 +44,7 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
                                    const FramePairs& Z, double s, const Eigen::VectorXcd& u0,
                                    const CorrectionResolve& resolve, const WeightedCorrectionSolve& weighted_solve,
                                    const RelaxationOptions& options, ProgressSink& progress,
-                                   Parameterization::Relaxation& result) {
+                                   ParamDiagnostics::Relaxation& result) {
   const int nf = mesh.num_faces();
   const double alpha = options.field_weight;
   const FramePairs base_gradient = corner_gradient(mesh, base);

@@ -57,6 +57,6 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
                                    const FramePairs& Z, double s, const Eigen::VectorXcd& u0,
                                    const CorrectionResolve& resolve, const WeightedCorrectionSolve& weighted_solve,
                                    const RelaxationOptions& options, ProgressSink& progress,
-                                   Parameterization::Relaxation& result);
+                                   ParamDiagnostics::Relaxation& result);
 
 }  // namespace quadcover

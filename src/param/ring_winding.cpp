@@ -198,7 +198,7 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                                      const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                                      const Eigen::VectorXi& target, const UntangleOptions& options,
-                                     ProgressSink& progress, Parameterization::Untangling& result,
+                                     ProgressSink& progress, ParamDiagnostics::Untangling& result,
                                      const std::vector<char>& releasable) {
   Eigen::VectorXcd u = untangle_map(mesh, layers, base, Z, fixed, u0, options, progress, result, releasable);
   if (!options.enabled || !options.rewind_rings) return u;
@@ -214,7 +214,7 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
     if (rings.rewound.empty() || progress.cancelled()) break;
     std::vector<char> held = fixed;
     for (int q : rings.moved) held[q] = held[mesh.num_vertices() + q] = 1;
-    Parameterization::Untangling r, r_free;
+    ParamDiagnostics::Untangling r, r_free;
     Eigen::VectorXcd v = untangle_map(mesh, layers, base, Z, held, start, options, progress, r, releasable);
     if (r.non_positive_after > 0) {
       v = untangle_map(mesh, layers, base, Z, fixed, v, options, progress, r_free, releasable);

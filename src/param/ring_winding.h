@@ -54,7 +54,7 @@ inline constexpr int kRewindPasses = 3;
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                                      const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                                      const Eigen::VectorXi& target, const UntangleOptions& options,
-                                     ProgressSink& progress, Parameterization::Untangling& result,
+                                     ProgressSink& progress, ParamDiagnostics::Untangling& result,
                                      const std::vector<char>& releasable = {});
 
 }  // namespace quadcover

@@ -32,7 +32,7 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
                                     const FramePairs& Z, const FramePairs& target,
                                     const Eigen::VectorXcd& u0, const WeightedCorrectionSolve& solve,
                                     const StiffeningOptions& options, ProgressSink& progress,
-                                    Parameterization::Stiffening& result) {
+                                    ParamDiagnostics::Stiffening& result) {
   const int nf = mesh.num_faces();
   auto map_of = [&](const Eigen::VectorXcd& u) { return Eigen::MatrixX3cd(base - correction.corner_values(u)); };
   Eigen::MatrixX3cd uv = map_of(u0);

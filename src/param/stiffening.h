@@ -41,6 +41,6 @@ Eigen::VectorXcd stiffen_correction(const Mesh& mesh, const Eigen::VectorXi& mat
                                     const FramePairs& Z, const FramePairs& target,
                                     const Eigen::VectorXcd& u0, const WeightedCorrectionSolve& solve,
                                     const StiffeningOptions& options, ProgressSink& progress,
-                                    Parameterization::Stiffening& result);
+                                    ParamDiagnostics::Stiffening& result);
 
 }  // namespace quadcover

@@ -328,7 +328,7 @@ Eigen::MatrixX3cd map_of(const Mesh& mesh, const VertexLayers& layers, const Eig
 /// options.max_iterations ε rounds, or after options.patience rounds without fewer of them.
 void untangle_region(const std::vector<FaceMap>& all, const std::vector<char>& region_fixed,
                      const std::function<int(const Eigen::VectorXd&)>& remaining, const UntangleOptions& options,
-                     ProgressSink& progress, Eigen::VectorXd& X, Parameterization::Untangling& result) {
+                     ProgressSink& progress, Eigen::VectorXd& X, ParamDiagnostics::Untangling& result) {
   std::vector<FaceMap> maps;
   for (const FaceMap& m : all) {
     bool moves = false;
@@ -434,14 +434,14 @@ std::vector<int> release_stuck_corners(const Mesh& mesh, const VertexLayers& lay
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result, const std::vector<char>& releasable) {
+                              ParamDiagnostics::Untangling& result, const std::vector<char>& releasable) {
   return untangle_map(mesh, correction.layers(), base, Z, fixed, u0, options, progress, result, releasable);
 }
 
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed_in, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result, const std::vector<char>& releasable) {
+                              ParamDiagnostics::Untangling& result, const std::vector<char>& releasable) {
   const auto start = std::chrono::steady_clock::now();
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
   if (static_cast<int>(fixed_in.size()) != 2 * nv || u0.size() != nv ||

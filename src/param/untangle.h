@@ -63,14 +63,14 @@ std::vector<char> untangle_fixed_components(const Mesh& mesh, const VertexLayers
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result, const std::vector<char>& releasable = {});
+                              ParamDiagnostics::Untangling& result, const std::vector<char>& releasable = {});
 /// The same for φ = base − layered_values(mesh, layers, u): any layering of a covering function that the map's
 /// transitions preserve (i^λ_t = i^k_e i^λ_s across every edge at vertices off the branch points), e.g. the
 /// subspace of a map lifted to a refined mesh (pipeline/split_map.h). \throw NumericalError as the untangle_map above.
 Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                               const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                               const UntangleOptions& options, ProgressSink& progress,
-                              Parameterization::Untangling& result, const std::vector<char>& releasable = {});
+                              ParamDiagnostics::Untangling& result, const std::vector<char>& releasable = {});
 
 /// What options.release_curve_corners does before an untangling, alone: for every face the components in `fixed`
 /// hold at det ≡ 0 with φ = base, frees the `releasable` components of its first corner whose release unsticks it.

@@ -15,7 +15,7 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), map.branch_points);
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   std::vector<ConeMerge> merges;
-  std::vector<int> faces = map.untangling.stuck_faces;
+  std::vector<int> faces = map.diagnostics.untangling.stuck_faces;
   std::sort(faces.begin(), faces.end());
   for (const int f : faces) {
     for (int c = 0; c < 3; ++c) {

@@ -63,7 +63,7 @@ std::vector<int> release_held_corners(const Mesh& mesh, const FrameField& field,
 /// split, then untangled in its subspace there (releasing again where a child is held).
 struct Round {
   SplitMap split;
-  Parameterization::Untangling untangling;
+  ParamDiagnostics::Untangling untangling;
 };
 
 Round refine_round(const Mesh& mesh, const FrameField& field, const Parameterization& map,
@@ -118,7 +118,7 @@ void keep_round(Round& r, int coarse_faces, int split_edges, FoldRefinement& out
   out.mesh = std::make_shared<const Mesh>(std::move(r.split.mesh));
   out.field = std::move(r.split.field);
   out.map = std::move(r.split.map);
-  Parameterization::Untangling& u = out.map.untangling;
+  ParamDiagnostics::Untangling& u = out.map.diagnostics.untangling;
   u.non_positive_after = r.untangling.non_positive_after;
   u.min_det = r.untangling.min_det;
   u.stuck_faces = std::move(r.untangling.stuck_faces);

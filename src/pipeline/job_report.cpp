@@ -63,7 +63,7 @@ nlohmann::json field_json(const ParamJob& job) {
           {"branch_points", list},
           {"b_odd", odd},
           {"b_even", even},
-          {"unfixed_even_branch_points", job.map.unfixed_even_branch_points}};
+          {"unfixed_even_branch_points", job.map.diagnostics.unfixed_even_branch_points}};
 }
 
 nlohmann::json curves_json(const Parameterization& map) {
@@ -77,7 +77,7 @@ nlohmann::json curves_json(const Parameterization& map) {
                       {"enforced", c.enforced}});
     worst = std::max(worst, c.max_deviation);
   }
-  return {{"curves", curves}, {"max_deviation", worst}, {"conflicts", map.alignment_conflicts}};
+  return {{"curves", curves}, {"max_deviation", worst}, {"conflicts", map.diagnostics.alignment_conflicts}};
 }
 
 /// The map's validity and distortion, measured on `uv` (the written coordinates) with the job's transitions.

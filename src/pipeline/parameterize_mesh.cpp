@@ -84,7 +84,7 @@ void move_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, 
     cone_move_rounds(
         mesh, stage, lambda, job, progress, "cone merging", coincident_cone_merges,
         [](const Parameterization& next, const Parameterization& now) {
-          return next.untangling.non_positive_after < now.untangling.non_positive_after;
+          return next.diagnostics.untangling.non_positive_after < now.diagnostics.untangling.non_positive_after;
         },
         job.merged_cone_pairs, job.merge_rounds);
   if (job.options.move_wound_cones)
@@ -126,7 +126,7 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t cu
                 why + "; " + std::to_string(job.refinement.added_faces) +
                 " triangles added; the input's vertices keep their numbers, see the report's refinement)");
   }
-  const Parameterization::Untangling& u = job.map.untangling;
+  const ParamDiagnostics::Untangling& u = job.map.diagnostics.untangling;
   if (u.non_positive_after > 0)
     w.push_back(std::to_string(u.non_positive_after) + " triangles of the map stay flipped or collapsed (" +
                 std::to_string(u.stuck_faces.size()) + " held at zero area by the seams, cones and curve constraints, " +
@@ -206,12 +206,12 @@ void record_cut_short(ParamJob& job, std::string stage) {
 
 std::vector<std::string> map_warnings(const Parameterization& map) {
   std::vector<std::string> warnings;
-  for (int comp : map.holonomy_without_branch_points)
+  for (int comp : map.diagnostics.holonomy_without_branch_points)
     warnings.push_back("component " + std::to_string(comp) +
                        ": the field turns around a handle but has no branch points; no seamless immersion exists "
                        "there (the map degenerates). Use a field with branch points (e.g. --optimize full).");
-  if (!map.unfixed_even_branch_points.empty())
-    warnings.push_back(std::to_string(map.unfixed_even_branch_points.size()) +
+  if (!map.diagnostics.unfixed_even_branch_points.empty())
+    warnings.push_back(std::to_string(map.diagnostics.unfixed_even_branch_points.size()) +
                        " even branch points stay on half-integers (see unfixed_even_branch_points)");
   return warnings;
 }
@@ -254,10 +254,10 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
-  note_cut_short(progress, job.map.rounding.stopped_early, job, "rounding search");  // also ends on its own budget
-  if (job.map.relaxation.stopped_early) record_cut_short(job, "relaxation");
-  for (const auto& [stage, s] : job.map.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
-  for (const auto& [stage, b] : job.map.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
+  note_cut_short(progress, job.map.diagnostics.rounding.stopped_early, job, "rounding search");  // also ends on its own budget
+  if (job.map.diagnostics.relaxation.stopped_early) record_cut_short(job, "relaxation");
+  for (const auto& [stage, s] : job.map.diagnostics.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
+  for (const auto& [stage, b] : job.map.diagnostics.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
   meter.restart();
   move_cones(mesh, field, oo.lambda, job, finishing);
   if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
@@ -265,7 +265,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   meter.restart();
   const std::size_t curve_splits = job.refinement.split.size();
   refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
-  note_cut_short(progress, job.map.untangling.non_positive_after > 0, job, "fold refinement");
+  note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));

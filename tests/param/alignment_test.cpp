@@ -129,7 +129,7 @@ TEST(CurveAlignment, WigglyLinesStayFree) {
   EXPECT_GT(enforced_wiggly, 0);
   EXPECT_LT(enforced_straight, enforced_wiggly);
   EXPECT_LT(S.energy_harmonic, W.energy_harmonic);
-  EXPECT_LT(S.relaxation.rigidity_after, W.relaxation.rigidity_after);
+  EXPECT_LT(S.diagnostics.relaxation.rigidity_after, W.diagnostics.relaxation.rigidity_after);
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, WithCurves,

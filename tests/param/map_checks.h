@@ -44,7 +44,7 @@ inline void expect_seamless_grid_map(const Mesh& mesh, const Parameterization& P
   EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
   const double tol = 1e-9 * seams.parameter_extent;
   for (const BranchPoint& bp : P.branch_points) {
-    if (std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(), bp.vertex)) continue;
+    if (std::count(P.diagnostics.unfixed_even_branch_points.begin(), P.diagnostics.unfixed_even_branch_points.end(), bp.vertex)) continue;
     for (const auto& fc : mesh.fan(bp.vertex)) {
       const Complex z = P.uv(fc.face, fc.corner);
       ASSERT_LT(std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))), tol) << bp.vertex;

@@ -73,7 +73,7 @@ TEST_P(OnTestMeshes, SeamlessIntegerGridMap) {
         if (lattice == Lattice::Coarse || (lattice == Lattice::Rotated && odd)) {
           EXPECT_LT(frac, tol) << "branch point " << bp.vertex << " at " << z;
         } else if (lattice == Lattice::Rotated) {
-          const bool unfixed = std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(),
+          const bool unfixed = std::count(P.diagnostics.unfixed_even_branch_points.begin(), P.diagnostics.unfixed_even_branch_points.end(),
                                           bp.vertex) > 0;
           if (!unfixed) {
             EXPECT_LT(frac, tol) << "even branch point " << bp.vertex << " at " << z;
@@ -88,9 +88,9 @@ TEST_P(OnTestMeshes, SeamlessIntegerGridMap) {
         }
       }
     }
-    EXPECT_TRUE(P.unfixed_even_branch_points.empty());
+    EXPECT_TRUE(P.diagnostics.unfixed_even_branch_points.empty());
     const double total = testing::map_field_energy(mesh, field, P);
-    EXPECT_NEAR(P.energy_curl + P.energy_harmonic + P.relaxation.energy + P.stiffening.energy + P.untangling.energy,
+    EXPECT_NEAR(P.energy_curl + P.energy_harmonic + P.diagnostics.relaxation.energy + P.diagnostics.stiffening.energy + P.diagnostics.untangling.energy,
                 total, 1e-8 * total);
     EXPECT_GT(P.energy_harmonic, 0);
   }
@@ -139,12 +139,12 @@ TEST(Parameterize, RandomFieldsManyBranchPoints) {
   int even = 0;
   for (const BranchPoint& bp : P.branch_points) even += ((bp.quarter_index % 4) + 4) % 4 == 2;
   EXPECT_GT(even, 0);  // the fix-up is exercised
-  EXPECT_TRUE(P.unfixed_even_branch_points.empty());
+  EXPECT_TRUE(P.diagnostics.unfixed_even_branch_points.empty());
   const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
   EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
   for (const BranchPoint& bp : P.branch_points)
     for (const Complex z : values_at(mesh, P, bp.vertex))
-      if (std::count(P.unfixed_even_branch_points.begin(), P.unfixed_even_branch_points.end(), bp.vertex) == 0) {
+      if (std::count(P.diagnostics.unfixed_even_branch_points.begin(), P.diagnostics.unfixed_even_branch_points.end(), bp.vertex) == 0) {
         EXPECT_LT(std::abs(z - round_gauss(z)), 1e-9 * seams.parameter_extent);
       }
 }
@@ -165,7 +165,7 @@ TEST(Parameterize, TorusWithoutBranchPoints) {
   field.matching = testing::matching_51(mesh, field.X);
   const Parameterization P = parameterize(mesh, field);
   EXPECT_TRUE(P.branch_points.empty());
-  EXPECT_TRUE(P.holonomy_without_branch_points.empty());
+  EXPECT_TRUE(P.diagnostics.holonomy_without_branch_points.empty());
   EXPECT_EQ(P.h_sym, 4);
   EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless);
   EXPECT_EQ(flipped_triangles(mesh, P.uv).flipped, 0);
@@ -201,7 +201,7 @@ TEST(Parameterize, TorusWithQuarterTurnHolonomy) {
     o.lattice = lattice;
     const Parameterization P = parameterize(mesh, field, o);
     EXPECT_TRUE(P.branch_points.empty());
-    EXPECT_EQ(P.holonomy_without_branch_points, std::vector<int>{0});
+    EXPECT_EQ(P.diagnostics.holonomy_without_branch_points, std::vector<int>{0});
     const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
     EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
     EXPECT_LT(std::abs(flipped_triangles(mesh, P.uv).parameter_area), 1e-6 * mesh.total_area() * P.scale * P.scale);

@@ -64,9 +64,9 @@ TEST(PeriodMatrix, PredictsHarmonicEnergyOfTheMap) {
     for (RoundingStrategy s : {RoundingStrategy::Greedy, RoundingStrategy::Search3}) {
       o.rounding.strategy = s;
       const Parameterization P = parameterize(mesh, field, o);
-      ASSERT_GT(P.rounding.variables, 0) << name;
-      EXPECT_NEAR(P.energy_harmonic, P.rounding.energy_rounded, 1e-7 * (1 + P.energy_harmonic)) << name;
-      EXPECT_LE(P.rounding.energy_rounded, P.rounding.energy_direct * (1 + 1e-12)) << name;
+      ASSERT_GT(P.diagnostics.rounding.variables, 0) << name;
+      EXPECT_NEAR(P.energy_harmonic, P.diagnostics.rounding.energy_rounded, 1e-7 * (1 + P.energy_harmonic)) << name;
+      EXPECT_LE(P.diagnostics.rounding.energy_rounded, P.diagnostics.rounding.energy_direct * (1 + 1e-12)) << name;
       for (std::size_t j = 0; j < P.rounded_periods.size(); ++j) {
         EXPECT_NEAR(P.rounded_periods[j].real(), std::round(P.rounded_periods[j].real()), 1e-12);
         EXPECT_NEAR(P.rounded_periods[j].imag(), std::round(P.rounded_periods[j].imag()), 1e-12);
@@ -77,7 +77,7 @@ TEST(PeriodMatrix, PredictsHarmonicEnergyOfTheMap) {
     o.rounding.strategy = RoundingStrategy::Search3;
     const Parameterization S = parameterize(mesh, field, o);
     EXPECT_LE(S.energy_harmonic, D.energy_harmonic * (1 + 1e-9)) << name;
-    EXPECT_EQ(D.rounding.strategy, "direct");
+    EXPECT_EQ(D.diagnostics.rounding.strategy, "direct");
   }
 }
 
@@ -88,8 +88,8 @@ TEST(PeriodMatrix, RotatedLatticeRounding) {
   ParamOptions o;
   o.rounding.strategy = RoundingStrategy::Search3;
   const Parameterization P = parameterize(mesh, field, o);
-  ASSERT_GT(P.rounding.variables, 0);
-  EXPECT_LE(P.rounding.energy_rounded, P.rounding.energy_direct * (1 + 1e-12));
+  ASSERT_GT(P.diagnostics.rounding.variables, 0);
+  EXPECT_LE(P.diagnostics.rounding.energy_rounded, P.diagnostics.rounding.energy_direct * (1 + 1e-12));
   for (const Complex c : P.rounded_periods) {
     const long a = std::lround(c.real()), b = std::lround(c.imag());
     EXPECT_NEAR(c.real(), a, 1e-12);
@@ -118,14 +118,14 @@ TEST(PeriodMatrix, CancellationKeepsAValidMap) {
   o.lattice = Lattice::Unit;
   o.rounding.strategy = RoundingStrategy::Search3;
   const Parameterization full = parameterize(mesh, field, o);
-  EXPECT_FALSE(full.rounding.stopped_early);
+  EXPECT_FALSE(full.diagnostics.rounding.stopped_early);
   o.rounding.strategy = RoundingStrategy::Direct;
   const Parameterization direct = parameterize(mesh, field, o);
   o.rounding.strategy = RoundingStrategy::Search3;
   for (int after : {1, 4}) {  // before the period matrix (after cut, ..., harmonic_factor)
     StopAfter stop(after);
     const Parameterization P = parameterize(mesh, field, o, stop);
-    EXPECT_TRUE(P.rounding.stopped_early) << after;
+    EXPECT_TRUE(P.diagnostics.rounding.stopped_early) << after;
     EXPECT_TRUE(measure_seams(mesh, P.uv, 1e-9).seamless) << after;
     EXPECT_LE(P.energy_harmonic, direct.energy_harmonic * (1 + 1e-9)) << after;
     EXPECT_GE(P.energy_harmonic, full.energy_harmonic * (1 - 1e-9)) << after;

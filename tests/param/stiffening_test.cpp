@@ -50,18 +50,18 @@ TEST_P(FoldingMeshes, StiffeningRemovesFlipsAndKeepsTheMapSeamless) {
   const Parameterization B = parameterize(mesh, field, stiffened);
   const int before = flipped_triangles(mesh, A.uv).non_positive, after = flipped_triangles(mesh, B.uv).non_positive;
   ASSERT_GT(before, 0) << "the plain map of this mesh is expected to fold";
-  EXPECT_EQ(B.stiffening.flipped_before, before);
-  EXPECT_EQ(B.stiffening.flipped_after, after);
+  EXPECT_EQ(B.diagnostics.stiffening.flipped_before, before);
+  EXPECT_EQ(B.diagnostics.stiffening.flipped_after, after);
   EXPECT_LT(after, before);
-  EXPECT_GT(B.stiffening.kept_iteration, 0);
-  EXPECT_LE(B.stiffening.kept_iteration, B.stiffening.iterations);
+  EXPECT_GT(B.diagnostics.stiffening.kept_iteration, 0);
+  EXPECT_LE(B.diagnostics.stiffening.kept_iteration, B.diagnostics.stiffening.iterations);
   // Same periods, branch points and E_D, E_H; the price E_K closes the identity E_D + E_H + E_K = ½‖X̃ − ∇φ̃‖².
   EXPECT_EQ(A.rounded_periods, B.rounded_periods);
   EXPECT_DOUBLE_EQ(A.energy_curl, B.energy_curl);
   EXPECT_DOUBLE_EQ(A.energy_harmonic, B.energy_harmonic);
-  EXPECT_GT(B.stiffening.energy, 0);
+  EXPECT_GT(B.diagnostics.stiffening.energy, 0);
   const double total = testing::map_field_energy(mesh, field, B);
-  EXPECT_NEAR(B.energy_curl + B.energy_harmonic + B.relaxation.energy + B.stiffening.energy, total, 1e-8 * total);
+  EXPECT_NEAR(B.energy_curl + B.energy_harmonic + B.diagnostics.relaxation.energy + B.diagnostics.stiffening.energy, total, 1e-8 * total);
   testing::expect_seamless_grid_map(mesh, B);
 }
 

@@ -98,7 +98,7 @@ TEST_P(FoldedMaps, UntanglesInsideTheSeamlessSubspace) {
   std::vector<char> given(2 * mesh.num_vertices(), 0);
   for (int p = 0; p < mesh.num_vertices(); p += 97) given[p] = 1;
   const std::vector<char> fixed = untangle_fixed_components(mesh, correction.layers(), {}, given);
-  Parameterization::Untangling report;
+  ParamDiagnostics::Untangling report;
   const Eigen::VectorXcd u = untangle_map(mesh, correction, P.uv, Z, fixed, u0, {}, null_progress(), report);
   Parameterization Q = P;
   Q.uv = P.uv - correction.corner_values(u);
@@ -131,7 +131,7 @@ TEST_P(FoldedMaps, UntanglesInsideTheSeamlessSubspace) {
     if (fixed[nv + p]) ASSERT_EQ(u[p].imag(), u0[p].imag()) << p;
   }
   // Nothing to do on an injective map: u comes back unchanged.
-  Parameterization::Untangling again;
+  ParamDiagnostics::Untangling again;
   const Eigen::VectorXcd w =
       untangle_map(mesh, correction, Q.uv, Z, fixed, Eigen::VectorXcd::Zero(nv), {}, null_progress(), again);
   EXPECT_EQ(again.iterations, 0);
@@ -149,18 +149,18 @@ INSTANTIATE_TEST_SUITE_P(Meshes, FoldedMaps,
 // the seams, cones and curves stay exact.
 void expect_untangled(const Mesh& mesh, const Parameterization& P, const std::string& name) {
   const FlipReport flips = flipped_triangles(mesh, P.uv);
-  std::vector<int> listed = P.untangling.stuck_faces;
-  listed.insert(listed.end(), P.untangling.unresolved_faces.begin(), P.untangling.unresolved_faces.end());
+  std::vector<int> listed = P.diagnostics.untangling.stuck_faces;
+  listed.insert(listed.end(), P.diagnostics.untangling.unresolved_faces.begin(), P.diagnostics.untangling.unresolved_faces.end());
   std::sort(listed.begin(), listed.end());
-  if (P.untangling.non_positive_before > 0) {
+  if (P.diagnostics.untangling.non_positive_before > 0) {
     EXPECT_EQ(flips.flipped_faces, listed) << name;
-    EXPECT_EQ(P.untangling.non_positive_after, flips.non_positive) << name;
-    EXPECT_LE(P.untangling.non_positive_after, P.untangling.non_positive_before) << name;
+    EXPECT_EQ(P.diagnostics.untangling.non_positive_after, flips.non_positive) << name;
+    EXPECT_LE(P.diagnostics.untangling.non_positive_after, P.diagnostics.untangling.non_positive_before) << name;
   }
   testing::expect_seamless_grid_map(mesh, P);
-  std::cerr << name << ": " << P.untangling.non_positive_before << " -> " << flips.non_positive << " non-positive ("
-            << P.untangling.stuck_faces.size() << " stuck, " << P.untangling.unresolved_faces.size() << " unresolved), "
-            << P.untangling.iterations << " + " << P.untangling.polish_iterations << " steps, " << P.untangling.seconds
+  std::cerr << name << ": " << P.diagnostics.untangling.non_positive_before << " -> " << flips.non_positive << " non-positive ("
+            << P.diagnostics.untangling.stuck_faces.size() << " stuck, " << P.diagnostics.untangling.unresolved_faces.size() << " unresolved), "
+            << P.diagnostics.untangling.iterations << " + " << P.diagnostics.untangling.polish_iterations << " steps, " << P.diagnostics.untangling.seconds
             << " s\n";
 }
 
@@ -221,15 +221,15 @@ TEST(Untangle, ReleasingCurveCornersOpensStuckCurveTriangles) {
     ParamOptions o;
     o.untangle.release_curve_corners = true;
     const Parameterization B = parameterize(mesh, field, o);
-    EXPECT_TRUE(A.untangling.released_vertices.empty());
-    ASSERT_FALSE(B.untangling.released_vertices.empty()) << name;
-    EXPECT_LT(B.untangling.stuck_faces.size(), A.untangling.stuck_faces.size()) << name;
+    EXPECT_TRUE(A.diagnostics.untangling.released_vertices.empty());
+    ASSERT_FALSE(B.diagnostics.untangling.released_vertices.empty()) << name;
+    EXPECT_LT(B.diagnostics.untangling.stuck_faces.size(), A.diagnostics.untangling.stuck_faces.size()) << name;
     EXPECT_LT(flipped_triangles(mesh, B.uv).non_positive, flipped_triangles(mesh, A.uv).non_positive) << name;
     EXPECT_TRUE(measure_seams(mesh, B.uv, 1e-9).seamless);
     std::cerr << name << ": " << flipped_triangles(mesh, A.uv).non_positive << " -> "
               << flipped_triangles(mesh, B.uv).non_positive << " non-positive, "
-              << B.untangling.released_vertices.size() << " curve vertices released, stuck "
-              << A.untangling.stuck_faces.size() << " -> " << B.untangling.stuck_faces.size() << "\n";
+              << B.diagnostics.untangling.released_vertices.size() << " curve vertices released, stuck "
+              << A.diagnostics.untangling.stuck_faces.size() << " -> " << B.diagnostics.untangling.stuck_faces.size() << "\n";
   }
 }
 

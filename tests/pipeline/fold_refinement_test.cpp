@@ -146,7 +146,7 @@ TEST(FoldRefinement, ConesWithAShortRingEndWithoutANonPositiveTriangle) {
   EXPECT_GE(non_positive(without.mesh(mesh), without.map.uv), 1);
   const ParamJob job = parameterize_mesh(mesh, on);
   EXPECT_EQ(non_positive(job.mesh(mesh), job.map.uv), 0);
-  EXPECT_FALSE(job.map.untangling.rewound_vertices.empty());
+  EXPECT_FALSE(job.map.diagnostics.untangling.rewound_vertices.empty());
   EXPECT_TRUE(measure_seams(job.mesh(mesh), job.map.uv, 1e-9).seamless);
   for (const std::string& w : job.warnings) EXPECT_EQ(w.find("stay flipped or collapsed"), std::string::npos) << w;
 }

@@ -21,7 +21,7 @@ namespace {
 /// Stuck faces (param/untangle.h) whose three corners lie on one integer iso-line of the map.
 int faces_on_one_iso_line(const Parameterization& map) {
   int n = 0;
-  for (int f : map.untangling.stuck_faces)
+  for (int f : map.diagnostics.untangling.stuck_faces)
     for (int k = 0; k < 2; ++k) {
       bool on = true;
       const double line = k == 0 ? std::round(map.uv(f, 0).real()) : std::round(map.uv(f, 0).imag());
@@ -39,7 +39,7 @@ int faces_with_coincident_cones(const Mesh& mesh, const Parameterization& map) {
   std::vector<char> branch(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (const BranchPoint& b : map.branch_points) branch[b.vertex] = 1;
   int n = 0;
-  for (int f : map.untangling.stuck_faces)
+  for (int f : map.diagnostics.untangling.stuck_faces)
     for (int c = 0; c < 3; ++c)
       if (branch[mesh.F()(f, c)] && branch[mesh.F()(f, (c + 1) % 3)] &&
           std::abs(map.uv(f, c) - map.uv(f, (c + 1) % 3)) < 1e-9) {
@@ -101,7 +101,7 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
   merge.fold_refinement_rounds = 0;
   const ParamJob with = parameterize_mesh(mesh, merge);
   EXPECT_GT(with.merged_cone_pairs, 0);
-  EXPECT_LT(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
+  EXPECT_LT(with.map.diagnostics.untangling.non_positive_after, without.map.diagnostics.untangling.non_positive_after);
   // Each merge turns at least one branch point into a regular vertex.
   EXPECT_LE(with.map.branch_points.size() + with.merged_cone_pairs, without.map.branch_points.size());
   // The index modulo 4 is moved, not lost: the sum over all branch points is the same modulo 4.
@@ -141,7 +141,7 @@ TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) 
   const ParamJob with = parameterize_mesh(mesh, move);
   EXPECT_GT(with.moved_wound_cones, 0);
   EXPECT_LT(wrong_winding_vertices(with.mesh(mesh), with.map).size(), wrong_before);
-  EXPECT_LE(with.map.untangling.non_positive_after, without.map.untangling.non_positive_after);
+  EXPECT_LE(with.map.diagnostics.untangling.non_positive_after, without.map.diagnostics.untangling.non_positive_after);
 }
 
 TEST(FeatureCounts, TheReportCountsTheInputsSharpEdgesNotTheRefinedHalves) {
