@@ -13,7 +13,7 @@ def test_validity_retries_reach_the_job_and_every_attempt_is_reported():
     QV, Q, report = quadcover.remesh(V, F, faces=100, validity_retries=2)
     assert report["options"]["validity_retries"] == 2
     attempts = report["validity_retries"]["attempts"]
-    assert [round(a["quads_factor"], 2) for a in attempts] == [1.0, 1.04, 0.96]
+    assert [round(a["quads_factor"], 2) for a in attempts] == [1.0, 1.02, 0.98]
     assert all(a["topology_changes"] == 1 and not a["valid"] for a in attempts)
     kept = attempts[report["validity_retries"]["used"]]
     assert kept["non_quads"] == report["surface_check"]["output"]["non_quads"]

@@ -34,7 +34,7 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
     Job next = run(attempt_options(given, h0, k));
     const Validity v = judge(next);
-    attempts.push_back({attempt_quads_factor(k), param_job(next).map.edge_length, v});
+    attempts.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v});
     if (v < best_validity) best = std::move(next), best_validity = v, used = k;
   }
   ParamJob& kept = param_job(best);

@@ -26,12 +26,15 @@ Validity map_validity(const Mesh& mesh, const Parameterization& map) {
   return v;
 }
 
-double attempt_quads_factor(int k) { return 1 + 0.04 * ((k + 1) / 2) * (k % 2 == 1 ? 1 : -1); }
+double attempt_quads_factor(int k, const DensityOptions& given) {
+  const bool requested = given.target_quads > 0 || given.edge_length > 0;
+  return 1 + (requested ? 0.02 : 0.04) * ((k + 1) / 2) * (k % 2 == 1 ? 1 : -1);
+}
 
 PipelineOptions attempt_options(const PipelineOptions& given, double first_edge_length, int k) {
   PipelineOptions o = given;
   o.validity_retries = 0;
-  const double factor = attempt_quads_factor(k);
+  const double factor = attempt_quads_factor(k, given.param.density);
   if (o.param.density.target_quads > 0)
     o.param.density.target_quads = std::max(1, static_cast<int>(std::lround(o.param.density.target_quads * factor)));
   else

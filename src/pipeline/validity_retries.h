@@ -4,7 +4,8 @@
 // not a valid result. Which lattice the rounding meets depends on the density, and the untangler's failures are
 // local: the same field at a slightly different density often gives a valid map. While the result has a
 // non-positive triangle or a changed topology (worth_retrying), the job runs again at the next density of the
-// sequence 1, 1.04, 0.96, 1.08, 0.92, … times the first attempt's quad count, at most
+// sequence 1, 1.04, 0.96, 1.08, 0.92, … times the first attempt's quad count (1, 1.02, 0.98, 1.04, … when the
+// user gave a quad count or an edge length: the default single retry stays within ±3 % of the request), at most
 // PipelineOptions::validity_retries times, and keeps the first valid attempt or else the best (Validity order).
 // Wrong windings alone do not start a retry: on the shipped meshes other densities rarely remove them and each
 // retry costs a whole job (BENCHMARKS.md, "Validity retries"). Retries are improvements: a time limit or Ctrl-C
@@ -51,8 +52,9 @@ std::vector<int> wrong_winding_vertices(const Mesh& mesh, const Parameterization
 /// The map's part of Validity (non_positive, wrong_windings). \pre map was made on mesh.
 Validity map_validity(const Mesh& mesh, const Parameterization& map);
 
-/// The quad-count factor of attempt k (0-based): 1, 1.04, 0.96, 1.08, 0.92, … \pre k >= 0
-double attempt_quads_factor(int k);
+/// The quad-count factor of attempt k (0-based): 1, 1.04, 0.96, 1.08, 0.92, … at the default density, in steps of
+/// 2 % instead when `given` (the user's density) asks for a quad count or an edge length. \pre k >= 0
+double attempt_quads_factor(int k, const DensityOptions& given);
 
 /// The options `given` at the density of attempt k, with no retries inside: a requested quad count × factor, else
 /// first_edge_length (attempt 0's h, the default density fixed) / √factor. \pre first_edge_length > 0, k >= 0.

@@ -18,17 +18,27 @@
 namespace quadcover {
 namespace {
 
-TEST(ValidityRetries, DensitiesAlternateAroundTheFirstInStepsOfFourPercent) {
-  const double expected[] = {1.0, 1.04, 0.96, 1.08, 0.92, 1.12};
-  for (int k = 0; k < 6; ++k) EXPECT_NEAR(attempt_quads_factor(k), expected[k], 1e-12) << k;
+// Steps of 4 % at the default density; of 2 % when the user asked for a density, so that the default single retry
+// stays within ±3 % of a requested quad count.
+TEST(ValidityRetries, DensitiesAlternateAroundTheFirstInStepsOfFourOrTwoPercent) {
+  const double by_default[] = {1.0, 1.04, 0.96, 1.08, 0.92, 1.12};
+  const double requested[] = {1.0, 1.02, 0.98, 1.04, 0.96, 1.06};
+  DensityOptions count, length;
+  count.target_quads = 500;
+  length.edge_length = 0.1;
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(attempt_quads_factor(k, DensityOptions{}), by_default[k], 1e-12) << k;
+    EXPECT_NEAR(attempt_quads_factor(k, count), requested[k], 1e-12) << k;
+    EXPECT_NEAR(attempt_quads_factor(k, length), requested[k], 1e-12) << k;
+  }
 }
 
 TEST(ValidityRetries, AttemptOptionsScaleTheRequestedCountOrTheFirstEdgeLength) {
   PipelineOptions count;
   count.param.density.target_quads = 1000;
   count.validity_retries = 3;
-  EXPECT_EQ(attempt_options(count, 0.5, 1).param.density.target_quads, 1040);
-  EXPECT_EQ(attempt_options(count, 0.5, 2).param.density.target_quads, 960);
+  EXPECT_EQ(attempt_options(count, 0.5, 1).param.density.target_quads, 1020);
+  EXPECT_EQ(attempt_options(count, 0.5, 2).param.density.target_quads, 980);
   EXPECT_EQ(attempt_options(count, 0.5, 2).param.density.edge_length, 0.0);
   EXPECT_EQ(attempt_options(count, 0.5, 2).validity_retries, 0);
   const PipelineOptions by_default;  // the default density: attempt 0's h is the reference
@@ -94,23 +104,23 @@ StubJob run_stub(StubRuns& stub, int retries, ProgressSink& progress = null_prog
 
 TEST(ValidityRetries, StopsAtTheFirstValidAttemptAndSaysWhichWasKept) {
   StubRuns stub;
-  stub.by_factor = {{1000, folds(3)}, {1040, folds(1)}, {960, folds(0)}, {1080, folds(0)}};
+  stub.by_factor = {{1000, folds(3)}, {1020, folds(1)}, {980, folds(0)}, {1040, folds(0)}};
   const StubJob job = run_stub(stub, 4);
-  EXPECT_EQ(stub.runs, 3);  // 1.0, 1.04, 0.96: the third is valid, 1.08 never runs
+  EXPECT_EQ(stub.runs, 3);  // 1.0, 1.02, 0.98: the third is valid, 1.04 never runs
   ASSERT_EQ(job.param.validity_attempts.size(), 3u);
   EXPECT_EQ(job.param.validity_attempt_used, 2);
   EXPECT_EQ(job.param.validity_attempts[1].validity.non_positive, 1);
-  EXPECT_NEAR(job.param.validity_attempts[2].quads_factor, 0.96, 1e-12);
-  EXPECT_NEAR(job.param.map.edge_length, 0.2 / std::sqrt(0.96), 1e-12);
+  EXPECT_NEAR(job.param.validity_attempts[2].quads_factor, 0.98, 1e-12);
+  EXPECT_NEAR(job.param.map.edge_length, 0.2 / std::sqrt(0.98), 1e-12);
   ASSERT_EQ(job.param.warnings.size(), 1u);
   EXPECT_NE(job.param.warnings[0].find("3 non-positive triangles"), std::string::npos) << job.param.warnings[0];
-  EXPECT_NE(job.param.warnings[0].find("kept a valid result at -4% quads"), std::string::npos)
+  EXPECT_NE(job.param.warnings[0].find("kept a valid result at -2% quads"), std::string::npos)
       << job.param.warnings[0];
 }
 
 TEST(ValidityRetries, WithoutAValidAttemptTheBestIsKeptAndItsDefectsAreSaid) {
   StubRuns stub;
-  stub.by_factor = {{1000, folds(3)}, {1040, folds(1)}};
+  stub.by_factor = {{1000, folds(3)}, {1020, folds(1)}};
   const StubJob job = run_stub(stub, 1);
   EXPECT_EQ(stub.runs, 2);
   EXPECT_EQ(job.param.validity_attempt_used, 1);
