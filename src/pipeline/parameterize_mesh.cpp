@@ -144,7 +144,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
   ParamOptions& param = job.options.param;
   DensityReport d;
   d.target_quads = param.density.target_quads;
-  d.quads = d.first_quads = parameter_area(mesh, job.map.uv);
+  d.quads = d.first_quads = expected_face_count(mesh, job.map.uv);
   if (param.density.target_quads <= 0 || d.first_quads <= 0) return d;
   const double target = param.density.target_quads;
   StageMeter meter;
@@ -165,7 +165,7 @@ DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& pr
     param.density.edge_length = h;
     param.density.target_quads = 0;
     Parameterization map = parameterize(mesh, job.field, param, progress);
-    count = parameter_area(mesh, map.uv);
+    count = expected_face_count(mesh, map.uv);
     note(h, count);
     ++d.resolves;
     if (std::abs(count / target - 1) < std::abs(d.quads / target - 1)) {

@@ -19,13 +19,14 @@
 namespace quadcover {
 
 /// How the job met a requested quad count N (DensityOptions::target_quads): h = sqrt(area / N) gives a map whose
-/// quad count Σ|area(φ(t))| is off by the field's non-uniform scale; while the count is off by more than
+/// face count (quad/extract_quads.h expected_face_count: Σ|area(φ(t))|, plus half the boundary's length in grid
+/// units on surfaces with boundary) is off by the field's non-uniform scale; while the count is off by more than
 /// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
 /// above N), at most kDensityResolves times, keeping the closest.
 struct DensityReport {
   int target_quads = 0;    ///< N asked for (0: an edge length or the default density)
-  double first_quads = 0;  ///< quad count of the first map
-  double quads = 0;        ///< quad count of the final map
+  double first_quads = 0;  ///< expected face count of the first map
+  double quads = 0;        ///< expected face count of the final map
   int resolves = 0;        ///< maps solved again at a corrected edge length
 };
 inline constexpr double kDensityTolerance = 0.02;
