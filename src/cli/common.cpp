@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "common/errors.h"
+#include "common/seconds_since.h"
 #include "io/atomic_file.h"
 #include "io/read_mesh.h"
 
@@ -514,7 +515,7 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
         r.exit_code = describe_current_exception(r.error);
       }
     }
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.seconds = seconds_since(t0);
     const int n = ++done;
     if (!global.quiet) {
       std::lock_guard lock(stderr_mutex());

@@ -1,5 +1,5 @@
 #pragma once
-// Wall seconds since a time point of the steady clock, for the per-stage timings of the optimizer.
+// Wall seconds since a time point of the steady clock, for the timings the reports give.
 #include <chrono>
 
 namespace quadcover {

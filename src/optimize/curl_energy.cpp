@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "common/errors.h"
-#include "common/seconds_since.h"
 #include "common/quarter_turn.h"
+#include "common/seconds_since.h"
 #include "cover/complex_stiffness.h"
 
 namespace quadcover {

@@ -184,5 +184,4 @@ CurlEnergyTimings CurlEstimator::timings() const {
   return t;
 }
 
-
 }  // namespace quadcover

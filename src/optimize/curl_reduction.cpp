@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "common/quarter_turn.h"
+#include "common/seconds_since.h"
 #include "field/indices.h"
 
 namespace quadcover {
@@ -64,7 +65,7 @@ class Reducer {
  private:
   using Path = std::vector<MatchingChange>;
 
-  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  double elapsed() const { return seconds_since(start_); }
   /// The share of the budget used (evaluations or time, whichever is nearer its end; -1 without a budget).
   double budget_used() const {
     double f = -1;

@@ -54,8 +54,9 @@ class SmoothingSystem {
   const Mesh* mesh_;
   const FrameSmoother* smoother_;  // its A (5.4) and factorization: solve()
   double lambda_;
-  Eigen::VectorXd omega_, diag_;  // ω_e (#E), A_tt (#F, 0 at fixed faces)
-  std::vector<char> fixed_;
+  const Eigen::VectorXd& omega_;     // the smoother's ω_e (#E)
+  const std::vector<char>& fixed_;   // the smoother's fixed faces (#F)
+  Eigen::VectorXd diag_;             // A_tt (#F, 0 at fixed faces), the Jacobi preconditioner of solve_local
 };
 
 }  // namespace quadcover

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "common/errors.h"
+#include "common/seconds_since.h"
 
 namespace quadcover {
 
@@ -44,7 +45,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   FrameSmoother smoother(mesh, field.field, field.stability, field.trusted, field.constrained, options.lambda);
   CurlEnergy energy(mesh, smoother, options.energy);
   CurlEstimator screening(energy);  // one for the reduction and the balancing: its far field carries over
-  out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.setup_seconds = seconds_since(t0);
   CurlReductionOptions ro = curl_reduction_options(options);
   const long budget =
       options.max_evaluations == kAutoBudget ? auto_evaluation_budget(mesh, options.mode) : options.max_evaluations;
@@ -54,7 +55,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
                        : options.max_evaluations == kAutoBudget ? auto_time_limit(mesh, options.mode)
                                                                 : 0.0;
   out.time_limit_seconds = limit;
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  auto elapsed = [&] { return seconds_since(t0); };
   ro.max_evaluations = out.max_evaluations;
   // full: a third of the evaluation budget is kept for balancing, which also runs when the first reduction used up
   // its share (otherwise a budget-limited run would only create branch points).
@@ -84,7 +85,7 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   out.field = energy.field();
   out.exact_timings = energy.timings();
   out.estimate_timings = screening.timings();
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   out.evaluations_per_second = out.seconds > 0 ? evaluations / out.seconds : 0;
   return out;
 }

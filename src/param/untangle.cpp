@@ -15,6 +15,7 @@
 
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
+#include "common/seconds_since.h"
 #include "param/seams.h"
 
 namespace quadcover {
@@ -500,7 +501,7 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
   result.unresolved_faces = folds;
   const int after = flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive;
   progress.report("param", -1, "untangling: " + std::to_string(after) + " non-positive triangles");
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = seconds_since(start);
   const Energy energy(maps, options.area_weight);
   if (after > before) {
     result.unresolved_faces = left((Eigen::VectorXd(2 * nv) << u0.real(), u0.imag()).finished());

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <string>
 
+#include "common/seconds_since.h"
 #include "field/indices.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
@@ -208,7 +209,7 @@ FoldRefinement refine_folds(const Mesh& mesh, const FrameField& field, const Par
   if (out.mesh) measure_curve_deviations(*out.mesh, out.map);
   if (out.mesh)
     rep.energy = field_distance(*out.mesh, map_frames(*out.mesh, out.field, out.map), out.map.uv) - distance_before;
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.seconds = seconds_since(start);
   return out;
 }
 

@@ -79,9 +79,8 @@ double expected_face_count(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
   double boundary = 0;
   for (int e = 0; e < mesh.num_edges(); ++e) {
     if (!mesh.is_boundary_edge(e)) continue;
-    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
-    int k = 0;
-    while (mesh.FE()(f, k) != e) ++k;
+    const int side = mesh.EF()(e, 0) >= 0 ? 0 : 1;
+    const int f = mesh.EF()(e, side), k = mesh.EF_corner()(e, side);
     const Complex a = uv(f, (k + 1) % 3), b = uv(f, (k + 2) % 3);
     if (!on_one_iso_line(a, b)) boundary += std::abs(b - a);
   }
