@@ -66,5 +66,15 @@ TEST(HardCases, ACoarseCubeWithSharpCreases) {
   expect_valid_remesh(coarse_cube(), 200, "cube, 200 quads");
 }
 
+// Boundaries (issue 17 item 6 pins v = 0 on them in the optimizer too): a coarse disk of 12 triangles, a plate with
+// 16 small square holes, and a torus beside an open cylinder in one mesh.
+TEST(HardCases, CoarseSurfacesWithBoundary) {
+  expect_valid_remesh(testing::make_fan(12, false), 100, "disk of 12 triangles");
+  const Mesh grid = testing::make_grid(10);
+  expect_valid_remesh(Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, 10)), 400,
+                      "plate with 16 holes");
+  expect_valid_remesh(testing::make_torus_and_cylinder(), 300, "torus and open cylinder");
+}
+
 }  // namespace
 }  // namespace quadcover
