@@ -90,9 +90,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
     if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
     const StarChange star = stiffness_change(c.edge, c.delta);
     ok = ok && trial_.add_star_change(factor_, star);
-    const int g = std::max(mesh_->EF()(c.edge, 0), mesh_->EF()(c.edge, 1));
-    int a = 0;
-    while (mesh_->FE()(g, a) != c.edge) ++a;
+    const auto [g, a] = changed_slot(c.edge);
     saved.emplace_back(g, a, mu_(g, a));
     field_.matching[c.edge] += c.delta;
     mu_(g, a) = layer_after(c.edge, field_.matching[c.edge]);
@@ -118,9 +116,7 @@ void CurlEnergy::commit() {
   for (const auto& c : pending_) {
     if (mesh_->is_boundary_edge(c.edge) || c.delta == 0) continue;
     smoother_->change_matching(c.edge, c.delta);
-    const int g = std::max(mesh_->EF()(c.edge, 0), mesh_->EF()(c.edge, 1));
-    int a = 0;
-    while (mesh_->FE()(g, a) != c.edge) ++a;
+    const auto [g, a] = changed_slot(c.edge);
     mu_(g, a) = layer_after(c.edge, smoother_->matching()[c.edge]);
   }
   alpha_ = pending_alpha_;

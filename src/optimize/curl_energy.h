@@ -12,6 +12,7 @@
 //
 // Local estimates of E_D for screening candidates: optimize/curl_estimator.h.
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/quarter_turn.h"
@@ -84,6 +85,12 @@ class CurlEnergy {
 
  private:
   int layer_after(int e, int new_matching) const;
+  /// The face whose layer of interior edge e a matching change moves (the non-reference face, the larger index of
+  /// EF(e)), and e's slot in it: FE()(face, slot) == e.
+  std::pair<int, int> changed_slot(int e) const {
+    const int side = mesh_->EF()(e, 0) > mesh_->EF()(e, 1) ? 0 : 1;
+    return {mesh_->EF()(e, side), mesh_->EF_corner()(e, side)};
+  }
   template <class Layer>
   StarChange star_change(int e, int new_matching, Layer mu) const;
   Complex contribution(int f, int k, double alpha, int mu) const;
@@ -119,9 +126,7 @@ template <class Layer>
 StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {
   StarChange c;
   c.k = e;
-  const int g = std::max(mesh_->EF()(e, 0), mesh_->EF()(e, 1));  // non-reference face: its layer of e changes
-  int a = 0;
-  while (mesh_->FE()(g, a) != e) ++a;
+  const auto [g, a] = changed_slot(e);
   const int mu_new = layer_after(e, new_matching);
   const double area = mesh_->face_areas()[g];
   for (int b = 0; b < 3; ++b) {

@@ -107,9 +107,7 @@ double CurlEstimator::estimate(std::span<const MatchingChange> changes, Estimate
     ws.db_smooth.insert(ws.db_smooth.end(), fe, fe + n);
     // Star change of 𝔏̄* one edge at a time with the layers as changed so far (6.2.1).
     ok = ok && ws.trial.add_star_change(E.factor_, E.star_change(c.edge, m + c.delta, layer));
-    const int g = std::max(E.mesh_->EF()(c.edge, 0), E.mesh_->EF()(c.edge, 1));
-    int a = 0;
-    while (E.mesh_->FE()(g, a) != c.edge) ++a;
+    const auto [g, a] = E.changed_slot(c.edge);
     ws.mu_override.emplace_back(g, a, E.layer_after(c.edge, m + c.delta));
     ws.m_override.emplace_back(c.edge, m + c.delta);
     ws.theta_override.emplace_back(c.edge, theta);
