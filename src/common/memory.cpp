@@ -1,5 +1,9 @@
 #include "common/memory.h"
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <algorithm>
 #include <mutex>
 #include <vector>
@@ -22,6 +26,9 @@ struct OpenStages {
     const std::int64_t peak = peak_resident_bytes();
     process_peak = std::max(process_peak, peak);
     for (StagePeakMemory* s : stages) s->kept_ = std::max(s->kept_, peak);
+#ifdef __GLIBC__
+    malloc_trim(0);  // give the heap the last stage freed back to the system: a stage's peak is then its own
+#endif
     std::ofstream out("/proc/self/clear_refs");
     out << "5";
     out.flush();

@@ -40,9 +40,10 @@ bool reset_peak_resident();
 /// Peak resident bytes since the process started, across resets; 0 if unknown. \pre none
 std::int64_t process_peak_resident_bytes();
 
-/// Peak resident bytes of one stage: construct before the stage (resets the peak), read peak() after it. Stages may
-/// nest or run in parallel threads: a reset by one keeps the peak so far for all others, so each sees the process's
-/// peak over its own interval (parallel ones therefore include each other's memory).
+/// Peak resident bytes of one stage: construct before the stage (resets the peak, after giving the heap that earlier
+/// stages freed back to the system with glibc's malloc_trim, so that it does not count in the peak), read peak()
+/// after it. Stages may nest or run in parallel threads: a reset by one keeps the peak so far for all others, so
+/// each sees the process's peak over its own interval (parallel ones therefore include each other's memory).
 class StagePeakMemory {
  public:
   StagePeakMemory();

@@ -50,10 +50,8 @@ UpdatableCholesky::~UpdatableCholesky() = default;
 UpdatableCholesky::UpdatableCholesky(UpdatableCholesky&&) noexcept = default;
 UpdatableCholesky& UpdatableCholesky::operator=(UpdatableCholesky&&) noexcept = default;
 
-UpdatableCholesky::UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A_in, Route route)
-    : impl_(std::make_unique<Impl>()) {
-  if (A_in.rows() != A_in.cols()) throw NumericalError("cholesky", "matrix is not square");
-  Eigen::SparseMatrix<Complex> A = A_in;
+UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route) : impl_(std::make_unique<Impl>()) {
+  if (A.rows() != A.cols()) throw NumericalError("cholesky", "matrix is not square");
   A.makeCompressed();
   const int n = static_cast<int>(A.rows());
   // Non-owning CSC view of Eigen's storage (same layout: int indices, std::complex<double> values).

@@ -49,8 +49,8 @@ class UpdatableCholesky {
   /// `route`: Automatic (by the front sizes, as above), UpLooking (always CXSparse) or Supernodal (CHOLMOD when
   /// compiled in).
   enum class Route { Automatic, UpLooking, Supernodal };
-  /// \pre A is Hermitian (full storage).
-  explicit UpdatableCholesky(const Eigen::SparseMatrix<Complex>& A, Route route = Route::Automatic);
+  /// \pre A is Hermitian (full storage). A is taken by value: pass a temporary (or std::move) to spare a copy.
+  explicit UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route = Route::Automatic);
   /// Whether the numbers came from CHOLMOD's supernodal factorization. \pre none
   bool supernodal() const;
 

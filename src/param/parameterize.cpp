@@ -206,8 +206,8 @@ FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverC
   return Z;
 }
 
-/// Step 2: curl removal on the covering, 𝔏̄* v = -curl* Z̃; returns X̃_C = J∇v (X̂ = Z − X̃_C). The factorization
-/// of 𝔏̄ (#V, for steps 4-5) is independent of that of 𝔏̄* (#E): it runs beside it into `harmonic`.
+/// Step 2: curl removal on the covering, 𝔏̄* v = -curl* Z̃; returns X̃_C = J∇v (X̂ = Z − X̃_C). Then 𝔏̄ (#V, for
+/// steps 4-5) is factored into `harmonic`.
 FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<char>& trivial, const FramePairs& Z,
                        std::optional<HarmonicCorrection>& harmonic) {
   const int ne = mesh.num_edges();
@@ -229,16 +229,16 @@ FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<c
     }
     pin_rows(Ls, pinned);
   }
-  // One factorization per core (each is sequential, so the result does not depend on the thread count). 𝔏̄*'s
-  // factor is freed after its one solve.
+  // One factorization after the other: 𝔏̄*'s factor is freed after its one solve, before 𝔏̄ is factored (side by
+  // side on two cores they were 1.4x faster but raised the stage's peak by 40 %; BENCHMARKS.md, "Peak memory").
   Eigen::VectorXcd v;
-  tbb::parallel_invoke(
-      [&] {
-        SparseCholesky<Complex> chol_s;
-        chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
-        v = chol_s.solve(rhs);
-      },
-      [&] { harmonic.emplace(mesh, cc, trivial); });
+  {
+    SparseCholesky<Complex> chol_s;
+    chol_s.compute(Ls, "curl removal (complex nonconforming stiffness)");
+    Ls = Eigen::SparseMatrix<Complex>();  // not needed for the solve
+    v = chol_s.solve(rhs);
+  }
+  harmonic.emplace(mesh, cc, trivial);
   return rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
 }
 
