@@ -5,6 +5,7 @@
 #endif
 
 #include <algorithm>
+#include <cstddef>
 #include <mutex>
 #include <vector>
 
@@ -27,7 +28,10 @@ struct OpenStages {
     process_peak = std::max(process_peak, peak);
     for (StagePeakMemory* s : stages) s->kept_ = std::max(s->kept_, peak);
 #ifdef __GLIBC__
-    malloc_trim(0);  // give the heap the last stage freed back to the system: a stage's peak is then its own
+    // Give what the last stage freed back to the system when it is much (glibc keeps freed heap resident): the next
+    // stage's peak is then its own. Small amounts stay: trimming them costs page faults for nothing.
+    constexpr std::size_t kTrimBytes = std::size_t{32} << 20;
+    if (mallinfo2().fordblks > kTrimBytes) malloc_trim(0);
 #endif
     std::ofstream out("/proc/self/clear_refs");
     out << "5";

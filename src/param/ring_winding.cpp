@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 namespace quadcover {
 
@@ -224,11 +225,10 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
       r = std::move(r_free);
     }
     const int wrong_v = wrong(v);
-    // Kept only if neither count grows and one falls: a flipped triangle traded for a wrong winding elsewhere (a
-    // regular vertex at 4π beside the cone: no fold, yet a cone off the lattice) is no progress.
-    if (r.non_positive_after > result.non_positive_after || wrong_v > wrong_now ||
-        r.non_positive_after + wrong_v >= result.non_positive_after + wrong_now)
-      break;
+    // Kept if it is more valid in the order of the validity retries (pipeline/validity_retries.h): fewer
+    // non-positive triangles, then fewer wrong windings. A fold traded for a regular vertex at 4π beside the cone is
+    // progress: the map is then an immersion, and the fold refinement stops there.
+    if (std::tie(r.non_positive_after, wrong_v) >= std::tie(result.non_positive_after, wrong_now)) break;
     r.non_positive_before = result.non_positive_before;
     r.iterations += result.iterations;
     r.polish_iterations += result.polish_iterations;

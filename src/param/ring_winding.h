@@ -45,10 +45,11 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
 inline constexpr int kRewindPasses = 3;
 /// untangle_map (param/untangle.h), then up to kRewindPasses times, while the map has a non-positive triangle or a
 /// wrong winding: rewind_rings on the result and untangle_map again, first with the moved vertices held (left free,
-/// the untangling would wind the rings back to where they were), then with them free if folds are left; kept only if
-/// neither the non-positive triangles nor the wrong windings grow and their sum falls (a flip traded for a regular
-/// vertex at 4π next to the cone is no progress). The record is the last kept pass's, with non_positive_before,
-/// the iterations and the released vertices of all passes and the rewound vertices in rewound_vertices.
+/// the untangling would wind the rings back to where they were), then with them free if folds are left; kept if the
+/// pair (non-positive triangles, wrong windings) falls in lexicographic order, the order of pipeline/validity_retries.h
+/// (a flip traded for a regular vertex at 4π next to the cone is progress). The record is the last kept pass's, with
+/// non_positive_before, the iterations and the released vertices of all passes and the rewound vertices in
+/// rewound_vertices.
 /// target: per vertex the field's cross-field quarter index (field/indices.h); other arguments as untangle_map's.
 /// \throw NumericalError if a factorization fails.
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,

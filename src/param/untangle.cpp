@@ -262,10 +262,14 @@ bool newton_step(Energy& energy, Pattern& P, SparseCholesky<double>& chol, doubl
     Eigen::Vector4d g;
     Eigen::Matrix4d H;
     untangle_density(as_matrix(J), eps, energy.lambda(), &g, &H);
+    g6[f] = m.area * m.Dm.transpose() * g;
+    if (Eigen::LLT<Eigen::Matrix4d>(H).info() == Eigen::Success) {  // positive definite: the projection is H
+      H6[f] = m.area * m.Dm.transpose() * H * m.Dm;
+      return;
+    }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> es(H);
     const Eigen::Matrix4d Hp =
         es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
-    g6[f] = m.area * m.Dm.transpose() * g;
     H6[f] = m.area * m.Dm.transpose() * Hp * m.Dm;
   });
   Eigen::VectorXd grad = Eigen::VectorXd::Zero(P.nfree);
