@@ -230,6 +230,13 @@ def check_remesh(binary, mesh_path, name, out, info):
     # Degenerate faces (two branch points rounded onto one integer point collapse a cell) and spikes are removed.
     repaired = (ex["flipped_triangles"] + ex["degenerate_triangles"] + ex.get("split_polygons", 0) +
                 ex.get("merged_polygons", 0) + ex.get("degenerate_faces", 0) + ex.get("removed_spikes", 0))
+    # Issue 14 item 5: from an injective map with every cone where the field put it (0 non-positive triangles, 0
+    # wrong windings) on a closed surface, the extraction repairs nothing; its repair counters are a fallback.
+    pm = rep["parameterization"]
+    if info["boundary_loops"] == 0 and pm["non_positive_triangles"] == 0 and pm["wrong_windings"] == 0:
+        check(repaired == 0 and ex["torn_seams"] == 0 and ex["dropped_faces"] == 0,
+              f"{name}: extraction repaired an injective map: "
+              f"{ {k: v for k, v in ex.items() if isinstance(v, int) and v and k not in ('quads', 'grid_vertices')} }")
     if topo.closed and non_quads == 0 and repaired == 0:
         check(abs(len(obj.faces) - area) < 0.5, f"{name}: {len(obj.faces)} quads but parameter area {area:.2f}")
     else:  # an interior quad covers one unit square; a k-gon of unit squares (k - 2) / 2 (Pick), a clipped one less
