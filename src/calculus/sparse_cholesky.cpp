@@ -314,10 +314,9 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
   c.nmethods = 1;  // the given permutation only, not postordered: the factor of exactly P A Pᵀ
   c.method[0].ordering = CHOLMOD_GIVEN;
   c.postorder = 0;
-  // The supernodal factor is only a step to the simplicial one: fewer explicit zeros merged into supernodes
-  // (CHOLMOD's default zrelax is 0.8 / 0.1 / 0.05) keep its padding, and the peak of the conversion beside the
-  // simplicial copy, low: on a 200k-face torus 43 % fewer stored entries for 12 % more factorization time
-  // (BENCHMARKS.md, "Peak memory per stage").
+  // The supernodal factor is only a step to the simplicial one, so its padding (explicit zeros merged into
+  // supernodes) only costs memory, at the conversion's peak beside the simplicial copy: merge less than CHOLMOD's
+  // default zrelax 0.8 / 0.1 / 0.05 (BENCHMARKS.md, "Under 3 KB per face").
   c.zrelax[0] = 0.2;
   c.zrelax[1] = 0.025;
   c.zrelax[2] = 0.0125;
