@@ -35,7 +35,8 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
   cmd.add_option("--retries", options.validity_retries,
                  "While the result has a flipped or collapsed triangle or a quad mesh whose topology differs from "
-                 "the input's, run the job again at up to N nearby densities (+2%, -2%, +4%, ... quads) and keep the "
+                 "the input's, run the job again at up to N nearby densities (+4%, -4%, +8%, ... quads; +2%, -2%, +4%, "
+                 "... when --faces/--vertices or --edge-length gave the density) and keep the "
                  "first valid one, else the best (0 = off; see the report's validity_retries)")
       ->check(CLI::Range(0, 8))
       ->capture_default_str();
