@@ -45,6 +45,8 @@ def test_off_keeps_boundaries_and_align_curves_frees_them():
     assert features(aligned)["constrained_faces"] > 0 and features(aligned)["boundaries"]
     assert aligned["aligned_curves"]["curves"] != []
     assert free["options"]["align_curves"] is False and free["aligned_curves"]["curves"] == []
+    for curve in aligned["aligned_curves"]["curves"]:  # a free line says why, an enforced one has no reason
+        assert (curve["left_free_because"] is None) == curve["enforced"]
 
 
 @pytest.mark.parametrize("bad", [-1, 180.5, float("nan"), float("inf"), "abc", "35", True, None])

@@ -102,6 +102,16 @@ std::vector<std::vector<Rel>> slot_relations(const SlotFrame& s, const std::vect
   return rel;
 }
 
+constexpr const char* kTwoIntegers = "two branch points at different integers";
+constexpr const char* kClosesOtherwise = "closes on itself with another integer";
+constexpr const char* kMeetsOtherwise = "meets another line at another integer";
+
+// Left free because the rounded periods allow no integer iso-line there (not by a CurveLimits limit).
+bool cannot_be_iso_line(const AlignedCurve& c) {
+  return !c.enforced && (c.left_free_because == kTwoIntegers || c.left_free_because == kClosesOtherwise ||
+                         c.left_free_because == kMeetsOtherwise);
+}
+
 // Per slot: its curve and n = σ n_root + τ.
 struct SlotCurves {
   std::vector<int> curve_of, sigma_of;
@@ -152,8 +162,13 @@ void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, c
   // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
   // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
   const double shift = std::abs(sum / count - curves[k].value);
-  curves[k].enforced =
-      consistent && length >= limits.min_length && shift <= limits.max_shift && hi - lo <= limits.max_spread;
+  const char* because = !consistent                  ? kTwoIntegers
+                        : length < limits.min_length ? "shorter than the minimum length"
+                        : shift > limits.max_shift   ? "too far from an integer"
+                        : hi - lo > limits.max_spread ? "wiggles more than the maximum spread"
+                                                      : "";
+  curves[k].left_free_because = because;
+  curves[k].enforced = curves[k].left_free_because.empty();
 }
 
 // Slots fixing the same component of the same u_p lie on one iso-line seen through the transitions of the cut:
@@ -199,8 +214,12 @@ int drop_conflicting_curves(const SlotFrame& s, const std::vector<std::vector<Us
       auto [it, inserted] = seen.try_emplace(idx, k, v);
       if (!inserted && std::abs(it->second.second - v) > 1e-9 * (1 + std::abs(v))) {
         if (curves[k].enforced) ++conflicts;
-        curves[k].enforced = false;
-        curves[it->second.first].enforced = false;
+        const int other = it->second.first;
+        const char* because = other == k ? kClosesOtherwise : kMeetsOtherwise;
+        // A reason that no limit could lift replaces one that a limit gave.
+        for (const int c : {k, other})
+          if (curves[c].enforced || !cannot_be_iso_line(curves[c]))
+            curves[c].enforced = false, curves[c].left_free_because = because;
       }
     }
   return conflicts;

@@ -112,9 +112,13 @@ struct Parameterization {
     std::vector<double> edge_values;
     int coordinate = 0;  ///< of the first edge
     double value = 0, max_deviation = 0;
-    /// False for lines that cannot be integer iso-lines with the rounded periods (through two branch points at
-    /// different integers, or closing on themselves with another integer): left free, deviation reported.
+    /// False for lines left free (deviation reported): those that cannot be integer iso-lines with the rounded
+    /// periods, and those param/alignment.h CurveLimits leaves free.
     bool enforced = true;
+    /// Why a line is left free (empty when enforced): "two branch points at different integers", "closes on
+    /// itself with another integer", "meets another line at another integer", "shorter than the minimum length",
+    /// "too far from an integer", "wiggles more than the maximum spread".
+    std::string left_free_because;
   };
   std::vector<Curve> aligned_curves;
   /// The seamless affine subspace of the final map, the one the untangler moves in (param/untangle.h): for every

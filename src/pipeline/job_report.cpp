@@ -74,7 +74,8 @@ nlohmann::json curves_json(const Parameterization& map) {
                       {"coordinate", c.coordinate == 0 ? "u" : "v"},
                       {"value", c.value},
                       {"max_deviation", c.max_deviation},
-                      {"enforced", c.enforced}});
+                      {"enforced", c.enforced},
+                      {"left_free_because", c.enforced ? nlohmann::json() : nlohmann::json(c.left_free_because)}});
     worst = std::max(worst, c.max_deviation);
   }
   return {{"curves", curves}, {"max_deviation", worst}, {"conflicts", map.diagnostics.alignment_conflicts}};

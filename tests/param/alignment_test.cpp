@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <string>
 
 #include "field/compute_frame_field.h"
 #include "param/parameterize.h"
@@ -108,6 +110,34 @@ TEST_P(WithCurves, ShortCurvesStayFree) {
   }
   EXPECT_LE(enforced_default, enforced_all) << GetParam().mesh;
   EXPECT_LE(D.energy_harmonic, A.energy_harmonic * (1 + 1e-9)) << GetParam().mesh;
+}
+
+// Every line left free says why (the report's aligned_curves left_free_because), and the reasons are the true ones:
+// two branch points at different integers leave one of them at least half a grid unit off the line's integer; with
+// no limits (CurveLimits all permissive) only the reasons the rounded periods give remain.
+TEST_P(WithCurves, FreeLinesSayWhy) {
+  const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
+  const FrameField field = compute_frame_field(mesh);
+  ParamOptions no_limits;
+  no_limits.alignment.limits = {.max_shift = INFINITY, .min_length = 0, .max_spread = INFINITY};
+  const Parameterization D = parameterize(mesh, field);
+  const Parameterization N = parameterize(mesh, field, no_limits);
+  const std::set<std::string> structural{"two branch points at different integers",
+                                         "closes on itself with another integer",
+                                         "meets another line at another integer"};
+  const std::set<std::string> limits{"shorter than the minimum length", "too far from an integer",
+                                     "wiggles more than the maximum spread"};
+  int free_lines = 0;
+  for (const Parameterization* P : {&D, &N})
+    for (const auto& c : P->aligned_curves) {
+      EXPECT_EQ(c.enforced, c.left_free_because.empty()) << GetParam().mesh;
+      if (c.enforced) continue;
+      ++free_lines;
+      EXPECT_TRUE(structural.count(c.left_free_because) || limits.count(c.left_free_because)) << c.left_free_because;
+      if (P == &N) EXPECT_TRUE(structural.count(c.left_free_because)) << GetParam().mesh << ": " << c.left_free_because;
+      if (c.left_free_because == "two branch points at different integers") EXPECT_GE(c.max_deviation, 0.5 - 1e-9);
+    }
+  EXPECT_GT(free_lines, 0) << GetParam().mesh;  // every mesh of the suite has some
 }
 
 // CurveLimits::max_spread: on the closed-up base rim of bunny_3k at the Table 7.1 density the crease lines
