@@ -144,6 +144,7 @@ struct JobArgs {
   bool align_curves = true;
   int fold_refinement_rounds = PipelineOptions{}.fold_refinement_rounds;
   int validity_retries = PipelineOptions{}.validity_retries;
+  bool round_curves = false;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -163,6 +164,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.param.relaxation.iterations = a.relaxation;
   o.param.features.sharp_angle_degrees = a.feature_angle;
   o.param.alignment.enabled = a.align_curves;
+  o.param.alignment.round_with_periods = a.round_curves;
   o.fold_refinement_rounds = a.fold_refinement_rounds;
   o.validity_retries = a.validity_retries;
   validate(o);  // ValueError naming the keyword before any work
@@ -352,6 +354,8 @@ constexpr const char* kParameterizeDoc =
     "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
     "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
     "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
+    "round_curves: with align_curves, round the periods and the curves' integers together (the CLI's "
+    "--round-curves; falls back to the map without when that one is less valid). "
     "fold_refinement_rounds: rounds of edge splits around triangles left flipped or collapsed (the CLI's "
     "--refine-folds; 0 = off). "
     "validity_retries: runs of the job at nearby densities while the result is not valid (the CLI's --retries; "
@@ -371,11 +375,11 @@ constexpr const char* kRemeshDoc =
 JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle,
-                 bool align_curves, int fold_refinement_rounds, int validity_retries) {
+                 bool align_curves, int fold_refinement_rounds, int validity_retries, bool round_curves) {
   const double angle = feature_angle_degrees(feature_angle);
   return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding,     field,
                  fill,        max_iterations, keep_better, stiffening, relaxation, angle,        align_curves,
-                 fold_refinement_rounds, validity_retries};
+                 fold_refinement_rounds, validity_retries, round_curves};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -386,11 +390,12 @@ void def_jobs(py::module_& m) {
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         bool round_curves,
          py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
                                         keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                        fold_refinement_rounds, validity_retries),
+                                        fold_refinement_rounds, validity_retries, round_curves),
                                std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -400,7 +405,7 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries, py::arg("round_curves") = false,
       py::arg("progress") = py::none(), kParameterizeDoc);
   m.def(
       "remesh",
@@ -408,13 +413,14 @@ void def_jobs(py::module_& m) {
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         bool round_curves,
          int smooth_quads,
          double smooth_rigidity,
          py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
                                   stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                  fold_refinement_rounds, validity_retries),
+                                  fold_refinement_rounds, validity_retries, round_curves),
                          smooth_quads, smooth_rigidity, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -424,7 +430,7 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries, py::arg("round_curves") = false,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(), kRemeshDoc);
 }

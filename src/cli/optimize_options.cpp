@@ -63,6 +63,10 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
   add_switch(cmd, "--align", options.align,
              "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges");
+  add_switch(cmd, "--round-curves", options.round_curves,
+             "With --align: round the periods and the curves' integers together, so that the cones go where the "
+             "curves can be straight (every curve of at least 3 grid units is pinned; quads up to the boundary); "
+             "when that map is less valid, the one without is kept (report: rounding.curve_rounding_dropped)");
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
                  "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "
@@ -157,6 +161,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
   options.param.features.sharp_angle_degrees = parse_feature_angle(cli.feature_angle);
   options.param.alignment.enabled = cli.align;
+  options.param.alignment.round_with_periods = cli.round_curves;
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

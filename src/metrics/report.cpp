@@ -128,7 +128,11 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
           {"E_H_predicted", r.energy_rounded},
           {"candidates", r.candidates},
           {"proven_optimal", r.proven_optimal},
-          {"stopped_early", r.stopped_early}};
+          {"stopped_early", r.stopped_early},
+          {"curve_conditions", r.curve_conditions},
+          {"curve_conditions_met", r.curve_conditions_met},
+          {"curve_lines", r.curve_lines},
+          {"curve_rounding_dropped", r.curve_rounding_dropped}};
 }
 
 nlohmann::json relaxation_to_json(const Parameterization& p) {

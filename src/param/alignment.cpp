@@ -121,7 +121,8 @@ struct SlotCurves {
 // The breadth-first search over the relations from `root`: adds curve k (slots, value, enforced) to `curves`.
 // The root value is the rounded mean of the unconstrained solution u0 along the whole line.
 void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, const Eigen::VectorXcd& u0,
-                 const CurveLimits& limits, int root, std::vector<AlignedCurve>& curves, SlotCurves& sc) {
+                 const CurveLimits& limits, const GivenLines* given, int root, std::vector<AlignedCurve>& curves,
+                 SlotCurves& sc) {
   const int k = static_cast<int>(curves.size());
   curves.push_back({});
   curves.back().coordinate = s.slots[root].coordinate;
@@ -156,16 +157,21 @@ void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, c
       queue.push_back(r.to);
     }
   }
-  curves[k].value = std::round(anchored ? anchor : sum / count);
+  const bool chosen = given && given->lines[k];  // the rounding chose its integer with the periods
+  curves[k].value = chosen ? given->values[k] : std::round(anchored ? anchor : sum / count);
   // Lines the rounding would move far (typically two close parallel features snapping to one integer, which
   // collapses the strip between them), lines far from straight in the free map (pinning bends the map across a
   // whole quad or more: the crease rim of a closed-up organic scan) and lines shorter than `min_length` (fragments
   // of noisy creases) stay free: the distortion of pinning them is worth more than the alignment.
   const double shift = std::abs(sum / count - curves[k].value);
-  const char* because = !consistent                  ? kTwoIntegers
-                        : length < limits.min_length ? "shorter than the minimum length"
-                        : shift > limits.max_shift   ? "too far from an integer"
+  // A line the rounding chose is pinned whatever its shift and spread on the free map: the periods were rounded for
+  // it, and the constrained energy they minimized is what pinning it costs.
+  const char* because = !consistent                   ? kTwoIntegers
+                        : chosen                      ? ""
+                        : length < limits.min_length  ? "shorter than the minimum length"
+                        : shift > limits.max_shift    ? "too far from an integer"
                         : hi - lo > limits.max_spread ? "wiggles more than the maximum spread"
+                        : given                       ? "not rounded with the periods"
                                                       : "";
   curves[k].left_free_because = because;
   curves[k].enforced = curves[k].left_free_because.empty();
@@ -174,11 +180,11 @@ void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, c
 // Slots fixing the same component of the same u_p lie on one iso-line seen through the transitions of the cut:
 // every connected set of relations is one curve.
 SlotCurves trace_curves(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, const Eigen::VectorXcd& u0,
-                        const CurveLimits& limits, std::vector<AlignedCurve>& curves) {
+                        const CurveLimits& limits, const GivenLines* given, std::vector<AlignedCurve>& curves) {
   const int ns = static_cast<int>(s.slots.size());
   SlotCurves sc{std::vector<int>(ns, -1), std::vector<int>(ns, 1), std::vector<double>(ns, 0.0)};
   for (int root = 0; root < ns; ++root)
-    if (sc.curve_of[root] < 0) trace_curve(s, rel, u0, limits, root, curves, sc);
+    if (sc.curve_of[root] < 0) trace_curve(s, rel, u0, limits, given, root, curves, sc);
   return sc;
 }
 
@@ -225,6 +231,9 @@ int drop_conflicting_curves(const SlotFrame& s, const std::vector<std::vector<Us
   return conflicts;
 }
 
+
+}  // namespace
+
 // Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.
 void pin_kernel(const Mesh& mesh, const std::vector<int>& kernel_pins, std::vector<char>& fixed,
                 Eigen::VectorXd& value) {
@@ -239,17 +248,169 @@ void pin_kernel(const Mesh& mesh, const std::vector<int>& kernel_pins, std::vect
   }
 }
 
-}  // namespace
+CurveClosure::CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
+                           std::vector<CurveSlot> slots)
+    : mesh_(&mesh), slots_(std::move(slots)) {
+  const Eigen::MatrixX3cd no_values;  // the structure does not read known
+  const quadcover::SlotFrame frame{mesh, cut, layer, no_values, slots_};
+  const int ns = static_cast<int>(slots_.size()), nv = mesh.num_vertices();
+  std::vector<std::vector<int>> at_slot(static_cast<std::size_t>(ns));  // relations leaving each slot
+  const std::vector<std::vector<quadcover::Use>> uses = slot_uses(frame);
+  for (int p = 0; p < nv; ++p)
+    for (std::size_t a = 0; a < uses[p].size(); ++a) {
+      const auto& wa = uses[p][a];
+      uses_.push_back({wa.slot, wa.corner_face, wa.corner, wa.component * nv + p, wa.sign});
+      for (std::size_t b = a + 1; b < uses[p].size(); ++b) {
+        const auto& wb = uses[p][b];
+        if (wa.component != wb.component || wa.slot == wb.slot) continue;
+        const int sigma = wa.sign * wb.sign;
+        at_slot[wa.slot].push_back(static_cast<int>(relations_.size()));
+        relations_.push_back({wa.slot, wb.slot, sigma, wa.corner_face, wa.corner, wb.corner_face, wb.corner});
+        at_slot[wb.slot].push_back(static_cast<int>(relations_.size()));
+        relations_.push_back({wb.slot, wa.slot, sigma, wb.corner_face, wb.corner, wa.corner_face, wa.corner});
+      }
+    }
+  trace_lines(mesh, cut, at_slot);
+}
+
+void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot) {
+  const int ns = static_cast<int>(slots_.size());
+  parent_.assign(static_cast<std::size_t>(ns), -1);
+  sigma_of_.assign(static_cast<std::size_t>(ns), 0);
+  line_of_.assign(static_cast<std::size_t>(ns), -1);
+  std::vector<char> tree(relations_.size(), 0);
+  for (int root = 0; root < ns; ++root) {
+    if (sigma_of_[root] != 0) continue;
+    const int line = num_lines_++;
+    sigma_of_[root] = 1;
+    std::vector<Anchor> anchors;
+    double length = 0;
+    bool on_boundary = true;
+    const std::size_t start = order_.size();
+    order_.push_back(root);
+    for (std::size_t q = start; q < order_.size(); ++q) {
+      const int i = order_[q];
+      line_of_[i] = line;
+      length += mesh.edge_lengths()[slots_[i].edge];
+      on_boundary = on_boundary && mesh.is_boundary_edge(slots_[i].edge);
+      for (int end = 0; end < 2; ++end) {
+        const int f = slots_[i].face, c = mesh.corner_of(f, mesh.E()(slots_[i].edge, end));
+        if (cut.branch[mesh.F()(f, c)]) anchors.push_back({i, f, c});
+      }
+      for (const int r : at_slot[i]) {
+        const Relation& rel = relations_[r];
+        if (sigma_of_[rel.to] != 0) continue;
+        sigma_of_[rel.to] = rel.sigma * sigma_of_[i];
+        parent_[rel.to] = r;
+        tree[r] = 1;
+        order_.push_back(rel.to);
+      }
+    }
+    lengths_.push_back(length);
+    on_boundary_.push_back(on_boundary);
+    usable_.push_back(1);
+    if (!anchors.empty()) {
+      anchor_rows_ += static_cast<int>(anchors.size()) - 1;
+      anchors_.push_back(std::move(anchors));
+      line_anchor_.push_back(line);
+    }
+  }
+  std::vector<char> fixes(static_cast<std::size_t>(num_lines_), 0);
+  for (const Use& w : uses_) fixes[line_of_[w.slot]] = 1;
+  for (int k = 0; k < num_lines_; ++k) usable_[k] = fixes[k];
+  for (int r = 0; r < static_cast<int>(relations_.size()); ++r) {
+    const Relation& rel = relations_[r];
+    // Each relation is stored both ways: one residual per pair, none for the tree's own relations.
+    if (tree[r] || tree[r ^ 1] || rel.from > rel.to) continue;
+    if (sigma_of_[rel.to] == rel.sigma * sigma_of_[rel.from])
+      closing_.push_back(r);
+    else
+      usable_[line_of_[rel.from]] = 0;  // the line comes back reversed: it fixes its own integer, not an iso-line
+  }
+}
+
+double CurveClosure::coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const {
+  return std::real(ipow(-slots_[slot].coordinate) * known(face, corner));
+}
+
+std::vector<double> CurveClosure::tau_along(const Eigen::MatrixX3cd& known) const {
+  std::vector<double> tau_of(slots_.size(), 0.0);  // n_slot = σ n_root + τ, in the order of the tree
+  for (const int i : order_)
+    if (parent_[i] >= 0) {
+      const Relation& rel = relations_[parent_[i]];
+      tau_of[i] = rel.sigma * tau_of[rel.from] + relation_tau(rel, known);
+    }
+  return tau_of;
+}
+
+double CurveClosure::relation_tau(const Relation& rel, const Eigen::MatrixX3cd& known) const {
+  return coordinate(rel.to, rel.face_to, rel.corner_to, known) -
+         rel.sigma * coordinate(rel.from, rel.face_from, rel.corner_from, known);
+}
+
+double CurveClosure::root_value(const Anchor& a, const std::vector<double>& tau_of,
+                                const Eigen::MatrixX3cd& known) const {
+  return sigma_of_[a.slot] * (coordinate(a.slot, a.face, a.corner, known) - tau_of[a.slot]);
+}
+
+Eigen::VectorXd CurveClosure::residuals(const Eigen::MatrixX3cd& known) const {
+  const std::vector<double> tau_of = tau_along(known);
+  Eigen::VectorXd r(size());
+  int row = 0;
+  for (const int k : closing_) {
+    const Relation& rel = relations_[k];
+    r[row++] = tau_of[rel.to] - rel.sigma * tau_of[rel.from] - relation_tau(rel, known);
+  }
+  for (const auto& anchors : anchors_)  // n_root = σ_i (coordinate − τ_i) at each branch point of the line
+    for (std::size_t k = 1; k < anchors.size(); ++k)
+      r[row++] = root_value(anchors[k], tau_of, known) - root_value(anchors[0], tau_of, known);
+  return r;
+}
+
+Eigen::VectorXd CurveClosure::line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+                                             const std::vector<char>& lines) const {
+  const std::vector<double> tau_of = tau_along(known);
+  std::vector<double> r;
+  for (const int k : closing_) {
+    const Relation& rel = relations_[k];
+    if (lines[line_of_[rel.from]])
+      r.push_back(tau_of[rel.to] - rel.sigma * tau_of[rel.from] - relation_tau(rel, known));
+  }
+  for (std::size_t j = 0; j < anchors_.size(); ++j)
+    if (lines[line_anchor_[j]])
+      for (const Anchor& a : anchors_[j]) r.push_back(n[line_anchor_[j]] - root_value(a, tau_of, known));
+  return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
+}
+
+std::vector<char> CurveClosure::fixed_components(const std::vector<char>& lines) const {
+  std::vector<char> fixed(static_cast<std::size_t>(2 * mesh_->num_vertices()), 0);
+  for (const Use& w : uses_)
+    if (lines[line_of_[w.slot]]) fixed[w.index] = 1;
+  return fixed;
+}
+
+Eigen::VectorXd CurveClosure::fixed_values(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+                                           const std::vector<char>& lines) const {
+  const std::vector<double> tau_of = tau_along(known);
+  Eigen::VectorXd value = Eigen::VectorXd::Zero(2 * mesh_->num_vertices());
+  for (const Use& w : uses_) {
+    const int line = line_of_[w.slot];
+    if (!lines[line]) continue;
+    const double n_slot = sigma_of_[w.slot] * n[line] + tau_of[w.slot];
+    value[w.index] = w.sign * (coordinate(w.slot, w.face, w.corner, known) - n_slot);
+  }
+  return value;
+}
 
 AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                                      const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0,
                                      const std::vector<int>& kernel_pins, const std::vector<CurveSlot>& slots,
-                                     const CurveLimits& limits)
+                                     const CurveLimits& limits, const GivenLines* given)
     : mesh_(&mesh), cut_(&cut), layer_(&layer), known_(&known), slots_(slots) {
   const SlotFrame frame{mesh, cut, layer, known, slots_};
   const int nv = mesh.num_vertices();
   const std::vector<std::vector<Use>> uses = slot_uses(frame);
-  SlotCurves sc = trace_curves(frame, slot_relations(frame, uses), u0, limits, curves_);
+  SlotCurves sc = trace_curves(frame, slot_relations(frame, uses), u0, limits, given, curves_);
   n_of_ = slot_values(frame, sc, curves_);
   curve_of_ = std::move(sc.curve_of);
   conflicts_ = drop_conflicting_curves(frame, uses, curve_of_, n_of_, curves_);
@@ -265,55 +426,65 @@ AlignedCorrection::AlignedCorrection(const Mesh& mesh, const CoverCut& cut, cons
   pin_kernel(mesh, kernel_pins, fixed_, value_);
 }
 
-Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b,
-                                          bool refactorize) {
-  const int nv = mesh_->num_vertices();
-  const std::vector<char>& fixed = fixed_;
-  const Eigen::VectorXd& value = value_;
+ConstrainedSolve::ConstrainedSolve(std::vector<char> fixed) : fixed_(std::move(fixed)) {
+  free_id_.assign(fixed_.size(), -1);
+  for (std::size_t i = 0; i < fixed_.size(); ++i)
+    if (!fixed_[i]) free_id_[i] = free_count_++;
+}
+
+void ConstrainedSolve::factorize(const Eigen::SparseMatrix<Complex>& L) {
   // Real form of the Hermitian system: L = A + iB acts on [x; y] as [[A, -B], [B, A]].
-  std::vector<int> free_id(static_cast<std::size_t>(2 * nv), -1);
-  int nfree = 0;
-  for (int i = 0; i < 2 * nv; ++i)
-    if (!fixed[i]) free_id[i] = nfree++;
-  const bool build = refactorize || !factored_;
+  const int nv = static_cast<int>(L.rows());
   std::vector<Eigen::Triplet<double>> trip;
-  if (build) trip.reserve(static_cast<std::size_t>(4 * L.nonZeros()));
-  Eigen::VectorXd rhs(nfree);
-  for (int i = 0; i < nv; ++i) {
-    if (free_id[i] >= 0) rhs[free_id[i]] = b[i].real();
-    if (free_id[nv + i] >= 0) rhs[free_id[nv + i]] = b[i].imag();
-  }
-  auto add = [&](int r, int c, double v) {
-    if (v == 0 || free_id[r] < 0) return;
-    if (free_id[c] >= 0) {
-      if (build) trip.emplace_back(free_id[r], free_id[c], v);
-    } else
-      rhs[free_id[r]] -= v * value[c];
+  trip.reserve(static_cast<std::size_t>(4 * L.nonZeros()));
+  const auto add = [&](int r, int c, double v) {
+    if (v != 0 && free_id_[r] >= 0 && free_id_[c] >= 0) trip.emplace_back(free_id_[r], free_id_[c], v);
   };
   for (int col = 0; col < L.outerSize(); ++col)
     for (Eigen::SparseMatrix<Complex>::InnerIterator it(L, col); it; ++it) {
       const int p = static_cast<int>(it.row()), q = static_cast<int>(it.col());
       const double A = it.value().real(), B = it.value().imag();
-      add(p, q, A);
-      add(p, nv + q, -B);
-      add(nv + p, q, B);
-      add(nv + p, nv + q, A);
+      add(p, q, A), add(p, nv + q, -B), add(nv + p, q, B), add(nv + p, nv + q, A);
     }
-  if (build) {
-    Eigen::SparseMatrix<double> M(nfree, nfree);
-    M.setFromTriplets(trip.begin(), trip.end());
-    // Re-solves with other weights keep the pattern: only the first one analyses.
-    chol_.factorize(M, "aligned harmonic correction");
-    factored_ = true;
+  Eigen::SparseMatrix<double> M(free_count_, free_count_);
+  M.setFromTriplets(trip.begin(), trip.end());
+  chol_.factorize(M, "aligned harmonic correction");  // later calls with the same pattern only refactorize
+}
+
+Eigen::MatrixXcd ConstrainedSolve::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::MatrixXcd& B,
+                                         const Eigen::MatrixXd& values) const {
+  const int nv = static_cast<int>(L.rows()), k = static_cast<int>(B.cols());
+  Eigen::MatrixXd rhs(free_count_, k);
+  for (int i = 0; i < nv; ++i) {
+    if (free_id_[i] >= 0) rhs.row(free_id_[i]) = B.row(i).real();
+    if (free_id_[nv + i] >= 0) rhs.row(free_id_[nv + i]) = B.row(i).imag();
   }
-  const Eigen::VectorXd sol = chol_.solve(rhs);
-  Eigen::VectorXcd u(nv);
-  for (int p = 0; p < nv; ++p) {
-    const double x = free_id[p] >= 0 ? sol[free_id[p]] : value[p];
-    const double y = free_id[nv + p] >= 0 ? sol[free_id[nv + p]] : value[nv + p];
-    u[p] = Complex(x, y);
-  }
+  const auto move_fixed = [&](int r, int c, double v) {  // the fixed column's term to the right-hand side
+    if (v != 0 && free_id_[r] >= 0 && free_id_[c] < 0) rhs.row(free_id_[r]) -= v * values.row(c);
+  };
+  for (int col = 0; col < L.outerSize(); ++col)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(L, col); it; ++it) {
+      const int p = static_cast<int>(it.row()), q = static_cast<int>(it.col());
+      const double A = it.value().real(), B = it.value().imag();
+      move_fixed(p, q, A), move_fixed(p, nv + q, -B), move_fixed(nv + p, q, B), move_fixed(nv + p, nv + q, A);
+    }
+  const Eigen::MatrixXd sol = chol_.solve(rhs);
+  Eigen::MatrixXcd u(nv, k);
+  for (int p = 0; p < nv; ++p)
+    for (int j = 0; j < k; ++j) {
+      const double x = free_id_[p] >= 0 ? sol(free_id_[p], j) : values(p, j);
+      const double y = free_id_[nv + p] >= 0 ? sol(free_id_[nv + p], j) : values(nv + p, j);
+      u(p, j) = Complex(x, y);
+    }
   return u;
+}
+
+Eigen::VectorXcd AlignedCorrection::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b,
+                                          bool refactorize) {
+  if (!solver_) solver_.emplace(fixed_);
+  if (refactorize || !factored_) solver_->factorize(L);
+  factored_ = true;
+  return solver_->solve(L, b, value_).col(0);
 }
 
 std::vector<AlignedCurve> AlignedCorrection::curves(const Eigen::VectorXcd& u) const {

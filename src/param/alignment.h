@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "calculus/sparse_cholesky.h"
@@ -51,6 +52,117 @@ struct CurveAlignmentOptions {
   /// Straightening a line wigglier than max_spread bends the map around it (BENCHMARKS.md, "Option defaults");
   /// pinning crease fragments shorter than min_length costs distortion and folds for no visible gain.
   CurveLimits limits{.max_shift = 0.35, .min_length = 3.0, .max_spread = 1.0};
+  /// Round the periods and the lines' integers together (param/curve_rounding.h): the lines of at least
+  /// limits.min_length grid units are then pinned whatever their shift and spread on the free map. Off by default:
+  /// on the shipped CAD meshes the map it gives is less valid and the job falls back, at twice the time
+  /// (BENCHMARKS.md, "Curves rounded with the periods").
+  bool round_with_periods = false;
+};
+
+/// The conditions on the map's translations under which every aligned curve can be one iso-line (beyond the
+/// thesis): a line that closes on itself (a boundary loop, a crease through a cut) must come back to its own integer,
+/// and the branch points on a line, whose positions the periods set, must lie on one integer. Each condition is a
+/// residual in grid units, linear in the per-corner values `known` of φ at u = 0 and 0 when it holds; the period
+/// rounding (6.3) adds their squares as a penalty, so that it places the cones where the curves can straighten.
+class CurveClosure {
+ public:
+  /// \pre cut = build_cover_cut(mesh, …); layer #F by 3 (the correction's layers); slots from aligned_curve_slots.
+  CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer, std::vector<CurveSlot> slots);
+  /// Number of conditions. \pre none
+  int size() const { return static_cast<int>(closing_.size() + anchor_rows_); }
+  /// The residuals for per-corner values `known` (#F by 3), linear in it. \pre known is #F by 3
+  Eigen::VectorXd residuals(const Eigen::MatrixX3cd& known) const;
+
+  /// The lines (connected sets of relations, numbered by their lowest slot as AlignedCorrection numbers its curves).
+  int num_lines() const { return num_lines_; }  ///< \pre none
+  /// Per line: whether it fixes a component of u somewhere (not all its slot ends at branch points) and closes on
+  /// itself with the same orientation (σ) wherever it does. \pre none
+  const std::vector<char>& line_usable() const { return usable_; }
+  /// Per line: the length of its edges in model units. \pre none
+  const std::vector<double>& line_lengths() const { return lengths_; }
+  /// Per line: whether all its edges are boundary edges. \pre none
+  const std::vector<char>& line_on_boundary() const { return on_boundary_; }
+  /// Residuals of the lines in `lines` only: their closing relations, and n_k − (the integer of each branch point on
+  /// line k) for the per-line integers n. Linear in (known, n). \pre known #F by 3; lines and n per line.
+  Eigen::VectorXd line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+                                 const std::vector<char>& lines) const;
+  /// 2·#V flags: the components of u the lines in `lines` fix. \pre lines has num_lines() flags.
+  std::vector<char> fixed_components(const std::vector<char>& lines) const;
+  /// The values of those components (2·#V, 0 elsewhere) for per-corner values `known` and per-line integers n:
+  /// ± (coordinate − n_slot) with n_slot = σ n_line + τ along the line. Linear in (known, n). \pre as line_residuals.
+  Eigen::VectorXd fixed_values(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+                               const std::vector<char>& lines) const;
+
+ private:
+  /// A relation n_to = σ n_from + τ between the integers of two slots (τ from `known` at two corners of one vertex).
+  struct Relation {
+    int from, to, sigma;
+    int face_from, corner_from, face_to, corner_to;
+  };
+  /// A branch point at an end of a slot: its coordinate gives the line its integer.
+  struct Anchor {
+    int slot, face, corner;
+  };
+  const Mesh* mesh_;
+  std::vector<CurveSlot> slots_;
+  std::vector<int> order_;                 ///< slots in breadth-first order over the relations, line by line
+  std::vector<int> parent_;                ///< per slot: the relation that reached it, or -1 (the root of its line)
+  std::vector<int> sigma_of_;              ///< per slot: n_slot = σ n_root + τ
+  std::vector<Relation> relations_;        ///< every relation, tree ones included
+  std::vector<int> closing_;               ///< relations off the tree whose σ agrees: one residual each
+  std::vector<std::vector<Anchor>> anchors_;  ///< per line with a branch point on it (line_anchor_)
+  int anchor_rows_ = 0;                    ///< Σ (anchors − 1) over those lines
+  /// One end of a slot off the branch points: the real component (index x_p: p, y_p: #V + p) it fixes, and its sign.
+  struct Use {
+    int slot, face, corner, index, sign;
+  };
+  std::vector<Use> uses_;
+  std::vector<int> line_of_;  ///< per slot
+  int num_lines_ = 0;
+  std::vector<char> usable_;
+  std::vector<double> lengths_;
+  std::vector<char> on_boundary_;
+  std::vector<int> line_anchor_;  ///< per anchor line (anchors_), its line
+  double coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const;
+  std::vector<double> tau_along(const Eigen::MatrixX3cd& known) const;  ///< τ per slot (tree order)
+  double relation_tau(const Relation& rel, const Eigen::MatrixX3cd& known) const;
+  /// The line's integer that the branch point of `a` asks for: σ (coordinate − τ) there.
+  double root_value(const Anchor& a, const std::vector<double>& tau_of, const Eigen::MatrixX3cd& known) const;
+  void trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot);
+};
+
+/// Lines and integers the rounding chose with the periods (param/curve_rounding.h), numbered as CurveClosure numbers
+/// them: they replace AlignedCorrection's rounded means and limits (lines with branch points at two integers stay free).
+struct GivenLines {
+  std::vector<char> lines;  ///< per line
+  Eigen::VectorXd values;   ///< per line: its integer
+};
+
+/// Fixes, on each trivial-holonomy component of `kernel_pins`, the components of u there that nothing in `fixed`
+/// fixes on that component (the constant kernel, x and y apart), with value 0. \pre fixed, value 2·#V.
+void pin_kernel(const Mesh& mesh, const std::vector<int>& kernel_pins, std::vector<char>& fixed,
+                Eigen::VectorXd& value);
+
+/// 𝔏̄ u = b in the real form of the Hermitian system with some real components of u held at given values (x_p at p,
+/// y_p at #V + p): the curve constraints of AlignedCorrection and of the rounding with the curves (param/curve_rounding.h).
+/// The first factorize() analyses the reduced real system, later ones only refactorize (same pattern).
+class ConstrainedSolve {
+ public:
+  /// \pre fixed has 2·#V flags.
+  explicit ConstrainedSolve(std::vector<char> fixed);
+  /// Factors the free rows and columns of L. \throw NumericalError if not definite.
+  void factorize(const Eigen::SparseMatrix<Complex>& L);
+  /// u for each column of B (#V rows) with the fixed components at the matching column of `values` (2·#V rows).
+  /// \pre factorize(L) ran with this L. \throw NumericalError if the solve fails.
+  Eigen::MatrixXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::MatrixXcd& B,
+                         const Eigen::MatrixXd& values) const;
+  const std::vector<char>& fixed() const { return fixed_; }  ///< \pre none
+
+ private:
+  std::vector<char> fixed_;
+  std::vector<int> free_id_;  ///< per real component: its row in the reduced system, or -1
+  int free_count_ = 0;
+  SparseCholesky<double> chol_;
 };
 
 /// The alignment constraints of one map (which real component of u is fixed where, and to what), built once from the
@@ -62,7 +174,7 @@ class AlignedCorrection {
   /// \pre cut = build_cover_cut(mesh, …); layer, known #F by 3; u0 #V; slots from aligned_curve_slots.
   AlignedCorrection(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                     const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u0, const std::vector<int>& kernel_pins,
-                    const std::vector<CurveSlot>& slots, const CurveLimits& limits);
+                    const std::vector<CurveSlot>& slots, const CurveLimits& limits, const GivenLines* given = nullptr);
   /// u with L u = b (real form) and the constrained components fixed. \throw NumericalError if not definite.
   /// refactorize = false reuses the factor of the previous call (L must be the same matrix; only b changes).
   Eigen::VectorXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::VectorXcd& b, bool refactorize = true);
@@ -85,7 +197,7 @@ class AlignedCorrection {
   std::vector<double> n_of_;    ///< per slot: the integer its coordinate must equal
   std::vector<char> fixed_;     ///< 2·#V: x then y components of u that are fixed
   Eigen::VectorXd value_;       ///< their values
-  SparseCholesky<double> chol_;
+  std::optional<ConstrainedSolve> solver_;  ///< built at the first solve
   bool factored_ = false;
 };
 

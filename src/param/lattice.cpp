@@ -38,4 +38,24 @@ double distance_to_gaussian_integers(std::complex<double> z) {
   return std::abs(z - std::complex<double>(std::round(z.real()), std::round(z.imag())));
 }
 
+Eigen::MatrixXd lattice_basis(Lattice lattice, int m) {
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m);
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+  switch (lattice) {
+    case Lattice::Unit:
+      T = Eigen::MatrixXd::Identity(2 * m, 2 * m);
+      break;
+    case Lattice::Coarse:
+      T = 2 * Eigen::MatrixXd::Identity(2 * m, 2 * m);
+      break;
+    case Lattice::Rotated:
+      T.topLeftCorner(m, m) = I;
+      T.topRightCorner(m, m) = -I;
+      T.bottomLeftCorner(m, m) = I;
+      T.bottomRightCorner(m, m) = I;
+      break;
+  }
+  return T;
+}
+
 }  // namespace quadcover

@@ -24,6 +24,12 @@ struct ParamDiagnostics {
     bool proven_optimal = false;
     bool stopped_early = false;  ///< cancelled: the direct rounding or the search's best periods so far were kept
     double period_matrix_asymmetry = 0;  ///< max |P_ij − P_ji| / max P_ii (round-off)
+    /// With the curves rounded with the periods (param/curve_rounding.h): the lines' closing and branch-point
+    /// conditions the rounding weighed, and how many hold with the rounded periods.
+    int curve_conditions = 0, curve_conditions_met = 0;
+    int curve_lines = 0;  ///< lines whose integers were rounded with the periods (0: the period matrix alone)
+    /// The map with the curves rounded with the periods was less valid: this one rounds with the period matrix alone.
+    bool curve_rounding_dropped = false;
   } rounding;
   /// Closed components without branch points whose field has rotational holonomy (the gauged matching ≢ 0 around a
   /// handle). No seamless immersion exists there (a cone-free flat metric on a closed surface has trivial rotational

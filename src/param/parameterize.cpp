@@ -16,6 +16,7 @@
 #include "field/indices.h"
 #include "param/alignment.h"
 #include "param/cover_cut.h"
+#include "param/curve_rounding.h"
 #include "param/disk_functions.h"
 #include "param/even_branch_fix.h"
 #include "param/harmonic_correction.h"
@@ -71,28 +72,6 @@ struct PeriodRounding {
     return x.dot(pm.P * x);
   }
 };
-
-/// Real coordinates (Re, Im per path) of the lattice generators (4.2.2): Z[i] → I, 2Z[i] → 2I, (1+i)Z[i]:
-/// (1+i)(a+ib) = (a−b) + i(a+b).
-Eigen::MatrixXd lattice_basis(Lattice lattice, int m) {
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m);
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * m, 2 * m);
-  switch (lattice) {
-    case Lattice::Unit:
-      T = Eigen::MatrixXd::Identity(2 * m, 2 * m);
-      break;
-    case Lattice::Coarse:
-      T = 2 * Eigen::MatrixXd::Identity(2 * m, 2 * m);
-      break;
-    case Lattice::Rotated:
-      T.topLeftCorner(m, m) = I;
-      T.topRightCorner(m, m) = -I;
-      T.bottomLeftCorner(m, m) = I;
-      T.bottomRightCorner(m, m) = I;
-      break;
-  }
-  return T;
-}
 
 /// Rounds the free periods with options.rounding (P.rounded_periods holds the direct rounding on entry).
 /// Cancellation (progress.cancelled()) keeps the direct rounding or the search's best periods so far.
@@ -268,9 +247,45 @@ void round_dependent_paths(const Mesh& mesh, const CoverCut& cc, Lattice lattice
 
 /// Step 4 (4.2.2, 6.3): the periods of the translations c, their rounding (direct, then with the period matrix,
 /// then the even branch point fix-up) into P; returns the translation change d per edge.
+/// The curve closure of the aligned curves' lines and φ̂ per corner, for the rounding with the lines.
+struct CurveLines {
+  const CurveClosure* closure = nullptr;  ///< null: no curves
+  const Eigen::MatrixX3cd& known_free;
+};
+
+/// The rounding with the lines (param/curve_rounding.h) into P and `given`; false if it did not run (off, no line
+/// worth it, direct rounding, or too large), and the period matrix rounds alone.
+bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
+                              const CurveLines& lines, const ParamOptions& options, Parameterization& P,
+                              std::optional<GivenLines>& given) {
+  if (!lines.closure || !options.alignment.round_with_periods || options.rounding.strategy == RoundingStrategy::Direct)
+    return false;
+  const CurveRoundingInputs in{cc, correction, *lines.closure, lines.known_free, P.periods, P.rounded_periods,
+                               P.edge_length};
+  const CurveRounding r =
+      round_with_curves(mesh, in, options.lattice, options.rounding, options.alignment.limits.min_length);
+  if (!r.active) return false;
+  for (std::size_t a = 0; a < r.paths.size(); ++a) P.rounded_periods[r.paths[a]] = r.periods[a];
+  given = GivenLines{r.lines, r.line_values};
+  auto& diag = P.diagnostics.rounding;
+  diag.strategy = to_string(r.search.used);
+  diag.variables = r.variables;
+  diag.candidates = r.search.candidates;
+  diag.proven_optimal = r.search.proven_optimal;
+  diag.energy_direct = r.energy_direct;
+  diag.energy_rounded = r.energy_rounded;
+  diag.curve_conditions = r.conditions;
+  diag.curve_conditions_met = r.conditions_met;
+  diag.curve_lines = static_cast<int>(std::count(r.lines.begin(), r.lines.end(), 1));
+  return true;
+}
+
+/// With the curves' lines (`lines`, or null) and options.alignment.round_with_periods, the periods and the lines'
+/// integers are rounded together (param/curve_rounding.h); `given` then receives the lines and their integers.
 Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
-                                  const Eigen::VectorXcd& c, const ParamOptions& options, ProgressSink& progress,
-                                  StageLaps& lap, Parameterization& P) {
+                                  const Eigen::VectorXcd& c, const CurveLines& lines, const ParamOptions& options,
+                                  ProgressSink& progress, StageLaps& lap, Parameterization& P,
+                                  std::optional<GivenLines>& given) {
   const int n = cc.num_paths();
   P.periods.resize(n);
   P.rounded_periods.resize(n);
@@ -280,8 +295,10 @@ Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const Ha
   }
   // The factor of 𝔏̄ serves the period matrix (6.3.2) and the final harmonic correction.
   lap("harmonic_factor");
-  const PeriodRounding rounding = round_with_period_matrix(mesh, cc, correction, options, progress, P);
-  if (rounding.active) lap("period_rounding");
+  PeriodRounding rounding;
+  if (!round_periods_with_lines(mesh, cc, correction, lines, options, P, given))
+    rounding = round_with_period_matrix(mesh, cc, correction, options, progress, P);
+  if (rounding.active || given) lap("period_rounding");
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
     // The parity step with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
     P.diagnostics.unfixed_even_branch_points = fix_even_branch_points(mesh, cc, P.rounded_periods, [&](int j) {
@@ -302,19 +319,11 @@ double correction_energy(const Mesh& mesh, const HarmonicCorrection& correction,
   return frame_norm2(mesh, Sigma - corner_gradient(mesh, correction.corner_values(u)));
 }
 
-/// Boundary and feature curves on integer iso-lines (param/alignment.h): the same correction with one real
-/// component of u fixed at every curve vertex (seams untouched: u is continuous on the covering). Leaves `aligned`
-/// empty when no curve is aligned with the field. `known` must outlive `aligned`.
-void align_curves(const Mesh& mesh, const CoverCut& cc, const FramePairs& Z, const HarmonicCorrection& correction,
-                  const Eigen::MatrixX3cd& known, const Eigen::VectorXcd& u_free, const ParamOptions& options,
-                  std::optional<AlignedCorrection>& aligned) {
-  if (!options.alignment.enabled) return;
+/// The boundary and feature edges the field is aligned with (param/alignment.h), none when alignment is off.
+std::vector<CurveSlot> curve_slots(const Mesh& mesh, const FramePairs& Z, const ParamOptions& options) {
+  if (!options.alignment.enabled) return {};
   const FeatureConstraints features = feature_constraints(mesh, options.features);
-  const std::vector<CurveSlot> slots =
-      aligned_curve_slots(mesh, Z, features.feature_edges, options.alignment.tolerance_degrees);
-  if (!slots.empty())
-    aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
-                    options.alignment.limits);
+  return aligned_curve_slots(mesh, Z, features.feature_edges, options.alignment.tolerance_degrees);
 }
 
 /// The inputs of the refinements of the harmonic correction u (beyond the thesis).
@@ -440,16 +449,25 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   // ---- 4. rounding (4.2.2)
   round_dependent_paths(mesh, cc, options.lattice, phi, c);
   const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
-  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, options, progress, lap, P);
+  const std::vector<CurveSlot> slots = curve_slots(mesh, Z, options);
+  const Eigen::MatrixX3cd known_free = corner_values(cc, phi);
+  std::optional<CurveClosure> closure;
+  if (!slots.empty()) closure.emplace(mesh, cc, correction.layers().layer, slots);
+  std::optional<GivenLines> given;
+  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, {closure ? &*closure : nullptr, known_free},
+                                              options, progress, lap, P, given);
 
   // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
   const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
   const FramePairs Sigma = corner_gradient(mesh, sigma);
   const Eigen::VectorXcd b = correction.rhs(Sigma);
   const Eigen::VectorXcd u_free = correction.solve(b).col(0);
-  const Eigen::MatrixX3cd known = corner_values(cc, phi) + sigma;  // φ = known − u
+  const Eigen::MatrixX3cd known = known_free + sigma;  // φ = known − u
+  // Boundary and feature curves on integer iso-lines: one real component of u fixed at every curve vertex.
   std::optional<AlignedCorrection> aligned;
-  align_curves(mesh, cc, Z, correction, known, u_free, options, aligned);
+  if (!slots.empty())
+    aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
+                    options.alignment.limits, given ? &*given : nullptr);
   Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
   P.energy_harmonic = correction_energy(mesh, correction, Sigma, u);
   lap("harmonic");

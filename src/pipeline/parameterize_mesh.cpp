@@ -1,9 +1,11 @@
 #include "pipeline/parameterize_mesh.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
+#include "common/seconds_since.h"
 #include "field/compute_frame_field.h"
 #include "pipeline/cone_merging.h"
 #include "pipeline/retry_until_valid.h"
@@ -50,6 +52,26 @@ bool leave_time_for_later_stages(const Mesh& mesh, double field_seconds, double 
 /// it still had work to do (`unfinished`).
 void note_cut_short(const ProgressSink& progress, bool unfinished, ParamJob& job, const char* stage) {
   if (unfinished && progress.skip_improvements()) record_cut_short(job, stage);
+}
+
+/// Rounding the curves with the periods (param/curve_rounding.h) pins lines that a coarse triangulation cannot always
+/// hold without a fold or a wrong winding. When the map it gave is not valid, the map with the period-matrix rounding
+/// alone is made as well (from the field keep-better kept) and the more valid one goes on (a tie keeps the curves);
+/// the job's options then say which. Its time is the job's stage "curve_rounding_fallback".
+void fall_back_from_curve_rounding(const Mesh& mesh, const FrameField& kept_field, ProgressSink& progress,
+                                   ParamJob& job) {
+  ParamOptions& param = job.options.param;
+  const Validity with_curves = map_validity(mesh, job.map);
+  if (job.map.diagnostics.rounding.curve_lines == 0 || with_curves.valid()) return;
+  const auto start = std::chrono::steady_clock::now();
+  ParamOptions plain = param;
+  plain.alignment.round_with_periods = false;
+  Parameterization map = parameterize(mesh, kept_field, plain, progress);
+  job.seconds.emplace_back("curve_rounding_fallback", seconds_since(start));
+  if (!(map_validity(mesh, map) < with_curves)) return;
+  map.diagnostics.rounding.curve_rounding_dropped = true;
+  job.map = std::move(map);
+  param = plain;
 }
 
 /// Rounds of cone moves (pipeline/cone_merging.h): `find` gives the moves on the job's map, the field with them
@@ -252,6 +274,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
+  fall_back_from_curve_rounding(mesh, job.field, finishing, job);
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
   note_cut_short(progress, job.map.diagnostics.rounding.stopped_early, job, "rounding search");  // also ends on its own budget

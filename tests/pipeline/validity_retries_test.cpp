@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
 
 #include "param/seams.h"
 #include "pipeline/remesh_mesh.h"
@@ -219,6 +220,40 @@ TEST(ValidityRetries, AVertexMovedOutOfItsRingWindsZeroTimesAndIsFound) {
   EXPECT_EQ(wrong, expected);
   EXPECT_NE(std::find(wrong.begin(), wrong.end(), p), wrong.end());
   EXPECT_GT(map_validity(mesh, job.map).non_positive, 0);
+}
+
+}  // namespace
+}  // namespace quadcover
+
+namespace quadcover {
+namespace {
+
+// Rounding the curves with the periods (param/curve_rounding.h) pins every crease of fandisk; that map keeps more
+// wrong windings than the period-matrix rounding's, so the job falls back to the latter, says so, and ends exactly as
+// valid as without the option. Where the pinned map is as valid (lilium_disk's boundary loop), it is kept.
+TEST(CurveRoundingFallback, KeepsTheMoreValidMapAndSaysWhich) {
+  for (const char* name : {"fandisk", "lilium_disk"}) {
+    const Mesh mesh = testing::load_test_mesh(name);
+    PipelineOptions plain;
+    plain.validity_retries = 0;
+    PipelineOptions rounding = plain;
+    rounding.param.alignment.round_with_periods = true;
+    const ParamJob a = parameterize_mesh(mesh, plain);
+    const ParamJob b = parameterize_mesh(mesh, rounding);
+    const Validity va = map_validity(a.mesh(mesh), a.map), vb = map_validity(b.mesh(mesh), b.map);
+    EXPECT_FALSE(va < vb) << name;  // never less valid
+    const bool dropped = b.map.diagnostics.rounding.curve_rounding_dropped;
+    EXPECT_EQ(dropped, !b.options.param.alignment.round_with_periods) << name;
+    EXPECT_EQ(b.map.diagnostics.rounding.curve_lines > 0, !dropped) << name;
+    if (std::string(name) == "fandisk") {
+      EXPECT_TRUE(dropped);
+      EXPECT_TRUE(std::any_of(b.seconds.begin(), b.seconds.end(),
+                              [](const auto& s) { return s.first == "curve_rounding_fallback"; }));
+    } else {
+      EXPECT_FALSE(dropped);
+      EXPECT_TRUE(vb.valid());
+    }
+  }
 }
 
 }  // namespace
