@@ -1,6 +1,7 @@
-// `param` / `remesh --feature-angle DEG|off --align BOOL` through the real binary: the angle reaches the field stage
-// (report field.features: constrained faces and sharp edges follow it), 'off' keeps the boundaries, the options
-// section names it, and an angle outside [0, 180] is refused (exit 2) before anything is written.
+// `param` / `remesh --feature-angle DEG|off --align BOOL --round-curves BOOL` through the real binary: the angle
+// reaches the field stage (report field.features: constrained faces and sharp edges follow it), 'off' keeps the
+// boundaries, the options section names it, an angle outside [0, 180] is refused (exit 2) before anything is
+// written, and --round-curves puts lilium_disk's boundary loop on quad edges.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -64,6 +65,27 @@ TEST_F(FeatureAngleCli, OffKeepsTheBoundariesAligned) {
   const nlohmann::json free = report("remesh", "camelhead_boundary", "off", "--align false");
   EXPECT_FALSE(free["options"]["align_curves"].get<bool>());
   EXPECT_TRUE(free["aligned_curves"]["curves"].empty());
+}
+
+// `remesh --round-curves true` on lilium_disk: the boundary loop is one integer iso-line (its line enforced, the rounding
+// reports the line it rounded), so the quad mesh is all quads up to the boundary; without it the loop is left free
+// (with its reason) and the boundary cells are clipped polygons.
+TEST_F(FeatureAngleCli, RoundCurvesPutsTheBoundaryLoopOnQuadEdges) {
+  const nlohmann::json plain = report("remesh", "lilium_disk", "");
+  const nlohmann::json rounded = report("remesh", "lilium_disk", "", "--round-curves true");
+  EXPECT_FALSE(plain["options"]["round_curves"].get<bool>());
+  EXPECT_TRUE(rounded["options"]["round_curves"].get<bool>());
+  EXPECT_EQ(plain["rounding"]["curve_lines"], 0);
+  EXPECT_EQ(rounded["rounding"]["curve_lines"], 1);
+  EXPECT_FALSE(rounded["rounding"]["curve_rounding_dropped"].get<bool>());
+  ASSERT_EQ(rounded["aligned_curves"]["curves"].size(), 1u);
+  EXPECT_TRUE(rounded["aligned_curves"]["curves"][0]["enforced"].get<bool>());
+  EXPECT_TRUE(rounded["aligned_curves"]["curves"][0]["left_free_because"].is_null());
+  EXPECT_FALSE(plain["aligned_curves"]["curves"][0]["enforced"].get<bool>());
+  EXPECT_EQ(plain["aligned_curves"]["curves"][0]["left_free_because"], "closes on itself with another integer");
+  EXPECT_GT(plain["quad_mesh"]["non_quads"].get<int>(), 0);
+  EXPECT_EQ(rounded["quad_mesh"]["non_quads"], 0);
+  EXPECT_EQ(rounded["quad_mesh"]["boundary_loops"], 1);
 }
 
 TEST_F(FeatureAngleCli, OutOfRangeIsRefusedBeforeAnyWork) {
