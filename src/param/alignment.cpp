@@ -310,7 +310,6 @@ void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
     on_boundary_.push_back(on_boundary);
     usable_.push_back(1);
     if (!anchors.empty()) {
-      anchor_rows_ += static_cast<int>(anchors.size()) - 1;
       anchors_.push_back(std::move(anchors));
       line_anchor_.push_back(line);
     }
@@ -351,20 +350,6 @@ double CurveClosure::relation_tau(const Relation& rel, const Eigen::MatrixX3cd& 
 double CurveClosure::root_value(const Anchor& a, const std::vector<double>& tau_of,
                                 const Eigen::MatrixX3cd& known) const {
   return sigma_of_[a.slot] * (coordinate(a.slot, a.face, a.corner, known) - tau_of[a.slot]);
-}
-
-Eigen::VectorXd CurveClosure::residuals(const Eigen::MatrixX3cd& known) const {
-  const std::vector<double> tau_of = tau_along(known);
-  Eigen::VectorXd r(size());
-  int row = 0;
-  for (const int k : closing_) {
-    const Relation& rel = relations_[k];
-    r[row++] = tau_of[rel.to] - rel.sigma * tau_of[rel.from] - relation_tau(rel, known);
-  }
-  for (const auto& anchors : anchors_)  // n_root = σ_i (coordinate − τ_i) at each branch point of the line
-    for (std::size_t k = 1; k < anchors.size(); ++k)
-      r[row++] = root_value(anchors[k], tau_of, known) - root_value(anchors[0], tau_of, known);
-  return r;
 }
 
 Eigen::VectorXd CurveClosure::line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,

@@ -59,20 +59,16 @@ struct CurveAlignmentOptions {
   bool round_with_periods = false;
 };
 
-/// The conditions on the map's translations under which every aligned curve can be one iso-line (beyond the
-/// thesis): a line that closes on itself (a boundary loop, a crease through a cut) must come back to its own integer,
-/// and the branch points on a line, whose positions the periods set, must lie on one integer. Each condition is a
-/// residual in grid units, linear in the per-corner values `known` of φ at u = 0 and 0 when it holds; the period
-/// rounding (6.3) adds their squares as a penalty, so that it places the cones where the curves can straighten.
+/// The lines of the aligned curves (connected sets of slots fixing one component of u at shared vertices), with what
+/// the rounding with the curves (param/curve_rounding.h) needs (beyond the thesis): the components each line fixes
+/// and their values for given per-corner values `known` of φ at u = 0 and per-line integers n, and the conditions
+/// under which a line can be one iso-line: closing on itself (a boundary loop, a crease through a cut) with its own
+/// integer, and passing its branch points, whose positions the periods set, at that integer. Each condition is a
+/// residual in grid units, linear in (known, n) and 0 when it holds.
 class CurveClosure {
  public:
   /// \pre cut = build_cover_cut(mesh, …); layer #F by 3 (the correction's layers); slots from aligned_curve_slots.
   CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer, std::vector<CurveSlot> slots);
-  /// Number of conditions. \pre none
-  int size() const { return static_cast<int>(closing_.size() + anchor_rows_); }
-  /// The residuals for per-corner values `known` (#F by 3), linear in it. \pre known is #F by 3
-  Eigen::VectorXd residuals(const Eigen::MatrixX3cd& known) const;
-
   /// The lines (connected sets of relations, numbered by their lowest slot as AlignedCorrection numbers its curves).
   int num_lines() const { return num_lines_; }  ///< \pre none
   /// Per line: whether it fixes a component of u somewhere (not all its slot ends at branch points) and closes on
@@ -111,7 +107,6 @@ class CurveClosure {
   std::vector<Relation> relations_;        ///< every relation, tree ones included
   std::vector<int> closing_;               ///< relations off the tree whose σ agrees: one residual each
   std::vector<std::vector<Anchor>> anchors_;  ///< per line with a branch point on it (line_anchor_)
-  int anchor_rows_ = 0;                    ///< Σ (anchors − 1) over those lines
   /// One end of a slot off the branch points: the real component (index x_p: p, y_p: #V + p) it fixes, and its sign.
   struct Use {
     int slot, face, corner, index, sign;
