@@ -248,7 +248,7 @@ void pin_kernel(const Mesh& mesh, const std::vector<int>& kernel_pins, std::vect
   }
 }
 
-CurveClosure::CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
+AlignedLines::AlignedLines(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer,
                            std::vector<CurveSlot> slots)
     : mesh_(&mesh), slots_(std::move(slots)) {
   const Eigen::MatrixX3cd no_values;  // the structure does not read known
@@ -273,7 +273,7 @@ CurveClosure::CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::M
   trace_lines(mesh, cut, at_slot);
 }
 
-void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot) {
+void AlignedLines::trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot) {
   const int ns = static_cast<int>(slots_.size());
   parent_.assign(static_cast<std::size_t>(ns), -1);
   sigma_of_.assign(static_cast<std::size_t>(ns), 0);
@@ -285,14 +285,12 @@ void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
     sigma_of_[root] = 1;
     std::vector<Anchor> anchors;
     double length = 0;
-    bool on_boundary = true;
     const std::size_t start = order_.size();
     order_.push_back(root);
     for (std::size_t q = start; q < order_.size(); ++q) {
       const int i = order_[q];
       line_of_[i] = line;
       length += mesh.edge_lengths()[slots_[i].edge];
-      on_boundary = on_boundary && mesh.is_boundary_edge(slots_[i].edge);
       for (int end = 0; end < 2; ++end) {
         const int f = slots_[i].face, c = mesh.corner_of(f, mesh.E()(slots_[i].edge, end));
         if (cut.branch[mesh.F()(f, c)]) anchors.push_back({i, f, c});
@@ -307,7 +305,6 @@ void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
       }
     }
     lengths_.push_back(length);
-    on_boundary_.push_back(on_boundary);
     usable_.push_back(1);
     if (!anchors.empty()) {
       anchors_.push_back(std::move(anchors));
@@ -328,11 +325,11 @@ void CurveClosure::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
   }
 }
 
-double CurveClosure::coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const {
+double AlignedLines::coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const {
   return std::real(ipow(-slots_[slot].coordinate) * known(face, corner));
 }
 
-std::vector<double> CurveClosure::tau_along(const Eigen::MatrixX3cd& known) const {
+std::vector<double> AlignedLines::tau_along(const Eigen::MatrixX3cd& known) const {
   std::vector<double> tau_of(slots_.size(), 0.0);  // n_slot = σ n_root + τ, in the order of the tree
   for (const int i : order_)
     if (parent_[i] >= 0) {
@@ -342,17 +339,17 @@ std::vector<double> CurveClosure::tau_along(const Eigen::MatrixX3cd& known) cons
   return tau_of;
 }
 
-double CurveClosure::relation_tau(const Relation& rel, const Eigen::MatrixX3cd& known) const {
+double AlignedLines::relation_tau(const Relation& rel, const Eigen::MatrixX3cd& known) const {
   return coordinate(rel.to, rel.face_to, rel.corner_to, known) -
          rel.sigma * coordinate(rel.from, rel.face_from, rel.corner_from, known);
 }
 
-double CurveClosure::root_value(const Anchor& a, const std::vector<double>& tau_of,
+double AlignedLines::root_value(const Anchor& a, const std::vector<double>& tau_of,
                                 const Eigen::MatrixX3cd& known) const {
   return sigma_of_[a.slot] * (coordinate(a.slot, a.face, a.corner, known) - tau_of[a.slot]);
 }
 
-Eigen::VectorXd CurveClosure::line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+Eigen::VectorXd AlignedLines::line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
                                              const std::vector<char>& lines) const {
   const std::vector<double> tau_of = tau_along(known);
   std::vector<double> r;
@@ -367,14 +364,14 @@ Eigen::VectorXd CurveClosure::line_residuals(const Eigen::MatrixX3cd& known, con
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
-std::vector<char> CurveClosure::fixed_components(const std::vector<char>& lines) const {
+std::vector<char> AlignedLines::fixed_components(const std::vector<char>& lines) const {
   std::vector<char> fixed(static_cast<std::size_t>(2 * mesh_->num_vertices()), 0);
   for (const Use& w : uses_)
     if (lines[line_of_[w.slot]]) fixed[w.index] = 1;
   return fixed;
 }
 
-Eigen::VectorXd CurveClosure::fixed_values(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
+Eigen::VectorXd AlignedLines::fixed_values(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
                                            const std::vector<char>& lines) const {
   const std::vector<double> tau_of = tau_along(known);
   Eigen::VectorXd value = Eigen::VectorXd::Zero(2 * mesh_->num_vertices());

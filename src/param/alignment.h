@@ -65,10 +65,10 @@ struct CurveAlignmentOptions {
 /// under which a line can be one iso-line: closing on itself (a boundary loop, a crease through a cut) with its own
 /// integer, and passing its branch points, whose positions the periods set, at that integer. Each condition is a
 /// residual in grid units, linear in (known, n) and 0 when it holds.
-class CurveClosure {
+class AlignedLines {
  public:
   /// \pre cut = build_cover_cut(mesh, …); layer #F by 3 (the correction's layers); slots from aligned_curve_slots.
-  CurveClosure(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer, std::vector<CurveSlot> slots);
+  AlignedLines(const Mesh& mesh, const CoverCut& cut, const Eigen::MatrixX3i& layer, std::vector<CurveSlot> slots);
   /// The lines (connected sets of relations, numbered by their lowest slot as AlignedCorrection numbers its curves).
   int num_lines() const { return num_lines_; }  ///< \pre none
   /// Per line: whether it fixes a component of u somewhere (not all its slot ends at branch points) and closes on
@@ -76,8 +76,6 @@ class CurveClosure {
   const std::vector<char>& line_usable() const { return usable_; }
   /// Per line: the length of its edges in model units. \pre none
   const std::vector<double>& line_lengths() const { return lengths_; }
-  /// Per line: whether all its edges are boundary edges. \pre none
-  const std::vector<char>& line_on_boundary() const { return on_boundary_; }
   /// Residuals of the lines in `lines` only: their closing relations, and n_k − (the integer of each branch point on
   /// line k) for the per-line integers n. Linear in (known, n). \pre known #F by 3; lines and n per line.
   Eigen::VectorXd line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
@@ -116,7 +114,6 @@ class CurveClosure {
   int num_lines_ = 0;
   std::vector<char> usable_;
   std::vector<double> lengths_;
-  std::vector<char> on_boundary_;
   std::vector<int> line_anchor_;  ///< per anchor line (anchors_), its line
   double coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const;
   std::vector<double> tau_along(const Eigen::MatrixX3cd& known) const;  ///< τ per slot (tree order)
@@ -126,7 +123,7 @@ class CurveClosure {
   void trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot);
 };
 
-/// Lines and integers the rounding chose with the periods (param/curve_rounding.h), numbered as CurveClosure numbers
+/// Lines and integers the rounding chose with the periods (param/curve_rounding.h), numbered as AlignedLines numbers
 /// them: they replace AlignedCorrection's rounded means and limits (lines with branch points at two integers stay free).
 struct GivenLines {
   std::vector<char> lines;  ///< per line
@@ -151,7 +148,6 @@ class ConstrainedSolve {
   /// \pre factorize(L) ran with this L. \throw NumericalError if the solve fails.
   Eigen::MatrixXcd solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::MatrixXcd& B,
                          const Eigen::MatrixXd& values) const;
-  const std::vector<char>& fixed() const { return fixed_; }  ///< \pre none
 
  private:
   std::vector<char> fixed_;

@@ -39,7 +39,7 @@ struct Column {
 
 Column column(const Mesh& mesh, const CurveRoundingInputs& in, const Variables& vars, int col) {
   Column c{Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3), Eigen::MatrixX3cd(),
-           Eigen::VectorXd::Zero(in.closure.num_lines())};
+           Eigen::VectorXd::Zero(in.aligned.num_lines())};
   const int m2 = static_cast<int>(2 * vars.paths.size());
   if (col < m2 || col == vars.count()) c.sigma = jump_of(mesh, in, vars, col);
   else c.n[vars.lines[col - m2]] = 1;
@@ -48,15 +48,23 @@ Column column(const Mesh& mesh, const CurveRoundingInputs& in, const Variables& 
 }
 
 /// Per column, √A_f (Re, Im of X, then of Y) of R = Σ − ∇u for the constrained u, stacked (4F rows): ‖R‖² = |col|²;
-/// and the condition residuals (rows of CurveClosure::line_residuals).
+/// and the condition residuals (rows of AlignedLines::line_residuals).
 struct Responses {
   Eigen::MatrixXd G, C;
 };
 
+/// Adds s · √A_f (Re X, Im X, Re Y, Im Y) of the frame pairs Z, face by face, to column `col` of G.
+void add_weighted(const Mesh& mesh, const FramePairs& Z, double s, int col, Eigen::MatrixXd& G) {
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const double w = s * std::sqrt(mesh.face_areas()[f]);
+    G.block<4, 1>(4 * f, col) += w * Eigen::Vector4d(Z(f, 0).real(), Z(f, 0).imag(), Z(f, 1).real(), Z(f, 1).imag());
+  }
+}
+
 Responses responses(const Mesh& mesh, const CurveRoundingInputs& in, const Variables& vars,
                     const std::vector<char>& chosen) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), cols = vars.count() + 1;
-  std::vector<char> fixed = in.closure.fixed_components(chosen);
+  std::vector<char> fixed = in.aligned.fixed_components(chosen);
   Eigen::VectorXd pin_values = Eigen::VectorXd::Zero(2 * nv);
   pin_kernel(mesh, in.correction.kernel_pins(), fixed, pin_values);
   ConstrainedSolve solver(fixed);
@@ -65,36 +73,28 @@ Responses responses(const Mesh& mesh, const CurveRoundingInputs& in, const Varia
   Eigen::MatrixXcd B(nv, cols);
   Eigen::MatrixXd V(2 * nv, cols);
   Responses r;
-  for (int col = 0; col < cols; ++col) {
+  r.G = Eigen::MatrixXd::Zero(4 * nf, cols);
+  for (int col = 0; col < cols; ++col) {  // the Σ part of R now, the ∇u part after the solve
     const Column c = column(mesh, in, vars, col);
-    B.col(col) = in.correction.rhs(corner_gradient(mesh, c.sigma));
-    V.col(col) = in.closure.fixed_values(c.known, c.n, chosen);
-    const Eigen::VectorXd res = in.closure.line_residuals(c.known, c.n, chosen);
+    const FramePairs Sigma = corner_gradient(mesh, c.sigma);
+    add_weighted(mesh, Sigma, 1, col, r.G);
+    B.col(col) = in.correction.rhs(Sigma);
+    V.col(col) = in.aligned.fixed_values(c.known, c.n, chosen);
+    const Eigen::VectorXd res = in.aligned.line_residuals(c.known, c.n, chosen);
     if (col == 0) r.C.resize(res.size(), cols);
     r.C.col(col) = res;
   }
   const Eigen::MatrixXcd U = solver.solve(L, B, V);
-  B = Eigen::MatrixXcd();
-  r.G.resize(4 * nf, cols);
-  for (int col = 0; col < cols; ++col) {
-    const Column c = column(mesh, in, vars, col);
-    const FramePairs R =
-        corner_gradient(mesh, c.sigma) - corner_gradient(mesh, in.correction.corner_values(U.col(col)));
-    for (int f = 0; f < nf; ++f) {
-      const double w = std::sqrt(mesh.face_areas()[f]);
-      r.G.block<4, 1>(4 * f, col) << w * R(f, 0).real(), w * R(f, 0).imag(), w * R(f, 1).real(), w * R(f, 1).imag();
-    }
-  }
+  for (int col = 0; col < cols; ++col)
+    add_weighted(mesh, corner_gradient(mesh, in.correction.corner_values(U.col(col))), -1, col, r.G);
   return r;
 }
 
 /// The lines to pin: usable and at least min_length grid units long.
-std::vector<int> chosen_lines(const CurveClosure& closure, double edge_length, double min_length) {
+std::vector<int> chosen_lines(const AlignedLines& aligned, double edge_length, double min_length) {
   std::vector<int> lines;
-  for (int k = 0; k < closure.num_lines(); ++k)
-    if (closure.line_usable()[k] && closure.line_lengths()[k] / edge_length >= min_length &&
-        (!getenv("QC_BONLY") || closure.line_on_boundary()[k]))
-      lines.push_back(k);
+  for (int k = 0; k < aligned.num_lines(); ++k)
+    if (aligned.line_usable()[k] && aligned.line_lengths()[k] / edge_length >= min_length) lines.push_back(k);
   return lines;
 }
 
@@ -106,11 +106,11 @@ CurveRounding round_with_curves(const Mesh& mesh, const CurveRoundingInputs& in,
   Variables vars;
   for (int j = 0; j < in.cut.num_paths(); ++j)
     if (in.cut.dependent_path[in.cut.path_component[j]] != j) vars.paths.push_back(j);
-  vars.lines = chosen_lines(in.closure, in.edge_length, min_length);
+  vars.lines = chosen_lines(in.aligned, in.edge_length, min_length);
   const int m = static_cast<int>(vars.paths.size()), K = static_cast<int>(vars.lines.size()), J = vars.count();
   const double bytes = 8.0 * (J + 1) * (4.0 * mesh.num_faces() + 6.0 * mesh.num_vertices());
   if (K == 0 || bytes > max_response_bytes) return out;
-  out.lines.assign(static_cast<std::size_t>(in.closure.num_lines()), 0);
+  out.lines.assign(static_cast<std::size_t>(in.aligned.num_lines()), 0);
   for (const int k : vars.lines) out.lines[k] = 1;
   const Responses r = responses(mesh, in, vars, out.lines);
   // E(y) = |g0 + G y|² + W |c0 + C y|² for the offset y from the base point; W: ten times the dearest single unit
@@ -140,7 +140,7 @@ CurveRounding round_with_curves(const Mesh& mesh, const CurveRoundingInputs& in,
   out.conditions_met = static_cast<int>((residual.array().abs() < 1e-6).count());
   out.paths = vars.paths;
   for (int a = 0; a < m; ++a) out.periods.push_back(Complex(base[a] + y[a], base[m + a] + y[m + a]));
-  out.line_values = Eigen::VectorXd::Zero(in.closure.num_lines());
+  out.line_values = Eigen::VectorXd::Zero(in.aligned.num_lines());
   for (int k = 0; k < K; ++k) out.line_values[vars.lines[k]] = y[2 * m + k];
   out.variables = J;
   out.active = true;

@@ -5,7 +5,7 @@
 // free map wiggles, is left free. Here the quadratic form is that of the constrained correction,
 //   E(x, n) = min { ‖Σ̃_d − ∇u‖² : u puts every chosen line k on its iso-line n_k },
 // in the real coordinates x of the free periods and one integer n_k per line, plus a penalty on the lines' closing
-// and branch-point conditions (param/alignment.h CurveClosure); one search (RoundingOptions) then rounds both, so
+// and branch-point conditions (param/alignment.h AlignedLines); one search (RoundingOptions) then rounds both, so
 // that the cones go where the curves can be straight.
 #include <Eigen/Core>
 #include <vector>
@@ -21,7 +21,7 @@ namespace quadcover {
 /// would not fit (`max_response_bytes`): the caller then rounds with the period matrix alone.
 struct CurveRounding {
   bool active = false;
-  std::vector<char> lines;         ///< per line of the CurveClosure: put on an integer iso-line with these periods
+  std::vector<char> lines;         ///< per line of the AlignedLines: put on an integer iso-line with these periods
   Eigen::VectorXd line_values;     ///< per line: its integer (chosen lines)
   std::vector<int> paths;          ///< the rounded (free) paths
   std::vector<Complex> periods;    ///< their rounded periods
@@ -35,7 +35,7 @@ struct CurveRounding {
 struct CurveRoundingInputs {
   const CoverCut& cut;
   const HarmonicCorrection& correction;
-  const CurveClosure& closure;
+  const AlignedLines& aligned;  ///< the lines of the aligned curves
   const Eigen::MatrixX3cd& known_free;  ///< per corner, φ̂ (the integral before the period rounding)
   const std::vector<Complex>& periods, &direct;  ///< per path: the periods and their direct rounding
   double edge_length = 1;               ///< h in model units (line lengths in grid units)

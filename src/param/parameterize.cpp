@@ -245,11 +245,9 @@ void round_dependent_paths(const Mesh& mesh, const CoverCut& cc, Lattice lattice
   }
 }
 
-/// Step 4 (4.2.2, 6.3): the periods of the translations c, their rounding (direct, then with the period matrix,
-/// then the even branch point fix-up) into P; returns the translation change d per edge.
-/// The curve closure of the aligned curves' lines and φ̂ per corner, for the rounding with the lines.
+/// The lines of the aligned curves (null: no curves) and φ̂ per corner, for the rounding with the lines.
 struct CurveLines {
-  const CurveClosure* closure = nullptr;  ///< null: no curves
+  const AlignedLines* aligned = nullptr;
   const Eigen::MatrixX3cd& known_free;
 };
 
@@ -258,9 +256,9 @@ struct CurveLines {
 bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
                               const CurveLines& lines, const ParamOptions& options, Parameterization& P,
                               std::optional<GivenLines>& given) {
-  if (!lines.closure || !options.alignment.round_with_periods || options.rounding.strategy == RoundingStrategy::Direct)
+  if (!lines.aligned || !options.alignment.round_with_periods || options.rounding.strategy == RoundingStrategy::Direct)
     return false;
-  const CurveRoundingInputs in{cc, correction, *lines.closure, lines.known_free, P.periods, P.rounded_periods,
+  const CurveRoundingInputs in{cc, correction, *lines.aligned, lines.known_free, P.periods, P.rounded_periods,
                                P.edge_length};
   const CurveRounding r =
       round_with_curves(mesh, in, options.lattice, options.rounding, options.alignment.limits.min_length);
@@ -280,8 +278,11 @@ bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const Harmon
   return true;
 }
 
-/// With the curves' lines (`lines`, or null) and options.alignment.round_with_periods, the periods and the lines'
-/// integers are rounded together (param/curve_rounding.h); `given` then receives the lines and their integers.
+/// Step 4 (4.2.2, 6.3): the periods of the translations c, their rounding (direct, then with the period matrix,
+/// then the even branch point fix-up) into P; returns the translation change d per edge. With the curves' lines
+/// (`lines.aligned` not null) and options.alignment.round_with_periods, the periods and the lines' integers are
+/// rounded together instead of with the period matrix (param/curve_rounding.h); `given` then receives the lines and
+/// their integers.
 Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
                                   const Eigen::VectorXcd& c, const CurveLines& lines, const ParamOptions& options,
                                   ProgressSink& progress, StageLaps& lap, Parameterization& P,
@@ -451,10 +452,10 @@ Parameterization parameterize(const Mesh& mesh, const FrameField& field, const P
   const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
   const std::vector<CurveSlot> slots = curve_slots(mesh, Z, options);
   const Eigen::MatrixX3cd known_free = corner_values(cc, phi);
-  std::optional<CurveClosure> closure;
-  if (!slots.empty()) closure.emplace(mesh, cc, correction.layers().layer, slots);
+  std::optional<AlignedLines> aligned_lines;
+  if (!slots.empty()) aligned_lines.emplace(mesh, cc, correction.layers().layer, slots);
   std::optional<GivenLines> given;
-  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, {closure ? &*closure : nullptr, known_free},
+  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, {aligned_lines ? &*aligned_lines : nullptr, known_free},
                                               options, progress, lap, P, given);
 
   // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
