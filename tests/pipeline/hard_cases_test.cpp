@@ -1,7 +1,7 @@
 // Meshes made in the test that are hard for a seamless map (issue 14): coarse triangulations with cones close
 // together, an inward-facing (inverted) surface, slivers, a coarse box with sharp creases. Each default remesh must
 // give a valid map (no flipped or collapsed triangle, no vertex wound other than the field says) and keep the
-// input's topology, all quads where the input is closed.
+// input's topology, all quads where the input is closed; so must the ones with curves with --round-curves.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -29,10 +29,12 @@ Mesh coarse_cube() {
   return Mesh::from_triangles(V, F);
 }
 
-void expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what) {
-  SCOPED_TRACE(what);
+/// Returns whether the kept map rounded the curves with the periods or fell back from doing so.
+bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, bool round_curves = false) {
+  SCOPED_TRACE(what + (round_curves ? ", curves rounded with the periods" : ""));
   PipelineOptions options;
   options.param.density.target_quads = quads;
+  options.param.alignment.round_with_periods = round_curves;
   const RemeshJob job = remesh_mesh(mesh, options);
   const Mesh& map_mesh = job.param.mesh(mesh);
   EXPECT_EQ(flipped_triangles(map_mesh, job.param.map.uv).non_positive, 0);
@@ -42,6 +44,8 @@ void expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what) {
   EXPECT_LT(job.surface.output.faces, 2 * quads);
   if (mesh.num_boundary_loops() == 0) EXPECT_EQ(job.surface.output.non_quads, 0);
   for (const std::string& w : job.param.warnings) EXPECT_EQ(w.find("not valid"), std::string::npos) << w;
+  const auto& rounding = job.param.map.diagnostics.rounding;
+  return rounding.curve_lines > 0 || rounding.curve_rounding_dropped;
 }
 
 TEST(HardCases, CoarseSpheresWithManyQuadsPerTriangle) {
@@ -74,6 +78,21 @@ TEST(HardCases, CoarseSurfacesWithBoundary) {
   expect_valid_remesh(Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, 10)), 400,
                       "plate with 16 holes");
   expect_valid_remesh(testing::make_torus_and_cylinder(), 300, "torus and open cylinder");
+}
+
+// The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned
+// or, where that map is less valid, the period-matrix map; valid either way, with the input's topology.
+TEST(HardCases, CurvesRoundedWithThePeriodsStayValid) {
+  int engaged = 0;
+  engaged += expect_valid_remesh(coarse_cube(), 60, "cube, 60 quads", true);
+  engaged += expect_valid_remesh(coarse_cube(), 200, "cube, 200 quads", true);
+  engaged += expect_valid_remesh(testing::make_cylinder(48, 2, 1.0, 4.0), 100, "sliver cylinder", true);
+  engaged += expect_valid_remesh(testing::make_fan(12, false), 100, "disk of 12 triangles", true);
+  const Mesh grid = testing::make_grid(10);
+  engaged += expect_valid_remesh(Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, 10)), 400,
+                                 "plate with 16 holes", true);
+  engaged += expect_valid_remesh(testing::make_torus_and_cylinder(), 300, "torus and open cylinder", true);
+  EXPECT_GT(engaged, 0);  // 3 of the 6 have lines of 3 grid units (2026-12-03)
 }
 
 }  // namespace
