@@ -12,13 +12,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// φ at corner c of face f: base − i^λ u_p (0 at branch points).
-Complex corner_value(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
-                     const Eigen::VectorXcd& u, int f, int c) {
-  const int p = mesh.F()(f, c);
-  return layers.branch[p] ? base(f, c) : base(f, c) - ipow(layers.layer(f, c)) * u[p];
-}
-
 /// The signed angle at corner c of face f in the map (0 if a side has zero length).
 double corner_angle(const Complex& at, const Complex& next, const Complex& prev) {
   const Complex e1 = next - at, e2 = prev - at;
@@ -151,6 +144,12 @@ bool move_centre(const Mesh& mesh, const VertexLayers& layers, const Eigen::Matr
 }
 
 }  // namespace
+
+Complex corner_value(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                     const Eigen::VectorXcd& u, int f, int c) {
+  const int p = mesh.F()(f, c);
+  return layers.branch[p] ? base(f, c) : base(f, c) - ipow(layers.layer(f, c)) * u[p];
+}
 
 Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
   const int nv = mesh.num_vertices();

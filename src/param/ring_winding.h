@@ -21,6 +21,11 @@
 
 namespace quadcover {
 
+/// φ at corner c of face f: base(f, c) − i^λ u_p with λ = layers.layer(f, c) (base(f, c) at branch points).
+/// \pre layers fit mesh, u #V.
+Complex corner_value(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                     const Eigen::VectorXcd& u, int f, int c);
+
 /// 4·(1 − Θ_p / 2π) rounded, the map's quarter index at every interior vertex (0 at boundary and unused vertices);
 /// corners with a side of zero length add no angle (as metrics/param_quality.h cones_from_uv). \return #V \pre uv is #F.
 Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv);

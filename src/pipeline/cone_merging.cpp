@@ -7,6 +7,7 @@
 #include "field/indices.h"
 #include "field/relocation.h"
 #include "field/smoothing.h"
+#include "param/map_development.h"
 #include "param/ring_winding.h"
 
 namespace quadcover {
@@ -27,6 +28,32 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
       const int from = std::max(a, b), into = std::min(a, b);
       merges.push_back({from, into, mod4(quarter[from])});
       used[a] = used[b] = 1;
+    }
+  }
+  return merges;
+}
+
+std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map) {
+  constexpr int kCoincidentRings = 3;
+  const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), map.branch_points);
+  const VertexLayers layers{map.subspace.layer, map.subspace.branch};
+  const Eigen::VectorXcd zero = Eigen::VectorXcd::Zero(mesh.num_vertices());
+  const Eigen::VectorXi wound = map_quarter_index(mesh, map.uv);
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  std::vector<ConeMerge> merges;
+  for (int p = 0; p < mesh.num_vertices(); ++p) {
+    if (quarter[p] % 4 == 0 || wound[p] == quarter[p] || used[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).empty())
+      continue;
+    const auto around = developed_around(mesh, layers, map.uv, zero, p, kCoincidentRings);
+    Complex at = 0;
+    for (const auto& [q, z] : around)
+      if (q == p) at = z;
+    for (const auto& [q, z] : around) {
+      if (q == p || quarter[q] % 4 == 0 || used[q] || mesh.is_boundary_vertex(q)) continue;
+      if (std::abs(z - at) > 1e-9 * (1 + std::abs(at))) continue;
+      merges.push_back({std::max(p, q), std::min(p, q), mod4(quarter[std::max(p, q)])});
+      used[p] = used[q] = 1;
+      break;
     }
   }
   return merges;

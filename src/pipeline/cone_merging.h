@@ -4,7 +4,8 @@
 // them as stuck): no map in the seamless subspace is injective there. Seen from outside the pair acts as one cone
 // whose rotation is the product of theirs, so the field gets that cone: q's matching index modulo 4 moves to p
 // along their edge (thesis 5.2.2), the field is smoothed again with the new matching (5.3) and the map is solved
-// again. The quad mesh keeps the vertex the two cones shared; the map loses the collapsed triangles.
+// again. The quad mesh keeps the vertex the two cones shared; the map loses the collapsed triangles. Two branch
+// points a few edges apart on one point are merged the same way, along the shortest edge path between them.
 #include <vector>
 
 #include "field/compute_frame_field.h"
@@ -24,6 +25,14 @@ struct ConeMerge {
 /// the pair, `from` the higher vertex number, skipping pairs that share a vertex with an earlier merge or whose
 /// edge is a boundary edge. \pre map was made on mesh (map.uv #F by 3).
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map);
+
+/// Branch points a few edges apart on one lattice point (within 3 rings, seen along a walk over the faces between
+/// them, param/map_development.h) of which one cone's ring the map winds a turn off: the edge path between them
+/// closes on itself in the map, and that ring keeps a flipped triangle that no untangling or edge split removes
+/// (seen on camelhead_boundary and armadillo_86k: two +1/4 cones two edges apart). Per such branch point in vertex
+/// order the first partner, `from` the higher number, each vertex in at most one merge.
+/// \pre map was made on mesh (map.subspace filled).
+std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map);
 
 /// The moves that follow the map's winding (issue 14): a branch point c around which φ winds one turn too few or too
 /// many gives its index modulo 4 to the nearest interior vertex n within 3 rings that is no branch point and carries

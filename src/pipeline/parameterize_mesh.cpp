@@ -238,6 +238,42 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
   return warnings;
 }
 
+/// Cones rounded onto one lattice point a few edges apart (close_coincident_merges) fold the map beside them in a way
+/// that no untangling or refinement undoes. When the job's final map is not valid, it is made again from `before`
+/// (the job before the cone moves, without its map) with those pairs merged: the pairs `early` found on the first
+/// map and those on the final one. Then the same cone moves, density and fold refinement; kept when more valid.
+/// Its time is the stage "close_cone_merging".
+void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, ParamJob before,
+                       std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
+  if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
+  const Mesh& mesh = before.mesh(input);
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const ConeMerge& m : merges) used[m.from] = used[m.into] = 1;
+  if (job.map.diagnostics.untangling.non_positive_after > 0)
+    for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
+      if (m.from < mesh.num_vertices() && !used[m.from] && !used[m.into]) {  // no midpoint is a cone
+        merges.push_back(m);
+        used[m.from] = used[m.into] = 1;
+      }
+  if (merges.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  ParamJob retry = std::move(before);
+  retry.field = merge_cones(mesh, stage, retry.field, lambda, merges);
+  retry.map = parameterize(mesh, retry.field, retry.options.param, progress);
+  retry.merged_cone_pairs += static_cast<int>(merges.size());
+  ++retry.merge_rounds;
+  move_cones(mesh, stage, lambda, retry, progress);
+  retry.density = hit_target_count(mesh, retry, progress);
+  refine_job_folds(mesh, retry, progress);
+  const bool better = map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map);
+  if (better) {
+    retry.seconds = std::move(job.seconds);
+    retry.peak_bytes = std::move(job.peak_bytes);
+    job = std::move(retry);
+  }
+  job.seconds.emplace_back("close_cone_merging", seconds_since(start));
+}
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   validate(options);
   check_memory_budget(input, options.param, available_bytes(options.max_memory_bytes));
@@ -282,6 +318,11 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   for (const auto& [stage, s] : job.map.diagnostics.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.diagnostics.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
   meter.restart();
+  Parameterization first_map = std::move(job.map);
+  ParamJob before_moves = job;  // without the map: merge_close_cones starts again from here
+  job.map = std::move(first_map);
+  std::vector<ConeMerge> close_merges;
+  if (job.map.diagnostics.untangling.non_positive_after > 0) close_merges = close_coincident_merges(mesh, job.map);
   move_cones(mesh, field, oo.lambda, job, finishing);
   if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);
@@ -290,6 +331,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
   note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
+  merge_close_cones(input, field, oo.lambda, std::move(before_moves), std::move(close_merges), job, finishing);
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
   return job;

@@ -136,9 +136,10 @@ TEST(FoldRefinement, ShippedMeshesEndWithoutNonPositiveTriangles) {
 /// triangle.
 TEST(FoldRefinement, ConesWithAShortRingEndWithoutANonPositiveTriangle) {
   const Mesh mesh = testing::load_test_mesh("couplingdown_genus9");
-  // The rewinding alone: no cone moves (they take the short-ring cones away first) and one density.
+  // The rewinding alone: no cone moves or merges (they take the short-ring cones away first) and one density.
   PipelineOptions on;
   on.move_wound_cones = false;
+  on.merge_coincident_cones = false;
   on.validity_retries = 0;
   PipelineOptions off = on;
   off.param.untangle.rewind_rings = false;

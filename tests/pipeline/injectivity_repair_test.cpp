@@ -66,15 +66,19 @@ TEST(CurveRefinement, NoTriangleKeepsThreeCurveCornersAndANonCurveEdge) {
 
 TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
-  PipelineOptions plain;  // the fold refinement off: it removes these faces too (fold_refinement_test.cpp)
+  // The fold refinement and the cone merges off: they remove these faces too (fold_refinement_test.cpp; merged
+  // cones change the field there).
+  PipelineOptions plain;
   plain.refine_curve_triangles = false;
   plain.fold_refinement_rounds = 0;
+  plain.merge_coincident_cones = false;
   const ParamJob without = parameterize_mesh(mesh, plain);
   ASSERT_GT(faces_on_one_iso_line(without.map), 0) << "the case this test is about no longer occurs on bunny_3k";
   EXPECT_EQ(without.map.uv.rows(), mesh.num_faces());
   PipelineOptions refine;
   refine.refine_curve_triangles = true;
   refine.fold_refinement_rounds = 0;
+  refine.merge_coincident_cones = false;
   const ParamJob with = parameterize_mesh(mesh, refine);
   ASSERT_TRUE(with.refinement.mesh);
   EXPECT_EQ(&with.mesh(mesh), with.refinement.mesh.get());
@@ -113,11 +117,58 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
   EXPECT_EQ(sum_mod4(with.map), sum_mod4(without.map));
 }
 
+/// True iff vertices a and b share an edge.
+bool adjacent(const Mesh& mesh, int a, int b) {
+  for (const Mesh::FanCorner& c : mesh.fan(a))
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F()(c.face, k) == b) return true;
+  return false;
+}
+
+TEST(ConeMerging, MergesConesRoundedToOnePointTwoEdgesApart) {
+  // camelhead: two +1 branch points two edges apart rounded to one lattice point; the one whose fan the map winds a
+  // turn short keeps a flipped triangle that no untangling or refinement removes.
+  const Mesh mesh = testing::load_test_mesh("camelhead_boundary");
+  PipelineOptions plain;
+  plain.merge_coincident_cones = false;
+  plain.fold_refinement_rounds = 0;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  ASSERT_GT(without.map.diagnostics.untangling.non_positive_after, 0) << "the case this test is about no longer occurs";
+  const std::vector<ConeMerge> merges = close_coincident_merges(mesh, without.map);
+  const auto apart = std::count_if(merges.begin(), merges.end(), [&](const ConeMerge& m) {
+    return !adjacent(mesh, m.from, m.into);
+  });
+  ASSERT_GT(apart, 0);
+  auto on_lattice = [&](int v) {  // φ(v) in the chart of its first fan face
+    const Mesh::FanCorner c = mesh.fan(v)[0];
+    const Complex z = without.map.uv(c.face, c.corner);
+    return std::abs(z - Complex(std::round(z.real()), std::round(z.imag()))) < 1e-9;
+  };
+  for (const ConeMerge& m : merges) {
+    EXPECT_GT(m.from, m.into);
+    EXPECT_TRUE(on_lattice(m.from) && on_lattice(m.into));
+  }
+  // With the merges (and everything else at its default) the map has no non-positive triangle: the job made it
+  // again after the fold refinement had left the fold.
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_TRUE(std::any_of(with.seconds.begin(), with.seconds.end(),
+                          [](const auto& s) { return s.first == "close_cone_merging"; }));
+  EXPECT_EQ(with.map.diagnostics.untangling.non_positive_after, 0);
+  int non_positive = 0;  // recounted from the written corners
+  for (int f = 0; f < with.map.uv.rows(); ++f) {
+    const Complex e1 = with.map.uv(f, 1) - with.map.uv(f, 0), e2 = with.map.uv(f, 2) - with.map.uv(f, 0);
+    non_positive += std::imag(std::conj(e1) * e2) <= 0;
+  }
+  EXPECT_EQ(non_positive, 0);
+}
+
 TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) {
   const Mesh mesh = testing::load_test_mesh("couplingdown_genus9");
-  PipelineOptions plain;  // one density for both jobs
+  PipelineOptions plain;  // one density for both jobs, the moves alone (no merges of coincident cones)
   plain.validity_retries = 0;
   plain.move_wound_cones = false;
+  plain.merge_coincident_cones = false;
   const ParamJob without = parameterize_mesh(mesh, plain);
   const Mesh& m0 = without.mesh(mesh);
   const std::size_t wrong_before = wrong_winding_vertices(m0, without.map).size();
