@@ -241,7 +241,8 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
 /// Cones rounded onto one lattice point a few edges apart (close_coincident_merges) fold the map beside them in a way
 /// that no untangling or refinement undoes. When the job's final map is not valid, it is made again from `before`
 /// (the job before the cone moves, without its map) with those pairs merged: the pairs `early` found on the first
-/// map and those on the final one. Then the same cone moves, density and fold refinement; kept when more valid.
+/// map and those on the final one. Then the kinds of cone moves the first pass kept, density and fold refinement;
+/// kept when more valid.
 /// Its time is the stage "close_cone_merging".
 void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, ParamJob before,
                        std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
@@ -262,7 +263,13 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   retry.map = parameterize(mesh, retry.field, retry.options.param, progress);
   retry.merged_cone_pairs += static_cast<int>(merges.size());
   ++retry.merge_rounds;
+  PipelineOptions& o = retry.options;  // the kinds of cone moves the first pass kept, not the others
+  const bool merge = o.merge_coincident_cones, move = o.move_wound_cones;
+  o.merge_coincident_cones = merge && job.merged_cone_pairs > 0;
+  o.move_wound_cones = move && job.moved_wound_cones > 0;
   move_cones(mesh, stage, lambda, retry, progress);
+  o.merge_coincident_cones = merge;
+  o.move_wound_cones = move;
   retry.density = hit_target_count(mesh, retry, progress);
   refine_job_folds(mesh, retry, progress);
   const bool better = map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map);
