@@ -242,43 +242,56 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
 /// that no untangling or refinement undoes. When the job's final map is not valid, it is made again from `before`
 /// (the job before the cone moves, without its map) with those pairs merged: the pairs `early` found on the first
 /// map and those on the final one. Then the kinds of cone moves the first pass kept, density and fold refinement;
-/// kept when more valid.
+/// kept when more valid, and once more with the pairs on the new final map while folds are left.
 /// Its time is the stage "close_cone_merging".
-void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, ParamJob before,
-                       std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
-  if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
-  const Mesh& mesh = before.mesh(input);
-  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (const ConeMerge& m : merges) used[m.from] = used[m.into] = 1;
-  if (job.map.diagnostics.untangling.non_positive_after > 0)
-    for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
-      if (m.from < mesh.num_vertices() && !used[m.from] && !used[m.into]) {  // no midpoint is a cone
-        merges.push_back(m);
-        used[m.from] = used[m.into] = 1;
-      }
-  if (merges.empty()) return;
-  const auto start = std::chrono::steady_clock::now();
-  ParamJob retry = std::move(before);
+/// `before` made again with `merges` applied to its field: map, the cone moves in `moves` (merge, move), density
+/// and fold refinement.
+ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, double lambda, const ParamJob& before,
+                            const std::vector<ConeMerge>& merges, std::pair<bool, bool> moves,
+                            ProgressSink& progress) {
+  ParamJob retry = before;
   retry.field = merge_cones(mesh, stage, retry.field, lambda, merges);
   retry.map = parameterize(mesh, retry.field, retry.options.param, progress);
   retry.merged_cone_pairs += static_cast<int>(merges.size());
   ++retry.merge_rounds;
-  PipelineOptions& o = retry.options;  // the kinds of cone moves the first pass kept, not the others
+  PipelineOptions& o = retry.options;
   const bool merge = o.merge_coincident_cones, move = o.move_wound_cones;
-  o.merge_coincident_cones = merge && job.merged_cone_pairs > 0;
-  o.move_wound_cones = move && job.moved_wound_cones > 0;
+  o.merge_coincident_cones = merge && moves.first;
+  o.move_wound_cones = move && moves.second;
   move_cones(mesh, stage, lambda, retry, progress);
   o.merge_coincident_cones = merge;
   o.move_wound_cones = move;
   retry.density = hit_target_count(mesh, retry, progress);
   refine_job_folds(mesh, retry, progress);
-  const bool better = map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map);
-  if (better) {
+  return retry;
+}
+
+void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, const ParamJob& before,
+                       std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
+  constexpr int kRounds = 2;  // a second one while folds are left: the remade map can put another pair on a point
+  if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
+  const Mesh& mesh = before.mesh(input);
+  const std::pair<bool, bool> kept_moves{job.merged_cone_pairs > 0, job.moved_wound_cones > 0};
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const ConeMerge& m : merges) used[m.from] = used[m.into] = 1;
+  const auto start = std::chrono::steady_clock::now();
+  for (int round = 0; round < kRounds; ++round) {
+    const std::size_t known = merges.size();
+    if (job.map.diagnostics.untangling.non_positive_after > 0)
+      for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
+        if (m.from < mesh.num_vertices() && !used[m.from] && !used[m.into]) {  // no midpoint is a cone
+          merges.push_back(m);
+          used[m.from] = used[m.into] = 1;
+        }
+    if (merges.empty() || (round > 0 && merges.size() == known)) break;
+    ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, progress);
+    if (!(map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map))) break;
     retry.seconds = std::move(job.seconds);
     retry.peak_bytes = std::move(job.peak_bytes);
     job = std::move(retry);
+    if (job.map.diagnostics.untangling.non_positive_after == 0) break;
   }
-  job.seconds.emplace_back("close_cone_merging", seconds_since(start));
+  if (!merges.empty()) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }
 
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
@@ -338,7 +351,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
   note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
-  merge_close_cones(input, field, oo.lambda, std::move(before_moves), std::move(close_merges), job, finishing);
+  merge_close_cones(input, field, oo.lambda, before_moves, std::move(close_merges), job, finishing);
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
   return job;
