@@ -179,6 +179,8 @@ def check_param(binary, mesh_path, name, out, info, src):
           rep["non_positive_triangles"] == flipped + collapsed == len(rep["flipped_faces"]),
           f"{name}: report flips {rep['flipped_triangles']} + collapsed {rep['collapsed_triangles']}, "
           f"re-measured from the file: {flipped} + {collapsed}")
+    # Issue 14: the default map of every shipped mesh is injective (no flipped or collapsed triangle in the file).
+    check(flipped + collapsed == 0, f"{name}: the written map has {flipped} flipped and {collapsed} collapsed triangles")
     check(rep["energy_curl"] >= 0 and rep["energy_harmonic"] >= 0,
           f"{name}: negative energy E_D={rep['energy_curl']} E_H={rep['energy_harmonic']}")
     check(isinstance(report["field"]["branch_points"], list), f"{name}: report field.branch_points is not a list")
