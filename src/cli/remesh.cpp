@@ -100,9 +100,9 @@ void register_remesh(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
                 "Write the quad mesh as binary PLY (.ply output; NAME.quad.ply in batches) with per-vertex "
                 "'quality' = the worst corner angle deviation from 90 degrees at the vertex (degrees; for a non-quad "
                 "n-gon from its regular angle) and 'valence' = the vertex's edge count");
-  auto* nv = cmd->add_option("--faces,--vertices", opt->optimize.quads,
+  auto* nv = cmd->add_option("--faces,--quads,--vertices", opt->optimize.quads,
                              "Target number of quads N, hit within 2 % of the map's quad count (on a closed mesh the "
-                             "quad mesh has about as many vertices); --vertices is its old name")
+                             "quad mesh has about as many vertices); --quads and --vertices are its old names")
                  ->check(CLI::PositiveNumber);
   cmd->add_option("--edge-length", opt->optimize.edge_length, "Target quad edge length in model units")
       ->check(CLI::PositiveNumber)

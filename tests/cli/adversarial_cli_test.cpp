@@ -49,7 +49,7 @@ class AdversarialCli : public ::testing::Test {
 
   // `param` then `remesh` on the mesh; checks the outcome contract and, on success, the written files.
   // Leaves the two parsed JSON results in param_ and remesh_ (null where the command exited 2).
-  // `extra` is passed to both commands; a density `n` > 0 adds --quads n (param) and --vertices n (remesh).
+  // `extra` is passed to both commands; a density `n` > 0 adds --quads n (both commands take it as --faces).
   // only_param: skip `remesh` (for the cases listed in the Robustness section of BENCHMARKS.md as open defects).
   void check_both(const std::string& name, const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int density = 0,
                   const std::string& extra = "", bool only_param = false) {
@@ -59,8 +59,7 @@ class AdversarialCli : public ::testing::Test {
     const char* commands[2] = {"param", "remesh"};
     for (int k = 0; k < (only_param ? 1 : 2); ++k) {
       const std::string out = path(name + "." + commands[k] + ".obj");
-      const std::string dens =
-          density > 0 ? (k == 0 ? " --quads " : " --vertices ") + std::to_string(density) : std::string();
+      const std::string dens = density > 0 ? " --quads " + std::to_string(density) : std::string();
       const CliRun r = run(std::string(commands[k]) + " " + in + " -o " + out + " --json " + extra + dens);
       SCOPED_TRACE(name + " " + commands[k] + ": exit " + std::to_string(r.code) + ", stderr: " + r.err);
       EXPECT_TRUE(r.code == 0 || r.code == 2) << "crash, hang or internal error";
