@@ -195,6 +195,104 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
   return u;
 }
 
+namespace {
+
+/// The inputs of untangle_and_rewind that every pass shares.
+struct RewindInputs {
+  const Mesh& mesh;
+  const VertexLayers& layers;
+  const Eigen::MatrixX3cd& base;
+  const FramePairs& Z;
+  const Eigen::VectorXi& target;
+  const UntangleOptions& options;
+  ProgressSink& progress;
+  const std::vector<char>& releasable;
+
+  int wrong(const Eigen::VectorXcd& u) const {
+    return static_cast<int>(
+        (map_quarter_index(mesh, base - layered_values(mesh, layers, u)).array() != target.array()).count());
+  }
+};
+
+struct RewindPass {
+  Eigen::VectorXcd u;
+  ParamDiagnostics::Untangling result;
+  RingRewinding rings;
+  int wrong = 0;
+};
+
+/// One pass with the components `fixed` held: rewind_rings on u, then untangle_map with the moved vertices held,
+/// then with them free if folds are left. Empty rings.rewound: nothing was laid out, or a stop was asked (u empty).
+RewindPass rewind_pass(const RewindInputs& in, const std::vector<char>& fixed, const Eigen::VectorXcd& u) {
+  RewindPass pass;
+  const Eigen::VectorXcd start = rewind_rings(in.mesh, in.layers, in.base, u, fixed, in.target, pass.rings);
+  if (in.progress.cancelled()) pass.rings.rewound.clear();
+  if (pass.rings.rewound.empty()) return pass;
+  std::vector<char> held = fixed;
+  for (int q : pass.rings.moved) held[q] = held[in.mesh.num_vertices() + q] = 1;
+  ParamDiagnostics::Untangling& r = pass.result;
+  pass.u = untangle_map(in.mesh, in.layers, in.base, in.Z, held, start, in.options, in.progress, r, in.releasable);
+  if (r.non_positive_after > 0) {
+    ParamDiagnostics::Untangling r_free;
+    pass.u = untangle_map(in.mesh, in.layers, in.base, in.Z, fixed, pass.u, in.options, in.progress, r_free,
+                          in.releasable);
+    r_free.iterations += r.iterations;
+    r_free.polish_iterations += r.polish_iterations;
+    r_free.seconds += r.seconds;
+    r = std::move(r_free);
+  }
+  pass.wrong = in.wrong(pass.u);
+  return pass;
+}
+
+/// `fixed` without the curve constraints (`releasable`) of the vertices within 2 rings of a vertex around which u
+/// winds other than the target: a branch point rounded onto the image of a curve passing a few edges away leaves
+/// the strip between them no width, and no winding is right there until the curve may bend around the cone.
+/// `freed` receives the vertices given up (ascending).
+std::vector<char> loosened_near_wrong(const RewindInputs& in, const std::vector<char>& fixed,
+                                      const Eigen::VectorXcd& u, std::vector<int>& freed) {
+  const Mesh& mesh = in.mesh;
+  const int nv = mesh.num_vertices();
+  const Eigen::VectorXi wound = map_quarter_index(mesh, in.base - layered_values(mesh, in.layers, u));
+  std::vector<char> near(static_cast<std::size_t>(nv), 0);
+  for (int p = 0; p < nv; ++p) near[p] = wound[p] != in.target[p];
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<char> next = near;
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      if (near[mesh.F()(f, 0)] || near[mesh.F()(f, 1)] || near[mesh.F()(f, 2)])
+        for (int c = 0; c < 3; ++c) next[mesh.F()(f, c)] = 1;
+    near.swap(next);
+  }
+  std::vector<char> loose = fixed;
+  freed.clear();
+  for (int p = 0; p < nv; ++p) {
+    if (!near[p] || in.layers.branch[p]) continue;
+    bool any = false;
+    for (const int i : {p, nv + p})
+      if (in.releasable[i] && loose[i]) loose[i] = 0, any = true;
+    if (any) freed.push_back(p);
+  }
+  return loose;
+}
+
+/// `result` followed by the kept `pass`: the pass's record with the counts before, the iterations and the released
+/// vertices of both.
+void merge_pass(ParamDiagnostics::Untangling& result, RewindPass& pass) {
+  ParamDiagnostics::Untangling& r = pass.result;
+  r.non_positive_before = result.non_positive_before;
+  r.iterations += result.iterations;
+  r.polish_iterations += result.polish_iterations;
+  r.seconds += result.seconds;
+  r.released_vertices.insert(r.released_vertices.end(), result.released_vertices.begin(),
+                             result.released_vertices.end());
+  std::sort(r.released_vertices.begin(), r.released_vertices.end());
+  r.released_vertices.erase(std::unique(r.released_vertices.begin(), r.released_vertices.end()),
+                            r.released_vertices.end());
+  result = std::move(r);
+}
+
+}  // namespace
+
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                                      const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                                      const Eigen::VectorXi& target, const UntangleOptions& options,
@@ -202,45 +300,37 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
                                      const std::vector<char>& releasable) {
   Eigen::VectorXcd u = untangle_map(mesh, layers, base, Z, fixed, u0, options, progress, result, releasable);
   if (!options.enabled || !options.rewind_rings) return u;
-  const auto wrong = [&](const Eigen::VectorXcd& v) {
-    return static_cast<int>((map_quarter_index(mesh, base - layered_values(mesh, layers, v)).array() != target.array())
-                                .count());
+  const RewindInputs in{mesh, layers, base, Z, target, options, progress, releasable};
+  int wrong_now = in.wrong(u);
+  // Kept if it is more valid in the order of the validity retries (pipeline/validity_retries.h): fewer
+  // non-positive triangles, then fewer wrong windings. A fold traded for a regular vertex at 4π beside the cone is
+  // progress: every triangle is then positive, and the fold refinement stops there.
+  const auto better = [&](const RewindPass& p) {
+    return !p.rings.rewound.empty() &&
+           std::tie(p.result.non_positive_after, p.wrong) < std::tie(result.non_positive_after, wrong_now);
   };
-  int wrong_now = wrong(u);
+  std::vector<char> holding = fixed;
+  bool loosened = releasable.empty() || !options.release_curve_corners || !options.release_near_wrong_windings;
   std::vector<int> rewound;
   for (int pass = 0; pass < kRewindPasses && (result.non_positive_after > 0 || wrong_now > 0); ++pass) {
-    RingRewinding rings;
-    const Eigen::VectorXcd start = rewind_rings(mesh, layers, base, u, fixed, target, rings);
-    if (rings.rewound.empty() || progress.cancelled()) break;
-    std::vector<char> held = fixed;
-    for (int q : rings.moved) held[q] = held[mesh.num_vertices() + q] = 1;
-    ParamDiagnostics::Untangling r, r_free;
-    Eigen::VectorXcd v = untangle_map(mesh, layers, base, Z, held, start, options, progress, r, releasable);
-    if (r.non_positive_after > 0) {
-      v = untangle_map(mesh, layers, base, Z, fixed, v, options, progress, r_free, releasable);
-      r_free.iterations += r.iterations;
-      r_free.polish_iterations += r.polish_iterations;
-      r_free.seconds += r.seconds;
-      r = std::move(r_free);
+    RewindPass p = rewind_pass(in, holding, u);
+    if (!better(p) && !loosened && wrong_now > 0 && !progress.cancelled()) {
+      loosened = true;  // once: the curve constraints near the wrong windings, given up for the next passes
+      std::vector<int> freed;
+      std::vector<char> loose = loosened_near_wrong(in, holding, u, freed);
+      RewindPass q = freed.empty() ? RewindPass{} : rewind_pass(in, loose, u);
+      // Curve constraints are only given up for fewer wrong windings at no more non-positive triangles.
+      if (better(q) && q.wrong < wrong_now && q.result.non_positive_after <= result.non_positive_after) {
+        holding = std::move(loose);
+        q.result.released_vertices.insert(q.result.released_vertices.end(), freed.begin(), freed.end());
+        p = std::move(q);
+      }
     }
-    const int wrong_v = wrong(v);
-    // Kept if it is more valid in the order of the validity retries (pipeline/validity_retries.h): fewer
-    // non-positive triangles, then fewer wrong windings. A fold traded for a regular vertex at 4π beside the cone is
-    // progress: the map is then an immersion, and the fold refinement stops there.
-    if (std::tie(r.non_positive_after, wrong_v) >= std::tie(result.non_positive_after, wrong_now)) break;
-    r.non_positive_before = result.non_positive_before;
-    r.iterations += result.iterations;
-    r.polish_iterations += result.polish_iterations;
-    r.seconds += result.seconds;
-    r.released_vertices.insert(r.released_vertices.end(), result.released_vertices.begin(),
-                               result.released_vertices.end());
-    std::sort(r.released_vertices.begin(), r.released_vertices.end());
-    r.released_vertices.erase(std::unique(r.released_vertices.begin(), r.released_vertices.end()),
-                              r.released_vertices.end());
-    rewound.insert(rewound.end(), rings.rewound.begin(), rings.rewound.end());
-    result = std::move(r);
-    u = std::move(v);
-    wrong_now = wrong_v;
+    if (!better(p)) break;
+    merge_pass(result, p);
+    rewound.insert(rewound.end(), p.rings.rewound.begin(), p.rings.rewound.end());
+    u = std::move(p.u);
+    wrong_now = p.wrong;
   }
   std::sort(rewound.begin(), rewound.end());
   rewound.erase(std::unique(rewound.begin(), rewound.end()), rewound.end());

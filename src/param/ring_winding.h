@@ -52,7 +52,10 @@ inline constexpr int kRewindPasses = 3;
 /// wrong winding: rewind_rings on the result and untangle_map again, first with the moved vertices held (left free,
 /// the untangling would wind the rings back to where they were), then with them free if folds are left; kept if the
 /// pair (non-positive triangles, wrong windings) falls in lexicographic order, the order of pipeline/validity_retries.h
-/// (a flip traded for a regular vertex at 4π next to the cone is progress). The record is the last kept pass's, with
+/// (a flip traded for a regular vertex at 4π next to the cone is progress). With options.release_curve_corners and
+/// release_near_wrong_windings, a pass that is not kept is tried once more with the `releasable` components within
+/// 2 rings of the wrongly wound vertices free, kept for fewer wrong windings at no more non-positive triangles (those
+/// vertices join released_vertices; later passes keep them free). The record is the last kept pass's, with
 /// non_positive_before, the iterations and the released vertices of all passes and the rewound vertices in
 /// rewound_vertices.
 /// target: per vertex the field's cross-field quarter index (field/indices.h); other arguments as untangle_map's.

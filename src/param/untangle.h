@@ -37,6 +37,11 @@ struct UntangleOptions {
   /// corners are freed: the map becomes valid there and that curve leaves its iso-line near the vertex (the curve's
   /// reported deviation says by how much). Off: such faces stay collapsed and are reported as stuck.
   bool release_curve_corners = false;
+  /// With release_curve_corners: when laying out rings again (below) leaves a wrong winding, the curve constraints
+  /// within 2 rings of the wrongly wound vertices are given up once and the rings laid out again (a cone rounded
+  /// onto the image of a curve passing a few edges away leaves the strip between them no width); kept only for
+  /// fewer wrong windings at no more non-positive triangles (released_vertices lists them).
+  bool release_near_wrong_windings = true;
   /// Before untangling, lay out again the rings around which the map winds other than the field's index says
   /// (param/ring_winding.h): no untangling in the subspace changes that winding at a branch point.
   bool rewind_rings = true;

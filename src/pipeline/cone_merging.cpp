@@ -41,10 +41,11 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
   const Eigen::VectorXi wound = map_quarter_index(mesh, map.uv);
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   std::vector<ConeMerge> merges;
+  const auto wound_wrong = [&](int q) { return !mesh.is_boundary_vertex(q) && wound[q] != quarter[q]; };
   for (int p = 0; p < mesh.num_vertices(); ++p) {
-    if (quarter[p] % 4 == 0 || wound[p] == quarter[p] || used[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).empty())
-      continue;
+    if (quarter[p] % 4 == 0 || used[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).empty()) continue;
     const auto around = developed_around(mesh, layers, map.uv, zero, p, kCoincidentRings);
+    if (std::none_of(around.begin(), around.end(), [&](const auto& qz) { return wound_wrong(qz.first); })) continue;
     Complex at = 0;
     for (const auto& [q, z] : around)
       if (q == p) at = z;

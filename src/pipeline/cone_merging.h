@@ -27,10 +27,11 @@ struct ConeMerge {
 std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameterization& map);
 
 /// Branch points a few edges apart on one lattice point (within 3 rings, seen along a walk over the faces between
-/// them, param/map_development.h) of which one cone's ring the map winds a turn off: the edge path between them
-/// closes on itself in the map, and that ring keeps a flipped triangle that no untangling or edge split removes
-/// (seen on camelhead_boundary and armadillo_86k: two +1/4 cones two edges apart). Per such branch point in vertex
-/// order the first partner, `from` the higher number, each vertex in at most one merge.
+/// them, param/map_development.h) with a vertex within 3 rings that the map winds a turn off (a cone's ring, or a
+/// regular vertex between them at 4π): the edge path between them closes on itself in the map, and the turn stays
+/// off whatever untangling or edge split follows (seen on camelhead_boundary and armadillo_86k: two +1/4 cones two
+/// edges apart; on bunny_20k_holes: a +1/4 and a −1/4 cone two edges apart). Per such branch point in vertex order
+/// the first partner, `from` the higher number, each vertex in at most one merge.
 /// \pre map was made on mesh (map.subspace filled).
 std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map);
 

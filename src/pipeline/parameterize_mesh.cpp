@@ -242,7 +242,7 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
 /// that no untangling or refinement undoes. When the job's final map is not valid, it is made again from `before`
 /// (the job before the cone moves, without its map) with those pairs merged: the pairs `early` found on the first
 /// map and those on the final one. Then the kinds of cone moves the first pass kept, density and fold refinement;
-/// kept when more valid, and once more with the pairs on the new final map while folds are left.
+/// kept when more valid, and once more with the pairs on the new final map while it is not valid.
 /// Its time is the stage "close_cone_merging".
 /// `before` made again with `merges` applied to its field: map, the cone moves in `moves` (merge, move), density
 /// and fold refinement.
@@ -268,7 +268,7 @@ ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, dou
 
 void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, const ParamJob& before,
                        std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
-  constexpr int kRounds = 2;  // a second one while folds are left: the remade map can put another pair on a point
+  constexpr int kRounds = 2;  // a second one while not valid: the remade map can put another pair on a point
   if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
   const Mesh& mesh = before.mesh(input);
   const std::pair<bool, bool> kept_moves{job.merged_cone_pairs > 0, job.moved_wound_cones > 0};
@@ -277,19 +277,19 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   const auto start = std::chrono::steady_clock::now();
   for (int round = 0; round < kRounds; ++round) {
     const std::size_t known = merges.size();
-    if (job.map.diagnostics.untangling.non_positive_after > 0)
-      for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
-        if (m.from < mesh.num_vertices() && !used[m.from] && !used[m.into]) {  // no midpoint is a cone
-          merges.push_back(m);
-          used[m.from] = used[m.into] = 1;
-        }
+    for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
+      if (m.from < mesh.num_vertices() && m.into < mesh.num_vertices() && !used[m.from] && !used[m.into]) {
+        // no midpoint of the fold refinement is a cone
+        merges.push_back(m);
+        used[m.from] = used[m.into] = 1;
+      }
     if (merges.empty() || (round > 0 && merges.size() == known)) break;
     ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, progress);
     if (!(map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map))) break;
     retry.seconds = std::move(job.seconds);
     retry.peak_bytes = std::move(job.peak_bytes);
     job = std::move(retry);
-    if (job.map.diagnostics.untangling.non_positive_after == 0) break;
+    if (map_validity(job.mesh(input), job.map).valid() || progress.skip_improvements()) break;
   }
   if (!merges.empty()) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }
@@ -342,7 +342,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   ParamJob before_moves = job;  // without the map: merge_close_cones starts again from here
   job.map = std::move(first_map);
   std::vector<ConeMerge> close_merges;
-  if (job.map.diagnostics.untangling.non_positive_after > 0) close_merges = close_coincident_merges(mesh, job.map);
+  if (!map_validity(mesh, job.map).valid()) close_merges = close_coincident_merges(mesh, job.map);
   move_cones(mesh, field, oo.lambda, job, finishing);
   if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
   job.density = hit_target_count(mesh, job, finishing);

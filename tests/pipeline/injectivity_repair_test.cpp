@@ -12,6 +12,7 @@
 #include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
+#include "param/seams.h"
 #include "support/angle_sums.h"
 #include "support/test_meshes.h"
 
@@ -161,6 +162,111 @@ TEST(ConeMerging, MergesConesRoundedToOnePointTwoEdgesApart) {
     non_positive += std::imag(std::conj(e1) * e2) <= 0;
   }
   EXPECT_EQ(non_positive, 0);
+}
+
+/// Per vertex of the map's mesh, its branch point's quarter index (0 elsewhere).
+std::vector<int> target_quarters(const Mesh& mesh, const Parameterization& map) {
+  std::vector<int> target(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  return target;
+}
+
+/// Triangles of the map with UV area ≤ 0, recounted from the corners.
+int non_positive_triangles(const Parameterization& map) {
+  int n = 0;
+  for (int f = 0; f < map.uv.rows(); ++f) {
+    const Complex e1 = map.uv(f, 1) - map.uv(f, 0), e2 = map.uv(f, 2) - map.uv(f, 0);
+    n += std::imag(std::conj(e1) * e2) <= 0;
+  }
+  return n;
+}
+
+/// Interior vertices whose winding, recounted from the corner angles, differs from their branch point's index.
+int wrongly_wound(const Mesh& mesh, const Parameterization& map) {
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(mesh, map.uv);
+  const std::vector<int> target = target_quarters(mesh, map);
+  int n = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v) n += !mesh.is_boundary_vertex(v) && wound[v] != target[v];
+  return n;
+}
+
+/// The vertices within `rings` rings of the vertices in `from`.
+std::vector<char> within_rings(const Mesh& mesh, const std::vector<int>& from, int rings) {
+  std::vector<char> near(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (int v : from) near[v] = 1;
+  for (int k = 0; k < rings; ++k) {
+    std::vector<char> next = near;
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      if (near[mesh.F()(f, 0)] || near[mesh.F()(f, 1)] || near[mesh.F()(f, 2)])
+        for (int c = 0; c < 3; ++c) next[mesh.F()(f, c)] = 1;
+    near.swap(next);
+  }
+  return near;
+}
+
+TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetween) {
+  // bunny_20k_holes: a +1/4 and a −1/4 branch point two edges apart rounded onto one lattice point. Both rings wind
+  // as the field says; a regular vertex between them winds twice (4π), and no untangling undoes it.
+  const Mesh mesh = testing::load_test_mesh("bunny_20k_holes");
+  PipelineOptions plain;
+  plain.merge_coincident_cones = false;
+  plain.validity_retries = 0;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  const Mesh& m0 = without.mesh(mesh);
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, without.map.uv);
+  const std::vector<int> target = target_quarters(m0, without.map);
+  const std::vector<ConeMerge> merges = close_coincident_merges(m0, without.map);
+  const auto opposite_both_right = std::count_if(merges.begin(), merges.end(), [&](const ConeMerge& m) {
+    return target[m.from] == -target[m.into] && wound[m.from] == target[m.from] && wound[m.into] == target[m.into];
+  });
+  ASSERT_GT(opposite_both_right, 0) << "the case this test is about no longer occurs";
+  bool twice = false;  // the regular vertex between the pair
+  for (int v = 0; v < m0.num_vertices(); ++v) twice = twice || (!m0.is_boundary_vertex(v) && target[v] == 0 && wound[v] == -4);
+  EXPECT_TRUE(twice);
+  for (const ConeMerge& m : merges) {
+    EXPECT_GT(m.from, m.into);
+    EXPECT_NE(target[m.from], 0);
+    EXPECT_NE(target[m.into], 0);
+  }
+  // At the defaults the job merges the pair and the written map winds as the field everywhere, every triangle
+  // positive.
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
+  EXPECT_EQ(non_positive_triangles(with.map), 0);
+}
+
+TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage) {
+  // fandisk: a −1/4 branch point two edges from a feature line is rounded onto that line's image; the strip
+  // between them has no width, and the cone's ring winds a turn short with a regular vertex at 4π beside it.
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  PipelineOptions strict;
+  strict.param.untangle.release_near_wrong_windings = false;
+  const ParamJob without = parameterize_mesh(mesh, strict);
+  const Mesh& m0 = without.mesh(mesh);
+  ASSERT_GT(wrongly_wound(m0, without.map), 0) << "the case this test is about no longer occurs";
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  const Mesh& m1 = with.mesh(mesh);
+  EXPECT_EQ(wrongly_wound(m1, with.map), 0);
+  EXPECT_EQ(non_positive_triangles(with.map), 0);
+  EXPECT_TRUE(measure_seams(m1, with.map.uv, 1e-9).seamless);
+  // The constraints given up: curve vertices of the input within 3 rings of the wrongly wound ones (2 rings of
+  // the refined mesh's), listed, and the curves report that they left their lines.
+  std::vector<int> wrong_input;
+  for (int v : wrong_winding_vertices(m0, without.map))
+    if (v < mesh.num_vertices()) wrong_input.push_back(v);
+  const std::vector<char> near = within_rings(mesh, wrong_input, 3);
+  const auto& before = without.map.diagnostics.untangling.released_vertices;
+  int newly = 0;
+  for (int v : with.map.diagnostics.untangling.released_vertices) {
+    if (std::find(before.begin(), before.end(), v) != before.end() || v >= mesh.num_vertices()) continue;
+    ++newly;
+    EXPECT_TRUE(near[v]) << v;
+  }
+  EXPECT_GT(newly, 0);
+  double deviation = 0;
+  for (const Parameterization::Curve& c : with.map.aligned_curves) deviation = std::max(deviation, c.max_deviation);
+  EXPECT_GT(deviation, 1e-6);
 }
 
 TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) {
