@@ -118,6 +118,23 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
   EXPECT_EQ(sum_mod4(with.map), sum_mod4(without.map));
 }
 
+/// Per vertex of the map's mesh, its branch point's quarter index (0 elsewhere).
+std::vector<int> target_quarters(const Mesh& mesh, const Parameterization& map) {
+  std::vector<int> target(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
+  return target;
+}
+
+/// Triangles of the map with UV area ≤ 0, recounted from the corners.
+int non_positive_triangles(const Parameterization& map) {
+  int n = 0;
+  for (int f = 0; f < map.uv.rows(); ++f) {
+    const Complex e1 = map.uv(f, 1) - map.uv(f, 0), e2 = map.uv(f, 2) - map.uv(f, 0);
+    n += std::imag(std::conj(e1) * e2) <= 0;
+  }
+  return n;
+}
+
 /// True iff vertices a and b share an edge.
 bool adjacent(const Mesh& mesh, int a, int b) {
   for (const Mesh::FanCorner& c : mesh.fan(a))
@@ -156,29 +173,7 @@ TEST(ConeMerging, MergesConesRoundedToOnePointTwoEdgesApart) {
   EXPECT_TRUE(std::any_of(with.seconds.begin(), with.seconds.end(),
                           [](const auto& s) { return s.first == "close_cone_merging"; }));
   EXPECT_EQ(with.map.diagnostics.untangling.non_positive_after, 0);
-  int non_positive = 0;  // recounted from the written corners
-  for (int f = 0; f < with.map.uv.rows(); ++f) {
-    const Complex e1 = with.map.uv(f, 1) - with.map.uv(f, 0), e2 = with.map.uv(f, 2) - with.map.uv(f, 0);
-    non_positive += std::imag(std::conj(e1) * e2) <= 0;
-  }
-  EXPECT_EQ(non_positive, 0);
-}
-
-/// Per vertex of the map's mesh, its branch point's quarter index (0 elsewhere).
-std::vector<int> target_quarters(const Mesh& mesh, const Parameterization& map) {
-  std::vector<int> target(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (const BranchPoint& b : map.branch_points) target[b.vertex] = b.quarter_index;
-  return target;
-}
-
-/// Triangles of the map with UV area ≤ 0, recounted from the corners.
-int non_positive_triangles(const Parameterization& map) {
-  int n = 0;
-  for (int f = 0; f < map.uv.rows(); ++f) {
-    const Complex e1 = map.uv(f, 1) - map.uv(f, 0), e2 = map.uv(f, 2) - map.uv(f, 0);
-    n += std::imag(std::conj(e1) * e2) <= 0;
-  }
-  return n;
+  EXPECT_EQ(non_positive_triangles(with.map), 0);  // recounted from the written corners
 }
 
 /// Interior vertices whose winding, recounted from the corner angles, differs from their branch point's index.
