@@ -6,6 +6,8 @@
 #include <numbers>
 #include <tuple>
 
+#include "mesh/vertex_rings.h"
+
 namespace quadcover {
 
 namespace {
@@ -208,10 +210,10 @@ struct RewindInputs {
   ProgressSink& progress;
   const std::vector<char>& releasable;
 
-  int wrong(const Eigen::VectorXcd& u) const {
-    return static_cast<int>(
-        (map_quarter_index(mesh, base - layered_values(mesh, layers, u)).array() != target.array()).count());
+  Eigen::VectorXi wound(const Eigen::VectorXcd& u) const {
+    return map_quarter_index(mesh, base - layered_values(mesh, layers, u));
   }
+  int wrong(const Eigen::VectorXcd& u) const { return static_cast<int>((wound(u).array() != target.array()).count()); }
 };
 
 struct RewindPass {
@@ -253,16 +255,10 @@ std::vector<char> loosened_near_wrong(const RewindInputs& in, const std::vector<
                                       const Eigen::VectorXcd& u, std::vector<int>& freed) {
   const Mesh& mesh = in.mesh;
   const int nv = mesh.num_vertices();
-  const Eigen::VectorXi wound = map_quarter_index(mesh, in.base - layered_values(mesh, in.layers, u));
-  std::vector<char> near(static_cast<std::size_t>(nv), 0);
-  for (int p = 0; p < nv; ++p) near[p] = wound[p] != in.target[p];
-  for (int ring = 0; ring < 2; ++ring) {
-    std::vector<char> next = near;
-    for (int f = 0; f < mesh.num_faces(); ++f)
-      if (near[mesh.F()(f, 0)] || near[mesh.F()(f, 1)] || near[mesh.F()(f, 2)])
-        for (int c = 0; c < 3; ++c) next[mesh.F()(f, c)] = 1;
-    near.swap(next);
-  }
+  const Eigen::VectorXi wound = in.wound(u);
+  std::vector<char> wrong(static_cast<std::size_t>(nv), 0);
+  for (int p = 0; p < nv; ++p) wrong[p] = wound[p] != in.target[p];
+  const std::vector<char> near = grow_vertex_rings(mesh, std::move(wrong), 2);
   std::vector<char> loose = fixed;
   freed.clear();
   for (int p = 0; p < nv; ++p) {

@@ -16,6 +16,7 @@
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 #include "common/seconds_since.h"
+#include "mesh/vertex_rings.h"
 #include "param/seams.h"
 
 namespace quadcover {
@@ -482,17 +483,11 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
   std::vector<int> folds = left(X);
   for (int rings = std::max(options.rings, 1);
        !folds.empty() && rings <= std::max(options.max_rings, 1) && !progress.cancelled(); rings *= 4) {
-    std::vector<char> in(static_cast<std::size_t>(nv), 0);
+    std::vector<char> seed(static_cast<std::size_t>(nv), 0);
     for (int f : folds)
-      for (int c = 0; c < 3; ++c) in[mesh.F()(f, c)] = 1;
+      for (int c = 0; c < 3; ++c) seed[mesh.F()(f, c)] = 1;
     const bool everything = rings * 4 > options.max_rings && options.max_rings >= nf;
-    for (int k = 0; k < rings && !everything; ++k) {
-      std::vector<char> next = in;
-      for (int f = 0; f < nf; ++f)
-        if (in[mesh.F()(f, 0)] || in[mesh.F()(f, 1)] || in[mesh.F()(f, 2)])
-          for (int c = 0; c < 3; ++c) next[mesh.F()(f, c)] = 1;
-      in.swap(next);
-    }
+    const std::vector<char> in = everything ? seed : grow_vertex_rings(mesh, std::move(seed), rings);
     std::vector<char> region_fixed = fixed;
     for (int p = 0; p < nv && !everything; ++p)
       if (!in[p]) region_fixed[p] = region_fixed[nv + p] = 1;

@@ -12,6 +12,7 @@
 #include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
+#include "mesh/vertex_rings.h"
 #include "param/seams.h"
 #include "support/angle_sums.h"
 #include "support/test_meshes.h"
@@ -185,20 +186,6 @@ int wrongly_wound(const Mesh& mesh, const Parameterization& map) {
   return n;
 }
 
-/// The vertices within `rings` rings of the vertices in `from`.
-std::vector<char> within_rings(const Mesh& mesh, const std::vector<int>& from, int rings) {
-  std::vector<char> near(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (int v : from) near[v] = 1;
-  for (int k = 0; k < rings; ++k) {
-    std::vector<char> next = near;
-    for (int f = 0; f < mesh.num_faces(); ++f)
-      if (near[mesh.F()(f, 0)] || near[mesh.F()(f, 1)] || near[mesh.F()(f, 2)])
-        for (int c = 0; c < 3; ++c) next[mesh.F()(f, c)] = 1;
-    near.swap(next);
-  }
-  return near;
-}
-
 TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetween) {
   // bunny_20k_holes: a +1/4 and a −1/4 branch point two edges apart rounded onto one lattice point. Both rings wind
   // as the field says; a regular vertex between them winds twice (4π), and no untangling undoes it.
@@ -247,10 +234,10 @@ TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage
   EXPECT_TRUE(measure_seams(m1, with.map.uv, 1e-9).seamless);
   // The constraints given up: curve vertices of the input within 3 rings of the wrongly wound ones (2 rings of
   // the refined mesh's), listed, and the curves report that they left their lines.
-  std::vector<int> wrong_input;
+  std::vector<char> wrong_input(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (int v : wrong_winding_vertices(m0, without.map))
-    if (v < mesh.num_vertices()) wrong_input.push_back(v);
-  const std::vector<char> near = within_rings(mesh, wrong_input, 3);
+    if (v < mesh.num_vertices()) wrong_input[v] = 1;
+  const std::vector<char> near = grow_vertex_rings(mesh, std::move(wrong_input), 3);
   const auto& before = without.map.diagnostics.untangling.released_vertices;
   int newly = 0;
   for (int v : with.map.diagnostics.untangling.released_vertices) {
