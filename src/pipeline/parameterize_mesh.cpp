@@ -294,7 +294,8 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   if (!merges.empty()) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }
 
-ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
+ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
+                           const FirstMapCheck& check) {
   validate(options);
   check_memory_budget(input, options.param, available_bytes(options.max_memory_bytes));
   ParamJob job;
@@ -331,6 +332,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
   fall_back_from_curve_rounding(mesh, job.field, finishing, job);
+  if (check) check(mesh, job.map);
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
   note_cut_short(progress, job.map.diagnostics.rounding.stopped_early, job, "rounding search");  // also ends on its own budget

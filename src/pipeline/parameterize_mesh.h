@@ -1,6 +1,7 @@
 #pragma once
 // The parameterization job: frame field (thesis ch. 5) → default density → Algorithm 6.1 (ch. 6) → keep-better →
 // QuadCover parameterization (ch. 2-4). One call for the CLI's `param`, the Python module and the benches.
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -78,9 +79,15 @@ inline ParamJob& param_job(ParamJob& job) { return job; }
 /// improving stages after it are skipped or cut short (listed in ParamJob::cut_short, with a warning).
 ParamJob parameterize_mesh(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress = null_progress());
 
+/// A check of the job's first map (before the cone moves, density and fold refinement, which keep its parameter
+/// area), e.g. that a remesh has quads to extract; it throws to refuse the job before those stages.
+using FirstMapCheck = std::function<void(const Mesh&, const Parameterization&)>;
+
 /// One attempt of the job at the density of `options`, without the validity retries (the remesh job retries
-/// itself as a whole). \pre, \throw as parameterize_mesh.
-ParamJob parameterize_once(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress);
+/// itself as a whole), with `check` (if any) on the first map. \pre, \throw as parameterize_mesh, and what
+/// `check` throws.
+ParamJob parameterize_once(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress,
+                           const FirstMapCheck& check = {});
 
 /// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
 /// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.

@@ -27,7 +27,10 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
 
 RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {
   RemeshJob job;
-  job.param = parameterize_once(input, options, progress);
+  // Without a requested count of 4 or more (the density stage would move the area to it), the first map's area
+  // is the final one: too coarse a density is refused before the later stages.
+  const bool area_is_final = options.param.density.target_quads < 4;
+  job.param = parameterize_once(input, options, progress, area_is_final ? FirstMapCheck(check_extractable) : nullptr);
   StageMeter meter;
   auto lap = [&](const char* stage) { meter.lap(stage, job.param.seconds, job.param.peak_bytes); };
   FinishingProgress finishing(progress);  // extraction and smoothing run to the end, also after a Ctrl-C

@@ -19,13 +19,13 @@ class FeatureAngleCli : public quadcover::testing::FolderTest {
  protected:
   FeatureAngleCli() : FolderTest("feature_angle_cli") {}
 
-  /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` and returns its report (no fold refinement or validity retries:
-  /// the feature curves are decided before them, and they cost most of a camelhead run).
+  /// Runs `COMMAND MESH --feature-angle ANGLE EXTRA` without the repairs (kWithoutRepairs: the feature curves are
+  /// decided before them) and returns its report.
   nlohmann::json report(const std::string& command, const std::string& mesh, const std::string& angle,
                         const std::string& extra = "") {
     return quadcover::testing::run_cli_report(
         command + " " + quadcover::testing::data_path(mesh) + " -o " + path("out.obj") +
-            " --optimize none --refine-folds 0 --retries 0 -q" + (angle.empty() ? "" : " --feature-angle " + angle) +
+            quadcover::testing::kWithoutRepairs + " -q" + (angle.empty() ? "" : " --feature-angle " + angle) +
             " " + extra,
         path(command + "_" + mesh + "_" + angle + ".json"));
   }

@@ -17,6 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using quadcover::PolygonSoup;
+using quadcover::testing::kWithoutRepairs;
 using quadcover::testing::run_cli;
 using quadcover::testing::slurp;
 
@@ -52,8 +53,8 @@ std::vector<std::vector<int>> polygons(const PolygonSoup& s) {
 
 TEST_F(PlyOutputCli, RemeshQualityPlyMatchesTheObjOutput) {
   const std::string in = quadcover::testing::data_path("fandisk");
-  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("q.obj") + " --optimize none -q").code, 0);
-  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("q.ply") + " --ply-quality --optimize none -q").code, 0);
+  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("q.obj") + kWithoutRepairs + " -q").code, 0);
+  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("q.ply") + " --ply-quality" + kWithoutRepairs + " -q").code, 0);
   const PolygonSoup obj = quadcover::read_mesh(path("q.obj"));
   const PolygonSoup ply = quadcover::read_mesh(path("q.ply"));  // the project's reader skips the extra properties
   EXPECT_EQ(ply.positions, obj.positions);
@@ -80,15 +81,15 @@ TEST_F(PlyOutputCli, RemeshQualityPlyMatchesTheObjOutput) {
   }
   EXPECT_EQ(b.pos, b.data.size());
   // Without the flag a .ply has no extra properties.
-  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("plain.ply") + " --optimize none -q").code, 0);
+  ASSERT_EQ(run_cli("remesh " + in + " -o " + path("plain.ply") + kWithoutRepairs + " -q").code, 0);
   EXPECT_EQ(slurp(path("plain.ply")).find("quality"), std::string::npos);
 }
 
 TEST_F(PlyOutputCli, ParamPlyHasTheObjTexcoordsPerCorner) {
   const std::string in = quadcover::testing::data_path("camelhead_boundary");
-  ASSERT_EQ(run_cli("param " + in + " -o " + path("m.obj") + " --optimize none -q").code, 0);
+  ASSERT_EQ(run_cli("param " + in + " -o " + path("m.obj") + kWithoutRepairs + " -q").code, 0);
   ASSERT_EQ(
-      run_cli("param " + in + " -o " + path("m.ply") + " --optimize none --report " + path("m.json") + " -q").code, 0);
+      run_cli("param " + in + " -o " + path("m.ply") + kWithoutRepairs + " --report " + path("m.json") + " -q").code, 0);
   const PolygonSoup obj = quadcover::read_mesh(path("m.obj"));
   ASSERT_TRUE(obj.has_uv());
   const std::string nv = std::to_string(obj.num_vertices()), nf = std::to_string(obj.num_faces());

@@ -52,6 +52,12 @@ class FolderTest : public ::testing::Test {
   std::string prefix_;
 };
 
+/// CLI options that leave out Algorithm 6.1 and the stages that repair the map's validity (cone merges and moves
+/// with their remake, fold refinement, validity retries), for tests whose subject does not depend on them (file
+/// formats, options, the field stage): on camelhead_boundary they cost most of a run.
+inline constexpr const char* kWithoutRepairs =
+    " --optimize none --merge-cones false --move-cones false --refine-folds 0 --retries 0";
+
 /// Runs `quadcover ARGS` and captures stdout. stderr goes to `stderr_file` (read back into CliRun::err) or is
 /// discarded. timeout_seconds > 0 kills a hanging run (reported as code -1) instead of blocking the suite.
 inline CliRun run_cli(const std::string& args, const std::string& stderr_file = "", int timeout_seconds = 0) {
