@@ -25,13 +25,23 @@ constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
 #ifdef QUADCOVER_HAVE_CHOLMOD
 // CHOLMOD's supernodal factorization calls the system BLAS. When that is a threaded OpenBLAS (Debian's
 // libopenblas0-pthread, scripts/setup.sh), its own threads would compete with our TBB loops for the cores and
-// make results depend on the machine: keep BLAS single-threaded (found at run time, a no-op for other BLAS).
-void single_threaded_blas() {
+// make results depend on the machine: keep BLAS single-threaded. Debian's CHOLMOD also opens OpenMP regions of a
+// fixed 4 threads (CHOLMOD_OMP_NUM_THREADS, which OMP_NUM_THREADS does not change) in every supernodal
+// factorization: on 2 cores and beside our TBB threads they spent a quarter of a camelhead_boundary remesh waiting
+// on each other (BENCHMARKS.md, "OpenMP threads of CHOLMOD"). max-active-levels 0 runs every OpenMP region on the
+// calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP).
+/// Called on the thread that factors, before CHOLMOD does (the OpenMP setting belongs to the calling thread).
+void single_threaded_libraries() {
+  using SetThreads = void (*)(int);
   static std::once_flag once;
+  static SetThreads set_max_active_levels = nullptr;
   std::call_once(once, [] {
-    using SetThreads = void (*)(int);
     if (void* f = dlsym(RTLD_DEFAULT, "openblas_set_num_threads")) reinterpret_cast<SetThreads>(f)(1);
+    set_max_active_levels = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
   });
+  thread_local bool done = false;
+  if (!done && set_max_active_levels) set_max_active_levels(0);
+  done = true;
 }
 #endif
 
@@ -66,6 +76,7 @@ class CholmodBackend {
 
   void factorize(const Matrix& lower, const std::string& stage) {
     cholmod_sparse A = view(lower);
+    single_threaded_libraries();
     const int ok = cholmod_factorize(&A, factor_, &common_);
     if (!ok || common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n)
       throw NumericalError(stage, "matrix of size " + std::to_string(lower.rows()) +
@@ -162,7 +173,7 @@ SparseCholesky<Scalar>::SparseCholesky(CholeskyBackend backend) : impl_(std::mak
     throw NumericalError("cholesky", "the CHOLMOD backend was requested but quadcover was built without CHOLMOD");
   impl_->backend = backend;
 #ifdef QUADCOVER_HAVE_CHOLMOD
-  if (backend == CholeskyBackend::Cholmod) single_threaded_blas();
+  if (backend == CholeskyBackend::Cholmod) single_threaded_libraries();
 #endif
 }
 
@@ -304,7 +315,7 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
 #ifdef QUADCOVER_HAVE_CHOLMOD
   const int n = static_cast<int>(A_full.rows());
   if (A_full.cols() != n || static_cast<int>(perm.size()) != n) return false;
-  single_threaded_blas();
+  single_threaded_libraries();
   Eigen::SparseMatrix<Complex> lower = A_full.triangularView<Eigen::Lower>();
   lower.makeCompressed();
   auto st = std::make_shared<CholmodFactorStorage>();

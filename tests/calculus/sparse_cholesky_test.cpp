@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <Eigen/SparseLU>
+#include <thread>
 #include <vector>
 
 #include "calculus/stiffness.h"
@@ -220,6 +223,29 @@ TEST(SparseCholesky, IndefiniteMatrixThrows) {
     EXPECT_THROW(cchol.compute(H), NumericalError);
     EXPECT_THROW(cchol.solve(Eigen::VectorXcd(Eigen::VectorXcd::Ones(3))), NumericalError);  // nothing was factorized
   }
+}
+
+// Debian's CHOLMOD opens OpenMP regions of a fixed 4 threads in each supernodal factorization; on 2 cores beside the
+// TBB threads they cost a quarter of a job in waiting. The thread that factors (here not the one that made the
+// object) runs them alone afterwards: OpenMP's max-active-levels is 0 there (looked up at run time, as the library
+// does; it needs a CHOLMOD built with OpenMP, as Debian's is).
+TEST(SparseCholesky, CholmodRunsItsOpenMpRegionsOnTheCallingThread) {
+  if (!SparseCholesky<double>::cholmod_available()) GTEST_SKIP() << "the build without CHOLMOD (05_no_cholmod.sh)";
+  using Get = int (*)();
+  const auto max_active_levels = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+  ASSERT_NE(max_active_levels, nullptr) << "CHOLMOD is not linked with OpenMP";
+  const Eigen::SparseMatrix<double> A = spd_matrix(cached_mesh("bunny_3k"));
+  SparseCholesky<double> chol(CholeskyBackend::Cholmod);
+  int before = -1, after = -1;
+  std::thread([&] {
+    before = max_active_levels();
+    chol.compute(A);
+    after = max_active_levels();
+  }).join();
+  EXPECT_GT(before, 0);
+  EXPECT_EQ(after, 0);
+  const Eigen::VectorXd b = random_vector(A.rows(), 63);
+  EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
 }
 
 TEST(SparseCholesky, EmptyMatrixAndBackendAvailability) {
