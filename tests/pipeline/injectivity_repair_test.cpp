@@ -151,6 +151,7 @@ TEST(ConeMerging, MergesConesRoundedToOnePointTwoEdgesApart) {
   PipelineOptions plain;
   plain.merge_coincident_cones = false;
   plain.fold_refinement_rounds = 0;
+  plain.validity_retries = 0;
   const ParamJob without = parameterize_mesh(mesh, plain);
   ASSERT_GT(without.map.diagnostics.untangling.non_positive_after, 0) << "the case this test is about no longer occurs";
   const std::vector<ConeMerge> merges = close_coincident_merges(mesh, without.map);
