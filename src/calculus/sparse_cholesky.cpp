@@ -29,8 +29,9 @@ constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
 // fixed 4 threads (CHOLMOD_OMP_NUM_THREADS, which OMP_NUM_THREADS does not change) in every supernodal
 // factorization: on 2 cores and beside our TBB threads they spent a quarter of a camelhead_boundary remesh waiting
 // on each other (BENCHMARKS.md, "OpenMP threads of CHOLMOD"). max-active-levels 0 runs every OpenMP region on the
-// calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP).
-/// Called on the thread that factors, before CHOLMOD does (the OpenMP setting belongs to the calling thread).
+// calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP). Called on the
+// thread that factors, before each CHOLMOD factorization (the OpenMP setting belongs to the calling thread; solves
+// come after a factorization).
 void single_threaded_libraries() {
   using SetThreads = void (*)(int);
   static std::once_flag once;
@@ -75,8 +76,8 @@ class CholmodBackend {
   }
 
   void factorize(const Matrix& lower, const std::string& stage) {
-    cholmod_sparse A = view(lower);
     single_threaded_libraries();
+    cholmod_sparse A = view(lower);
     const int ok = cholmod_factorize(&A, factor_, &common_);
     if (!ok || common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < factor_->n)
       throw NumericalError(stage, "matrix of size " + std::to_string(lower.rows()) +
@@ -172,9 +173,6 @@ SparseCholesky<Scalar>::SparseCholesky(CholeskyBackend backend) : impl_(std::mak
   if (backend == CholeskyBackend::Cholmod && !cholmod_available())
     throw NumericalError("cholesky", "the CHOLMOD backend was requested but quadcover was built without CHOLMOD");
   impl_->backend = backend;
-#ifdef QUADCOVER_HAVE_CHOLMOD
-  if (backend == CholeskyBackend::Cholmod) single_threaded_libraries();
-#endif
 }
 
 template <class Scalar>
