@@ -19,7 +19,7 @@ using testing::cached_mesh;
 using testing::random_field;
 using testing::random_vector;
 
-const Complex kJ{0, 1};
+const Complex kQuarterTurn{0, 1};  // J, the rotation by 90° in the tangent plane
 
 class HodgeOnRealMeshes : public ::testing::TestWithParam<const char*> {};
 
@@ -32,7 +32,8 @@ void expect_valid_decomposition(const Mesh& mesh, const VectorField& X, const Ho
   EXPECT_LT(std::abs(l2_inner(mesh, h.coexact, h.harmonic)), 1e-10 * norm2);
   // The parts are what they claim: ∇u, J∇v, and 𝓗 = ker div ∩ ker curl* (interior edges).
   EXPECT_LT(l2_norm_squared(mesh, h.exact - gradient(mesh, h.potential)), 1e-24 * norm2);
-  EXPECT_LT(l2_norm_squared(mesh, h.coexact - kJ * nonconforming_gradient(mesh, h.copotential)), 1e-24 * norm2);
+  EXPECT_LT(l2_norm_squared(mesh, h.coexact - kQuarterTurn * nonconforming_gradient(mesh, h.copotential)),
+            1e-24 * norm2);
   const double scale = std::sqrt(norm2 / mesh.total_area()) * mesh.mean_edge_length();  // typical |⟨X, e⟩|
   EXPECT_LT(divergence(mesh, h.harmonic).lpNorm<Eigen::Infinity>(), 1e-9 * scale);
   const Eigen::VectorXd cs = curl_star(mesh, h.harmonic);
@@ -80,7 +81,7 @@ TEST_P(HodgeOnRealMeshes, RecoversKnownPotentials) {
   for (int e = 0; e < mesh.num_edges(); ++e)
     if (mesh.is_boundary_edge(e)) v0[e] = 0;
   const VectorField H = hodge.decompose(random_field(mesh, 74)).harmonic;
-  const VectorField X = gradient(mesh, u0) + kJ * nonconforming_gradient(mesh, v0) + H;
+  const VectorField X = gradient(mesh, u0) + kQuarterTurn * nonconforming_gradient(mesh, v0) + H;
   const HodgeParts h = hodge.decompose(X);
   expect_valid_decomposition(mesh, X, h);
   // Expected potentials after (1.10): subtract the area-weighted mean (single-component meshes).

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 using quadcover::testing::CliRun;
 
-CliRun run(const std::string& args) { return quadcover::testing::run_cli(args); }
+using quadcover::testing::run_cli;
 
 TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
   const fs::path dir = quadcover::testing::fresh_dir("batch_cli", "files");
@@ -25,7 +25,7 @@ TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
   fs::copy_file(quadcover::testing::data_path("bad/torus_klein_nonorientable"), dir / "b_klein.obj");
   const std::string extra = quadcover::testing::data_path("torus_5k");
 
-  const CliRun r = run("info --json -j 2 " + dir.string() + " " + extra);
+  const CliRun r = run_cli("info --json -j 2 " + dir.string() + " " + extra);
   EXPECT_EQ(r.code, 2);  // one bad input
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["files"].size(), 3u);
@@ -38,7 +38,7 @@ TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
 
   // The text summary lists every file and the count; all good -> exit 0.
   fs::remove(dir / "b_klein.obj");
-  const CliRun t = run("info " + dir.string() + " " + extra);
+  const CliRun t = run_cli("info " + dir.string() + " " + extra);
   EXPECT_EQ(t.code, 0);
   EXPECT_NE(t.out.find("2 of 2 files succeeded"), std::string::npos);
   EXPECT_NE(t.out.find("a_eight.obj"), std::string::npos);
@@ -46,9 +46,9 @@ TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
 }
 
 TEST(InfoBatch, GlobalOptionsAreAcceptedAndValidated) {
-  EXPECT_EQ(run("info --time-limit 5 -q " + quadcover::testing::data_path("eight_genus2")).code, 0);
-  EXPECT_EQ(run("info --time-limit -1 " + quadcover::testing::data_path("eight_genus2")).code, 2);
-  EXPECT_EQ(run("info /no/such/file.obj").code, 2);
+  EXPECT_EQ(run_cli("info --time-limit 5 -q " + quadcover::testing::data_path("eight_genus2")).code, 0);
+  EXPECT_EQ(run_cli("info --time-limit -1 " + quadcover::testing::data_path("eight_genus2")).code, 2);
+  EXPECT_EQ(run_cli("info /no/such/file.obj").code, 2);
 }
 
 }  // namespace

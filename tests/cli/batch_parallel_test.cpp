@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 using quadcover::testing::CliRun;
 using quadcover::testing::slurp;
 
-CliRun run(const std::string& args) { return quadcover::testing::run_cli(args, "", 600); }
+CliRun run_with_long_timeout(const std::string& args) { return quadcover::testing::run_cli(args, "", 600); }
 
 class BatchParallel : public ::testing::TestWithParam<const char*> {
  protected:
@@ -46,13 +46,13 @@ TEST_P(BatchParallel, OutputsMatchSingleRunsAndABadFileFailsAlone) {
   std::string inputs;
   for (const auto& m : meshes) {
     inputs += quadcover::testing::data_path(m) + " ";
-    const CliRun single = run(command + " " + quadcover::testing::data_path(m) + " -q -o " +
-                           (dir_ / "single" / (m + suffix)).string());
+    const CliRun single = run_with_long_timeout(command + " " + quadcover::testing::data_path(m) + " -q -o " +
+                                                (dir_ / "single" / (m + suffix)).string());
     ASSERT_EQ(single.code, 0) << m;
   }
   // The broken mesh sits in the middle of the list: the files after it must still run.
   inputs.insert(inputs.find(quadcover::testing::data_path("bunny_3k")), bad + " ");
-  const CliRun batch = run(command + " " + inputs + "-j 2 --json -o " + (dir_ / "batch").string());
+  const CliRun batch = run_with_long_timeout(command + " " + inputs + "-j 2 --json -o " + (dir_ / "batch").string());
   EXPECT_EQ(batch.code, 2);  // the worst exit code: one bad input
   const auto j = nlohmann::json::parse(batch.out);
   ASSERT_EQ(j["files"].size(), meshes.size() + 1);

@@ -40,7 +40,9 @@ TEST(JobWarningsCli, EveryReportWarningIsOnStderrAndTheSurfaceCheckMatchesTheFil
     EXPECT_EQ(report["surface_check"]["same_topology"].get<bool>(), check.same_topology) << name;
     EXPECT_EQ(report["surface_check"]["output"]["boundary_loops"].get<int>(), check.output.boundary_loops) << name;
     EXPECT_EQ(report["surface_check"]["problems"].size(), check.problems.size()) << name;
-    if (!check.closed_all_quads) EXPECT_FALSE(report["warnings"].empty()) << name;
+    if (!check.closed_all_quads) {
+      EXPECT_FALSE(report["warnings"].empty()) << name;
+    }
   }
   fs::remove_all(dir);
 }

@@ -126,7 +126,7 @@ TEST_F(OneTruthCli, InfoMetricsAndReportsCountTheSameTopology) {
 // input whose quad mesh is not a closed all-quad manifold is flagged in the report and warned about on stderr (-q).
 TEST_F(OneTruthCli, RemeshSurfaceCheckMatchesInfoAndMetricsOfTheOutput) {
   write_sliver_ellipsoid(path("sliver.obj"));
-  for (const std::string in :
+  for (const std::string& in :
        {path("sliver.obj"), testing::data_path("couplingdown_genus9"), testing::data_path("lilium_disk")}) {
     const CliRun r = run("remesh " + in + " -o " + path("q.obj") + " --report " + path("q.json") + " -q");
     ASSERT_EQ(r.code, 0) << in << ": " << r.err;
@@ -144,9 +144,12 @@ TEST_F(OneTruthCli, RemeshSurfaceCheckMatchesInfoAndMetricsOfTheOutput) {
     const bool closed_input = report["surface_check"]["input"]["boundary_loops"].get<int>() == 0;
     const bool clean = out["closed"].get<bool>() && out["manifold"].get<bool>() && out["oriented"].get<bool>() &&
                        out["non_quads"].get<int>() == 0;
-    if (closed_input) EXPECT_EQ(report["surface_check"]["closed_all_quads"].get<bool>(), clean) << in;
-    if (closed_input && !clean)
+    if (closed_input) {
+      EXPECT_EQ(report["surface_check"]["closed_all_quads"].get<bool>(), clean) << in;
+    }
+    if (closed_input && !clean) {
       EXPECT_NE(r.err.find("warning: " + in + ": remesh changed the surface"), std::string::npos) << in << r.err;
+    }
     // Item 9: every warning of the report is on stderr with -q, and non-quads or repairs always give one.
     for (const auto& w : report["warnings"])
       EXPECT_NE(r.err.find(w.get<std::string>()), std::string::npos) << in << ": " << w;
@@ -155,8 +158,12 @@ TEST_F(OneTruthCli, RemeshSurfaceCheckMatchesInfoAndMetricsOfTheOutput) {
     for (const char* key : {"unfolded_triangles", "moved_vertices", "collapsed_edges", "flipped_triangles",
                             "degenerate_triangles", "torn_seams", "failed_traces", "dropped_faces", "filled_holes"})
       repairs += e[key].get<int>();
-    if (repairs > 0) EXPECT_NE(r.err.find("the extraction repaired the map"), std::string::npos) << in << r.err;
-    if (out["non_quads"].get<int>() > 0) EXPECT_NE(r.err.find("faces are not quads"), std::string::npos) << in << r.err;
+    if (repairs > 0) {
+      EXPECT_NE(r.err.find("the extraction repaired the map"), std::string::npos) << in << r.err;
+    }
+    if (out["non_quads"].get<int>() > 0) {
+      EXPECT_NE(r.err.find("faces are not quads"), std::string::npos) << in << r.err;
+    }
   }
 }
 

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 using Result = quadcover::testing::CliRun;
 using quadcover::testing::slurp;
 
-Result run(const std::string& args) { return quadcover::testing::run_cli(args); }
+using quadcover::testing::run_cli;
 
 nlohmann::json load_json(const fs::path& p) { return nlohmann::json::parse(slurp(p)); }
 
@@ -51,13 +51,15 @@ TEST_F(OptimizeCli, RelocationLowersCurlEnergyAndNeverAddsBranchPoints) {
   for (const std::string mesh : {"bunny_3k", "eight_genus2"}) {
     SCOPED_TRACE(mesh);
     const std::string in = quadcover::testing::data_path(mesh);
-    ASSERT_EQ(run("param " + in + " -o " + path("none.obj") + " --optimize none --merge-cones false --report " + path("none.json") + " -q")
+    ASSERT_EQ(run_cli("param " + in + " -o " + path("none.obj") + " --optimize none --merge-cones false --report " +
+                      path("none.json") + " -q")
                   .code,
               0);
-    ASSERT_EQ(run("param " + in + " -o " + path("reloc.obj") + " --optimize relocate --keep-better false --merge-cones false --report " +
-                  path("reloc.json") + " -q")
-                  .code,
-              0);
+    ASSERT_EQ(
+        run_cli("param " + in + " -o " + path("reloc.obj") +
+                " --optimize relocate --keep-better false --merge-cones false --report " + path("reloc.json") + " -q")
+            .code,
+        0);
     const auto none = load_json(path("none.json")), reloc = load_json(path("reloc.json"));
     const auto& o = reloc["optimize"];
     for (const char* key : {"mode", "E_D_before", "E_D_after", "branch_points_before", "branch_points_after",
@@ -101,7 +103,8 @@ TEST_F(OptimizeCli, KeepBetterNeverReturnsAWorseMapThanEitherField) {
     const std::string in = quadcover::testing::data_path(mesh);
     // The optimizer against the map: without the cone merging after it, which changes the map's field.
     auto total = [&](const std::string& options) {
-      const Result r = run("param " + in + " -o " + path("p.obj") + " " + options + " --merge-cones false --json -q");
+      const Result r =
+          run_cli("param " + in + " -o " + path("p.obj") + " " + options + " --merge-cones false --json -q");
       EXPECT_EQ(r.code, 0) << options;
       return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
     };
@@ -123,8 +126,9 @@ TEST_F(OptimizeCli, KeepBetterNeverReturnsAWorseMapThanEitherField) {
 TEST_F(OptimizeCli, TimeLimitStopsTheOptimizationAndStillWritesAValidMesh) {
   const std::string in = quadcover::testing::data_path("bunny_3k");
   // Unlimited full optimization takes far longer than a second on this mesh (BENCHMARKS.md, Table 7.1).
-  const Result r = run("remesh " + in + " -o " + path("q.obj") + " --optimize full --max-iterations 0 --time-limit 1" +
-                       " --report " + path("q.json") + " --json -q");
+  const Result r =
+      run_cli("remesh " + in + " -o " + path("q.obj") + " --optimize full --max-iterations 0 --time-limit 1" +
+              " --report " + path("q.json") + " --json -q");
   // 3 when the limit also cut an improving stage after Algorithm 6.1 short (partial result written), else 0.
   ASSERT_TRUE(r.code == 0 || r.code == 3) << r.code;
   const auto summary = nlohmann::json::parse(r.out);
@@ -136,7 +140,7 @@ TEST_F(OptimizeCli, TimeLimitStopsTheOptimizationAndStillWritesAValidMesh) {
   EXPECT_EQ(report["optimize"]["mode"], "full");
   EXPECT_LE(report["optimize"]["E_D_after"].get<double>(), report["optimize"]["E_D_before"].get<double>());
   // The written quad mesh, re-read by `metrics`, is a manifold polygon mesh matching the report.
-  const Result m = run("metrics " + path("q.obj") + " --json");
+  const Result m = run_cli("metrics " + path("q.obj") + " --json");
   ASSERT_EQ(m.code, 0);
   const auto metrics = nlohmann::json::parse(m.out);
   EXPECT_TRUE(metrics["quad_mesh"]["manifold"].get<bool>());
@@ -147,8 +151,8 @@ TEST_F(OptimizeCli, TimeLimitStopsTheOptimizationAndStillWritesAValidMesh) {
 TEST_F(OptimizeCli, RoundingStrategiesAreSelectableAndBadOptionsFailWithoutOutput) {
   const std::string in = quadcover::testing::data_path("eight_genus2");
   for (const std::string strategy : {"direct", "exact"}) {
-    const Result r = run("param " + in + " -o " + path("p.obj") + " --optimize none --rounding " + strategy +
-                         " --json -q");
+    const Result r =
+        run_cli("param " + in + " -o " + path("p.obj") + " --optimize none --rounding " + strategy + " --json -q");
     ASSERT_EQ(r.code, 0) << strategy;
     const auto j = nlohmann::json::parse(r.out);
     const auto& rr = j["rounding"];
@@ -163,18 +167,18 @@ TEST_F(OptimizeCli, RoundingStrategiesAreSelectableAndBadOptionsFailWithoutOutpu
     }
   }
   fs::remove(path("p.obj"));
-  EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize everything").code, 2);
-  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --rounding nearest").code, 2);
-  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --max-iterations -3").code, 2);
-  EXPECT_EQ(run("param " + in + " -o " + path("x.obj") + " --optimize none --plot " + path("x.svg")).code, 2);
-  EXPECT_EQ(run("remesh " + in + " -o " + path("x.obj") + " --png " + path("x.png") + " --view diagonal").code, 2);
+  EXPECT_EQ(run_cli("param " + in + " -o " + path("x.obj") + " --optimize everything").code, 2);
+  EXPECT_EQ(run_cli("remesh " + in + " -o " + path("x.obj") + " --rounding nearest").code, 2);
+  EXPECT_EQ(run_cli("remesh " + in + " -o " + path("x.obj") + " --max-iterations -3").code, 2);
+  EXPECT_EQ(run_cli("param " + in + " -o " + path("x.obj") + " --optimize none --plot " + path("x.svg")).code, 2);
+  EXPECT_EQ(run_cli("remesh " + in + " -o " + path("x.obj") + " --png " + path("x.png") + " --view diagonal").code, 2);
   for (const auto& e : fs::directory_iterator(dir)) ADD_FAILURE() << "left behind: " << e.path();
 }
 
 TEST_F(OptimizeCli, PicturesPlotAndHtmlReport) {
   const std::string in = quadcover::testing::data_path("bunny_3k");
-  ASSERT_EQ(run("param " + in + " -o " + path("p.obj") + " --png " + path("p.png") + " --size 120x90 --plot " +
-                path("fig61.svg") + " --report-html " + path("p.html") + " -q")
+  ASSERT_EQ(run_cli("param " + in + " -o " + path("p.obj") + " --png " + path("p.png") + " --size 120x90 --plot " +
+                    path("fig61.svg") + " --report-html " + path("p.html") + " -q")
                 .code,
             0);
   EXPECT_EQ(png_size(path("p.png")), std::make_pair(120, 90));
@@ -188,10 +192,11 @@ TEST_F(OptimizeCli, PicturesPlotAndHtmlReport) {
   EXPECT_NE(html.find("optimize.E_D_after"), std::string::npos);  // metrics table, log not tabulated
   EXPECT_EQ(html.find("optimize.log"), std::string::npos);
 
-  ASSERT_EQ(run("remesh " + in + " -o " + path("q.obj") + " --vertices 800 --png " + path("q.png") +
-                " --view all --size 100x80 --plot " + path("fig61.png") + " --report-html " + path("q.html") + " -q")
-                .code,
-            0);
+  ASSERT_EQ(
+      run_cli("remesh " + in + " -o " + path("q.obj") + " --vertices 800 --png " + path("q.png") +
+              " --view all --size 100x80 --plot " + path("fig61.png") + " --report-html " + path("q.html") + " -q")
+          .code,
+      0);
   EXPECT_EQ(png_size(path("q.png")), std::make_pair(3 * 100 + 2 * 8, 80));  // front, side, top tiled
   EXPECT_EQ(png_size(path("fig61.png")), std::make_pair(640, 400));
   const std::string qhtml = slurp(path("q.html"));
@@ -206,8 +211,8 @@ TEST_F(OptimizeCli, BatchWritesPicturesAndReportsPerFileIntoFolders) {
   fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "in" / "a.obj");
   fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "in" / "b.obj");
   const std::string out = path("out");
-  const Result r = run("param " + path("in") + " -o " + out + " --report " + out + " --png " + out + " --size 64x64" +
-                       " --plot " + out + " --report-html " + out + " -j 2 --json");
+  const Result r = run_cli("param " + path("in") + " -o " + out + " --report " + out + " --png " + out +
+                           " --size 64x64" + " --plot " + out + " --report-html " + out + " -j 2 --json");
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(nlohmann::json::parse(r.out)["succeeded"], 2);
   for (const char* name : {"a", "b"}) {

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 using Result = quadcover::testing::CliRun;
 
-Result run(const std::string& args) { return quadcover::testing::run_cli(args); }
+using quadcover::testing::run_cli;
 
 class RenderCli : public ::testing::Test {
  protected:
@@ -43,7 +43,7 @@ class RenderCli : public ::testing::Test {
 };
 
 TEST_F(RenderCli, TexturedWireframeAndUvLayout) {
-  Result r = run("render " + path("grid.obj") + " -o " + path("tex.png") + " --size 120x100 --json");
+  Result r = run_cli("render " + path("grid.obj") + " -o " + path("tex.png") + " --size 120x100 --json");
   ASSERT_EQ(r.code, 0);
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["mode"], "textured");
@@ -88,25 +88,26 @@ TEST_F(RenderCli, TexturedWireframeAndUvLayout) {
     EXPECT_GT(cols_with_two, im.height / 4);
   }
 
-  r = run("render " + path("grid.obj") + " -o " + path("all.png") + " --size 100x100 --view all --json");
+  r = run_cli("render " + path("grid.obj") + " -o " + path("all.png") + " --size 100x100 --view all --json");
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(nlohmann::json::parse(r.out)["width"], 3 * 100 + 2 * 8);
 
-  r = run("render " + path("grid.obj") + " -o " + path("uv.png") + " --uv-layout --size 200x200 --json");
+  r = run_cli("render " + path("grid.obj") + " -o " + path("uv.png") + " --uv-layout --size 200x200 --json");
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(nlohmann::json::parse(r.out)["flipped_triangles"], 0);
 
-  r = run("render " + path("grid.obj") + " -o " + path("wire.png") + " --wireframe --view 30,20 --size 200x200 --json");
+  r = run_cli("render " + path("grid.obj") + " -o " + path("wire.png") +
+              " --wireframe --view 30,20 --size 200x200 --json");
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "wireframe");
 }
 
 TEST_F(RenderCli, BadRequestsFailCleanlyWithoutOutput) {
   const std::string plain = quadcover::testing::data_path("eight_genus2");
-  EXPECT_EQ(run("render " + plain + " -o " + path("x.png") + " --uv-layout").code, 2);  // no vt in the file
-  EXPECT_EQ(run("render " + plain + " -o " + path("x.png") + " --size 10x5000000").code, 2);
-  EXPECT_EQ(run("render " + plain + " -o " + path("x.png") + " --view diagonal").code, 2);
-  EXPECT_EQ(run("render " + plain).code, 2);  // no output named
+  EXPECT_EQ(run_cli("render " + plain + " -o " + path("x.png") + " --uv-layout").code, 2);  // no vt in the file
+  EXPECT_EQ(run_cli("render " + plain + " -o " + path("x.png") + " --size 10x5000000").code, 2);
+  EXPECT_EQ(run_cli("render " + plain + " -o " + path("x.png") + " --view diagonal").code, 2);
+  EXPECT_EQ(run_cli("render " + plain).code, 2);  // no output named
   EXPECT_FALSE(fs::exists(path("x.png")));
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
@@ -117,7 +118,7 @@ TEST_F(RenderCli, BatchRendersEveryFileIntoTheOutputFolder) {
   fs::create_directories(dir / "out");
   fs::copy_file(dir / "grid.obj", dir / "in" / "a.obj");
   fs::copy_file(quadcover::testing::data_path("eight_genus2"), dir / "in" / "b.obj");
-  const Result r = run("render " + path("in") + " -o " + path("out") + " --size 64x64 --json");
+  const Result r = run_cli("render " + path("in") + " -o " + path("out") + " --size 64x64 --json");
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(nlohmann::json::parse(r.out)["succeeded"], 2);
   EXPECT_TRUE(fs::exists(dir / "out" / "a.png"));

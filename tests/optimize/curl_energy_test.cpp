@@ -1,11 +1,12 @@
 // E_D re-evaluation through Cholesky updates (6.2.1) on real frame fields: predictions of evaluate() equal E_D
 // recomputed from scratch (fresh 𝔏̄*, fresh factorization) after sequences of single-edge and path changes.
+#include "optimize/curl_energy.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "field/compute_frame_field.h"
-#include "optimize/curl_energy.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -21,13 +22,6 @@ struct FieldSetup {
         smoother(mesh, field.field, field.stability, field.trusted, field.constrained, FieldOptions{}.lambda) {}
 };
 
-std::vector<int> interior_edges(const Mesh& mesh) {
-  std::vector<int> out;
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e)) out.push_back(e);
-  return out;
-}
-
 class CurlOnMeshes : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(CurlOnMeshes, UpdatedEnergyEqualsFreshRecomputation) {
@@ -35,7 +29,7 @@ TEST_P(CurlOnMeshes, UpdatedEnergyEqualsFreshRecomputation) {
   CurlEnergy ed(s.mesh, s.smoother);
   const double e0 = ed.energy();
   ASSERT_GT(e0, 0);
-  const auto edges = interior_edges(s.mesh);
+  const auto edges = testing::interior_edges(s.mesh);
   std::mt19937 rng(11);
   std::uniform_int_distribution<std::size_t> pick(0, edges.size() - 1);
   for (int it = 0; it < 60; ++it) {
@@ -66,7 +60,7 @@ TEST_P(CurlOnMeshes, EvaluationWithoutCommitLeavesStateUntouched) {
   CurlEnergy ed(s.mesh, s.smoother);
   const double e0 = ed.energy();
   const Eigen::VectorXi m0 = ed.matching();
-  const auto edges = interior_edges(s.mesh);
+  const auto edges = testing::interior_edges(s.mesh);
   const MatchingChange c{edges[edges.size() / 3], 1};
   const double predicted = ed.evaluate(std::span(&c, 1));
   EXPECT_EQ(ed.energy(), e0);

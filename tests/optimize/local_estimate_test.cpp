@@ -24,16 +24,9 @@ struct FieldCase {
         smoother(mesh, field.field, field.stability, field.trusted, field.constrained, FieldOptions{}.lambda) {}
 };
 
-std::vector<int> interior_edges(const Mesh& mesh) {
-  std::vector<int> out;
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e)) out.push_back(e);
-  return out;
-}
-
 // Random single-edge changes and short paths (consecutive edges of a vertex fan, as branch point moves).
 std::vector<std::vector<MatchingChange>> random_changes(const Mesh& mesh, int count, unsigned seed) {
-  const auto edges = interior_edges(mesh);
+  const auto edges = testing::interior_edges(mesh);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<std::size_t> pick(0, edges.size() - 1);
   std::vector<std::vector<MatchingChange>> out;

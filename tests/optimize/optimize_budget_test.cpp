@@ -29,19 +29,13 @@ Mesh grid_with_holes(int n) {
   return Mesh::from_triangles(grid.V(), F);
 }
 
-long interior_edges(const Mesh& mesh) {
-  long n = 0;
-  for (int e = 0; e < mesh.num_edges(); ++e) n += !mesh.is_boundary_edge(e);
-  return n;
-}
-
 TEST(OptimizeBudget, RelocationOnManyHolesConvergesWithBoundedEvaluations) {
   const Mesh mesh = grid_with_holes(32);  // 15² = 225 holes
   const FrameFieldResult field = compute_frame_field_detailed(mesh);
   OptimizeOptions o;
   o.mode = OptimizeMode::Relocate;
   // A cap of 50 screened evaluations per interior edge (measured: 8 to 18): the run must converge below it.
-  const long edges = interior_edges(mesh);
+  const long edges = static_cast<long>(testing::interior_edges(mesh).size());
   o.max_evaluations = 50 * edges;
   const OptimizeResult r = optimize_field(mesh, field, o);
   const auto j = to_json(r, o.mode);
@@ -66,7 +60,8 @@ TEST(OptimizeBudget, AutoBudgetGrowsWithTheMeshAndIsCapped) {
   EXPECT_EQ(auto_evaluation_budget(large, OptimizeMode::Relocate), 3000);
   EXPECT_EQ(auto_evaluation_budget(small, OptimizeMode::Full), 3000);  // the floor
   EXPECT_GT(auto_evaluation_budget(large, OptimizeMode::Full), 3000);
-  EXPECT_EQ(auto_evaluation_budget(large, OptimizeMode::Full), interior_edges(large) / 8);
+  EXPECT_EQ(auto_evaluation_budget(large, OptimizeMode::Full),
+            static_cast<long>(testing::interior_edges(large).size()) / 8);
   // The auto time limit: full only, growing with the faces.
   EXPECT_EQ(auto_time_limit(small, OptimizeMode::Relocate), 0.0);
   EXPECT_GT(auto_time_limit(large, OptimizeMode::Full), auto_time_limit(small, OptimizeMode::Full));

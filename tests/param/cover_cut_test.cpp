@@ -47,7 +47,9 @@ void check_cut(const Mesh& mesh, const Eigen::VectorXi& matching, const std::str
   EXPECT_EQ(cc.b_even, b_even);
   EXPECT_EQ(cc.b_odd, b_odd);
   // Σ_v Σ_{e∋v} ±m_e: every interior edge is counted at both endpoints with opposite signs.
-  if (mesh.num_boundary_loops() == 0) EXPECT_EQ(sum, 0);
+  if (mesh.num_boundary_loops() == 0) {
+    EXPECT_EQ(sum, 0);
+  }
   // One topological disk per component: V − E + F = 1 on each.
   EXPECT_EQ(cc.disk.num_pieces, mesh.num_components());
   EXPECT_EQ(cc.disk.num_vertices() - cc.disk.num_edges + mesh.num_faces(), mesh.num_components());
@@ -56,8 +58,9 @@ void check_cut(const Mesh& mesh, const Eigen::VectorXi& matching, const std::str
   // The paths: their leftover edges are cut edges, and h_sym is (4.1) per component (one component here).
   ASSERT_EQ(cc.path_edge.size(), cc.path_component.size());
   for (int e : cc.path_edge) EXPECT_TRUE(cc.graph.cut[e]);
-  if (mesh.num_components() == 1)
+  if (mesh.num_components() == 1) {
     EXPECT_EQ(cc.h_sym(), symmetric_period_count(mesh.genus(), b_even, b_odd, mesh.num_boundary_loops()));
+  }
 }
 
 TEST(CoverCut, GaugeTransitionsBranchPointsAndDisksOnRealMeshes) {
@@ -88,9 +91,13 @@ TEST(CoverCut, FanCrossingsWalkAroundEachVertex) {
       const FanCrossing& x = fan[i];
       EXPECT_EQ(mesh.EF()(x.edge, 0) == x.from ? mesh.EF()(x.edge, 1) : mesh.EF()(x.edge, 0), x.to);
       EXPECT_TRUE(mesh.E()(x.edge, 0) == v || mesh.E()(x.edge, 1) == v);
-      if (i + 1 < fan.size()) EXPECT_EQ(x.to, fan[i + 1].from);
+      if (i + 1 < fan.size()) {
+        EXPECT_EQ(x.to, fan[i + 1].from);
+      }
     }
-    if (!mesh.is_boundary_vertex(v) && !fan.empty()) EXPECT_EQ(fan.back().to, fan.front().from);
+    if (!mesh.is_boundary_vertex(v) && !fan.empty()) {
+      EXPECT_EQ(fan.back().to, fan.front().from);
+    }
   }
 }
 

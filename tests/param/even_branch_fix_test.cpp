@@ -76,7 +76,9 @@ TEST(EvenBranchFix, ParameterizeLeavesNoEvenBranchPointAtHalfIntegers) {
       if (!cc.branch[q] || ((cc.quarter_index[q] % 4) + 4) % 4 != 2) continue;
       ++evens;
       const bool unfixed = std::count(P.diagnostics.unfixed_even_branch_points.begin(), P.diagnostics.unfixed_even_branch_points.end(), q);
-      if (!unfixed) EXPECT_LT(distance_to_gaussian_integers(0.5 * transition_around(mesh, cc, c, q).second), 1e-6);
+      if (!unfixed) {
+        EXPECT_LT(distance_to_gaussian_integers(0.5 * transition_around(mesh, cc, c, q).second), 1e-6);
+      }
     }
   }
   EXPECT_GT(evens, 0);

@@ -16,14 +16,14 @@
 namespace quadcover {
 namespace {
 
-struct Case {
+struct HarmonicCase {
   std::string name;
   Mesh mesh;
   FrameField field;
 };
 
-std::vector<Case> cases() {
-  std::vector<Case> out;
+std::vector<HarmonicCase> cases() {
+  std::vector<HarmonicCase> out;
   for (const char* name : {"eight_genus2", "lilium_disk"}) {
     Mesh m = testing::load_test_mesh(name);
     FrameField f = compute_frame_field(m);
@@ -67,7 +67,7 @@ Eigen::VectorXcd random_vertex_function(const HarmonicCorrection& hc, int nv, st
 
 TEST(HarmonicCorrection, HarmonicPartIsOrthogonalToEveryConformingGradient) {
   std::mt19937 rng(1);
-  for (const Case& c : cases()) {
+  for (const HarmonicCase& c : cases()) {
     SCOPED_TRACE(c.name);
     const Mesh& mesh = c.mesh;
     const CoverCut cc = build_cover_cut(mesh, c.field.matching);
@@ -93,7 +93,7 @@ TEST(HarmonicCorrection, HarmonicPartIsOrthogonalToEveryConformingGradient) {
 
 TEST(HarmonicCorrection, GradientsHaveNoHarmonicPartAndRhsIsTheStiffness) {
   std::mt19937 rng(2);
-  for (const Case& c : cases()) {
+  for (const HarmonicCase& c : cases()) {
     SCOPED_TRACE(c.name);
     const Mesh& mesh = c.mesh;
     const CoverCut cc = build_cover_cut(mesh, c.field.matching);
@@ -103,7 +103,9 @@ TEST(HarmonicCorrection, GradientsHaveNoHarmonicPartAndRhsIsTheStiffness) {
     // b_p = ⟨∇φ_p, ∇w⟩ = (𝔏̄ w)_p at every vertex off B.
     const Eigen::VectorXcd b = hc.rhs(G), Lw = hc.stiffness() * w;
     for (int p = 0; p < mesh.num_vertices(); ++p)
-      if (!hc.layers().branch[p]) EXPECT_LT(std::abs(b[p] - Lw[p]), 1e-9 * (1 + Lw.cwiseAbs().maxCoeff())) << p;
+      if (!hc.layers().branch[p]) {
+        EXPECT_LT(std::abs(b[p] - Lw[p]), 1e-9 * (1 + Lw.cwiseAbs().maxCoeff())) << p;
+      }
     // The solve reproduces w (pins included: w is 0 there), so the harmonic part of a gradient vanishes.
     const Eigen::VectorXcd u = hc.solve(b).col(0);
     EXPECT_LT((u - w).cwiseAbs().maxCoeff(), 1e-7 * (1 + w.cwiseAbs().maxCoeff()));
@@ -113,7 +115,7 @@ TEST(HarmonicCorrection, GradientsHaveNoHarmonicPartAndRhsIsTheStiffness) {
 
 TEST(HarmonicCorrection, SolveMeetsTheEquationsAndRhsIsAdditiveOverFaces) {
   std::mt19937 rng(3);
-  for (const Case& c : cases()) {
+  for (const HarmonicCase& c : cases()) {
     SCOPED_TRACE(c.name);
     const Mesh& mesh = c.mesh;
     const int nf = mesh.num_faces();

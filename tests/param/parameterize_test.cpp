@@ -25,12 +25,12 @@ std::vector<Complex> values_at(const Mesh& mesh, const Parameterization& P, int 
   return out;
 }
 
-struct Case {
+struct ParamCase {
   const char* mesh;
   bool curvature_field;  // compute_frame_field (field stage) or the generated smooth field
 };
 
-class OnTestMeshes : public ::testing::TestWithParam<Case> {
+class OnTestMeshes : public ::testing::TestWithParam<ParamCase> {
  protected:
   void SetUp() override {
     mesh = load_test_mesh(GetParam().mesh);
@@ -121,11 +121,11 @@ TEST_P(OnTestMeshes, DensityFollowsTargetQuadCount) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, OnTestMeshes,
-                         ::testing::Values(Case{"bunny_3k", true}, Case{"torus_5k", true},
-                                           Case{"eight_genus2", false}, Case{"eight_genus2", true},
-                                           Case{"3holes_genus3", true}, Case{"fertility_genus4", true},
-                                           Case{"lilium_disk", true}, Case{"camelhead_boundary", true},
-                                           Case{"mech_holes_shark", true}, Case{"spot", false}),
+                         ::testing::Values(ParamCase{"bunny_3k", true}, ParamCase{"torus_5k", true},
+                                           ParamCase{"eight_genus2", false}, ParamCase{"eight_genus2", true},
+                                           ParamCase{"3holes_genus3", true}, ParamCase{"fertility_genus4", true},
+                                           ParamCase{"lilium_disk", true}, ParamCase{"camelhead_boundary", true},
+                                           ParamCase{"mech_holes_shark", true}, ParamCase{"spot", false}),
                          [](const auto& info) {
                            return std::string(info.param.mesh) + (info.param.curvature_field ? "_curv" : "_gen");
                          });

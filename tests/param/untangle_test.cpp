@@ -127,8 +127,12 @@ TEST_P(FoldedMaps, UntanglesInsideTheSeamlessSubspace) {
   testing::expect_seamless_grid_map(mesh, Q);  // seams to 1e-9, branch points on their integer points
   const int nv = mesh.num_vertices();
   for (int p = 0; p < nv; ++p) {
-    if (fixed[p]) ASSERT_EQ(u[p].real(), u0[p].real()) << p;
-    if (fixed[nv + p]) ASSERT_EQ(u[p].imag(), u0[p].imag()) << p;
+    if (fixed[p]) {
+      ASSERT_EQ(u[p].real(), u0[p].real()) << p;
+    }
+    if (fixed[nv + p]) {
+      ASSERT_EQ(u[p].imag(), u0[p].imag()) << p;
+    }
   }
   // Nothing to do on an injective map: u comes back unchanged.
   ParamDiagnostics::Untangling again;

@@ -42,7 +42,9 @@ bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, b
   EXPECT_TRUE(job.surface.same_topology);
   EXPECT_GT(job.surface.output.faces, quads / 2);
   EXPECT_LT(job.surface.output.faces, 2 * quads);
-  if (mesh.num_boundary_loops() == 0) EXPECT_EQ(job.surface.output.non_quads, 0);
+  if (mesh.num_boundary_loops() == 0) {
+    EXPECT_EQ(job.surface.output.non_quads, 0);
+  }
   for (const std::string& w : job.param.warnings) EXPECT_EQ(w.find("not valid"), std::string::npos) << w;
   const auto& rounding = job.param.map.diagnostics.rounding;
   return rounding.curve_lines > 0 || rounding.curve_rounding_dropped;

@@ -92,7 +92,8 @@ Mesh make_cylinder(int n_around, int n_up, double r, double h) {
 
 Mesh make_ellipsoid(int level, double a, double b, double c) {
   std::vector<Eigen::Vector3d> P = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Eigen::Vector3i> T = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  std::vector<Eigen::Vector3i> T = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (int l = 0; l < level; ++l) {
     std::map<std::pair<int, int>, int> mid;
     auto midpoint = [&](int i, int j) {
@@ -113,7 +114,8 @@ Mesh make_ellipsoid(int level, double a, double b, double c) {
     T = std::move(next);
   }
   Eigen::MatrixX3d V(P.size(), 3);
-  for (std::size_t i = 0; i < P.size(); ++i) V.row(static_cast<Eigen::Index>(i)) << a * P[i].x(), b * P[i].y(), c * P[i].z();
+  for (std::size_t i = 0; i < P.size(); ++i)
+    V.row(static_cast<Eigen::Index>(i)) << a * P[i].x(), b * P[i].y(), c * P[i].z();
   Eigen::MatrixX3i F(T.size(), 3);
   for (std::size_t i = 0; i < T.size(); ++i) F.row(static_cast<Eigen::Index>(i)) = T[i].transpose();
   return Mesh::from_triangles(V, F);
@@ -132,6 +134,13 @@ Mesh with_faces_reversed(const Mesh& mesh) {
   Eigen::MatrixX3i F = mesh.F();
   F.col(1).swap(F.col(2));
   return Mesh::from_triangles(mesh.V(), F);
+}
+
+std::vector<int> interior_edges(const Mesh& mesh) {
+  std::vector<int> out;
+  for (int e = 0; e < mesh.num_edges(); ++e)
+    if (!mesh.is_boundary_edge(e)) out.push_back(e);
+  return out;
 }
 
 }  // namespace quadcover::testing

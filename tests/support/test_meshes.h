@@ -1,6 +1,7 @@
 #pragma once
 // Test helpers: meshes shipped in tests/data and meshes generated in the test.
 #include <string>
+#include <vector>
 
 #include "mesh/mesh.h"
 
@@ -28,6 +29,9 @@ Mesh make_ellipsoid(int level, double a = 1.0, double b = 1.0, double c = 1.0);
 /// vertices 1..n), or with closed = true also a second fan to the apex (0,0,-height) (a bipyramid, apex n+1):
 /// vertices of valence n.
 Mesh make_fan(int n, bool closed, double height = 0.3);
+
+/// The edges of `mesh` that are not boundary edges, in edge order.
+std::vector<int> interior_edges(const Mesh& mesh);
 
 /// The same surface with every face's orientation reversed (normals flipped: a closed mesh faces inward).
 Mesh with_faces_reversed(const Mesh& mesh);

@@ -17,16 +17,16 @@
 namespace quadcover {
 namespace {
 
-struct Case {
+struct CutGraphCase {
   std::string mesh;
   int num_base;  // random interior base vertices
   unsigned seed;
 };
-std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+std::string case_name(const ::testing::TestParamInfo<CutGraphCase>& info) {
   return info.param.mesh + "_B" + std::to_string(info.param.num_base) + "_s" + std::to_string(info.param.seed);
 }
 
-class CutGraphOnMeshes : public ::testing::TestWithParam<Case> {
+class CutGraphOnMeshes : public ::testing::TestWithParam<CutGraphCase> {
  protected:
   void SetUp() override {
     mesh_ = testing::load_test_mesh(GetParam().mesh);
@@ -138,14 +138,16 @@ TEST_P(CutGraphOnMeshes, IsDeterministic) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CutGraphOnMeshes,
-                         ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 4, 2}, Case{"eight_genus2", 0, 1},
-                                           Case{"eight_genus2", 7, 3}, Case{"3holes_genus3", 0, 1},
-                                           Case{"fertility_genus4", 0, 1}, Case{"couplingdown_genus9", 0, 1},
-                                           Case{"couplingdown_genus9", 5, 4}, Case{"bunny_3k", 0, 1},
-                                           Case{"bunny_3k", 5, 5}, Case{"spot", 2, 6}, Case{"cow", 12, 7},
-                                           Case{"lilium_disk", 0, 1}, Case{"lilium_disk", 3, 8},
-                                           Case{"camelhead_boundary", 4, 9}, Case{"mech_holes_shark", 0, 1},
-                                           Case{"bunny_20k_holes", 6, 10}),
+                         ::testing::Values(CutGraphCase{"torus_5k", 0, 1}, CutGraphCase{"torus_5k", 4, 2},
+                                           CutGraphCase{"eight_genus2", 0, 1}, CutGraphCase{"eight_genus2", 7, 3},
+                                           CutGraphCase{"3holes_genus3", 0, 1}, CutGraphCase{"fertility_genus4", 0, 1},
+                                           CutGraphCase{"couplingdown_genus9", 0, 1},
+                                           CutGraphCase{"couplingdown_genus9", 5, 4}, CutGraphCase{"bunny_3k", 0, 1},
+                                           CutGraphCase{"bunny_3k", 5, 5}, CutGraphCase{"spot", 2, 6},
+                                           CutGraphCase{"cow", 12, 7}, CutGraphCase{"lilium_disk", 0, 1},
+                                           CutGraphCase{"lilium_disk", 3, 8}, CutGraphCase{"camelhead_boundary", 4, 9},
+                                           CutGraphCase{"mech_holes_shark", 0, 1},
+                                           CutGraphCase{"bunny_20k_holes", 6, 10}),
                          case_name);
 
 // With one base vertex on a closed surface the output is a system of 2g loops (thesis 1.3): on a torus of revolution

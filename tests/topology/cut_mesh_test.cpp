@@ -43,13 +43,13 @@ void expect_disk(const Mesh& mesh, const Eigen::VectorXi& cut, const CutMesh& cm
   EXPECT_EQ(static_cast<int>(total), expected_length);
 }
 
-struct Case {
+struct CutMeshCase {
   std::string mesh;
   int num_base;
   unsigned seed;
 };
 
-class CutMeshOnMeshes : public ::testing::TestWithParam<Case> {};
+class CutMeshOnMeshes : public ::testing::TestWithParam<CutMeshCase> {};
 
 TEST_P(CutMeshOnMeshes, CutGraphCutsToADisk) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
@@ -65,15 +65,18 @@ TEST_P(CutMeshOnMeshes, CutGraphCutsToADisk) {
 
 INSTANTIATE_TEST_SUITE_P(
     Meshes, CutMeshOnMeshes,
-    ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 3, 11}, Case{"eight_genus2", 0, 1},
-                      Case{"eight_genus2", 9, 12}, Case{"3holes_genus3", 0, 1}, Case{"3holes_genus3", 4, 13},
-                      Case{"fertility_genus4", 0, 1}, Case{"fertility_genus4", 8, 14},
-                      Case{"couplingdown_genus9", 0, 1}, Case{"couplingdown_genus9", 6, 15}, Case{"bunny_3k", 2, 16},
-                      Case{"bunny_3k", 10, 17}, Case{"spot", 8, 18}, Case{"cow", 3, 19}, Case{"fandisk", 5, 20},
-                      Case{"lilium_disk", 0, 1}, Case{"lilium_disk", 6, 21}, Case{"camelhead_boundary", 0, 1},
-                      Case{"camelhead_boundary", 5, 22}, Case{"mech_holes_shark", 0, 1},
-                      Case{"mech_holes_shark", 4, 23}, Case{"bunny_20k_holes", 0, 1}, Case{"bunny_20k_holes", 7, 24}),
-    [](const ::testing::TestParamInfo<Case>& info) {
+    ::testing::Values(CutMeshCase{"torus_5k", 0, 1}, CutMeshCase{"torus_5k", 3, 11}, CutMeshCase{"eight_genus2", 0, 1},
+                      CutMeshCase{"eight_genus2", 9, 12}, CutMeshCase{"3holes_genus3", 0, 1},
+                      CutMeshCase{"3holes_genus3", 4, 13}, CutMeshCase{"fertility_genus4", 0, 1},
+                      CutMeshCase{"fertility_genus4", 8, 14}, CutMeshCase{"couplingdown_genus9", 0, 1},
+                      CutMeshCase{"couplingdown_genus9", 6, 15}, CutMeshCase{"bunny_3k", 2, 16},
+                      CutMeshCase{"bunny_3k", 10, 17}, CutMeshCase{"spot", 8, 18}, CutMeshCase{"cow", 3, 19},
+                      CutMeshCase{"fandisk", 5, 20}, CutMeshCase{"lilium_disk", 0, 1},
+                      CutMeshCase{"lilium_disk", 6, 21}, CutMeshCase{"camelhead_boundary", 0, 1},
+                      CutMeshCase{"camelhead_boundary", 5, 22}, CutMeshCase{"mech_holes_shark", 0, 1},
+                      CutMeshCase{"mech_holes_shark", 4, 23}, CutMeshCase{"bunny_20k_holes", 0, 1},
+                      CutMeshCase{"bunny_20k_holes", 7, 24}),
+    [](const ::testing::TestParamInfo<CutMeshCase>& info) {
       return info.param.mesh + "_B" + std::to_string(info.param.num_base);
     });
 

@@ -15,12 +15,12 @@
 namespace quadcover {
 namespace {
 
-struct Case {
+struct BasisCase {
   std::string mesh;
   int num_base;
 };
 
-class HarmonicBasisOnMeshes : public ::testing::TestWithParam<Case> {
+class HarmonicBasisOnMeshes : public ::testing::TestWithParam<BasisCase> {
  protected:
   void SetUp() override {
     mesh_ = testing::load_test_mesh(GetParam().mesh);
@@ -87,10 +87,10 @@ TEST_P(HarmonicBasisOnMeshes, FieldWithGivenPeriods) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, HarmonicBasisOnMeshes,
-                         ::testing::Values(Case{"torus_5k", 0}, Case{"eight_genus2", 6}, Case{"3holes_genus3", 0},
-                                           Case{"fertility_genus4", 3}, Case{"couplingdown_genus9", 0},
-                                           Case{"mech_holes_shark", 2}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
+                         ::testing::Values(BasisCase{"torus_5k", 0}, BasisCase{"eight_genus2", 6},
+                                           BasisCase{"3holes_genus3", 0}, BasisCase{"fertility_genus4", 3},
+                                           BasisCase{"couplingdown_genus9", 0}, BasisCase{"mech_holes_shark", 2}),
+                         [](const ::testing::TestParamInfo<BasisCase>& info) {
                            return info.param.mesh + "_B" + std::to_string(info.param.num_base);
                          });
 

@@ -17,13 +17,13 @@
 namespace quadcover {
 namespace {
 
-struct Case {
+struct HomologyCase {
   std::string mesh;
   int num_base;
   unsigned seed;
 };
 
-class HomologyOnMeshes : public ::testing::TestWithParam<Case> {
+class HomologyOnMeshes : public ::testing::TestWithParam<HomologyCase> {
  protected:
   void SetUp() override {
     mesh_ = testing::load_test_mesh(GetParam().mesh);
@@ -145,14 +145,16 @@ TEST_P(HomologyOnMeshes, GradientsHaveZeroPeriods) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, HomologyOnMeshes,
-                         ::testing::Values(Case{"torus_5k", 0, 1}, Case{"torus_5k", 5, 2}, Case{"eight_genus2", 0, 3},
-                                           Case{"eight_genus2", 8, 4}, Case{"3holes_genus3", 3, 5},
-                                           Case{"fertility_genus4", 0, 6}, Case{"couplingdown_genus9", 0, 7},
-                                           Case{"couplingdown_genus9", 6, 8}, Case{"bunny_3k", 4, 9},
-                                           Case{"lilium_disk", 3, 10}, Case{"mech_holes_shark", 0, 11},
-                                           Case{"mech_holes_shark", 5, 12}, Case{"bunny_20k_holes", 0, 13},
-                                           Case{"bunny_20k_holes", 4, 14}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
+                         ::testing::Values(HomologyCase{"torus_5k", 0, 1}, HomologyCase{"torus_5k", 5, 2},
+                                           HomologyCase{"eight_genus2", 0, 3}, HomologyCase{"eight_genus2", 8, 4},
+                                           HomologyCase{"3holes_genus3", 3, 5}, HomologyCase{"fertility_genus4", 0, 6},
+                                           HomologyCase{"couplingdown_genus9", 0, 7},
+                                           HomologyCase{"couplingdown_genus9", 6, 8}, HomologyCase{"bunny_3k", 4, 9},
+                                           HomologyCase{"lilium_disk", 3, 10}, HomologyCase{"mech_holes_shark", 0, 11},
+                                           HomologyCase{"mech_holes_shark", 5, 12},
+                                           HomologyCase{"bunny_20k_holes", 0, 13},
+                                           HomologyCase{"bunny_20k_holes", 4, 14}),
+                         [](const ::testing::TestParamInfo<HomologyCase>& info) {
                            return info.param.mesh + "_B" + std::to_string(info.param.num_base);
                          });
 
