@@ -93,7 +93,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   if (path == "-") return write_standard_output(write);
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const fs::path tmp = dir / ("." + target.filename().string() + temporary_suffix());
+  fs::path tmp = dir / ".";  // then ".NAME<suffix>" beside the target
+  tmp += target.filename();
+  tmp += temporary_suffix();
   const int slot = register_temporary(tmp.string());  // before the file exists: a signal never misses it
   try {
     {
