@@ -7,6 +7,7 @@
 
 #include "common/seconds_since.h"
 #include "field/indices.h"
+#include "mesh/vertex_rings.h"
 #include "param/cover_cut.h"
 #include "param/disk_functions.h"
 #include "param/ring_winding.h"
@@ -152,11 +153,11 @@ void measure_curve_deviations(const Mesh& mesh, Parameterization& map) {
 std::vector<int> grow_faces(const Mesh& mesh, const std::vector<int>& faces, int rings) {
   std::vector<char> in(static_cast<std::size_t>(mesh.num_faces()), 0);
   for (int f : faces) in[f] = 1;
-  for (int k = 0; k < rings; ++k) {
+  if (rings > 0) {  // the faces with a vertex in the faces' vertices grown by rings − 1
     std::vector<char> vertex(static_cast<std::size_t>(mesh.num_vertices()), 0);
-    for (int f = 0; f < mesh.num_faces(); ++f)
-      if (in[f])
-        for (int c = 0; c < 3; ++c) vertex[mesh.F()(f, c)] = 1;
+    for (int f : faces)
+      for (int c = 0; c < 3; ++c) vertex[mesh.F()(f, c)] = 1;
+    vertex = grow_vertex_rings(mesh, std::move(vertex), rings - 1);
     for (int f = 0; f < mesh.num_faces(); ++f)
       in[f] = in[f] || vertex[mesh.F()(f, 0)] || vertex[mesh.F()(f, 1)] || vertex[mesh.F()(f, 2)];
   }

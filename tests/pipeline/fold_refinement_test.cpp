@@ -8,6 +8,7 @@
 
 #include "param/seams.h"
 #include "param/untangle.h"
+#include "pipeline/fold_refinement.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/remesh_mesh.h"
 #include "pipeline/split_map.h"
@@ -30,6 +31,28 @@ int non_positive(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
   int n = 0;
   for (int f = 0; f < mesh.num_faces(); ++f) n += a[f] <= 1e-8 * mesh.face_areas()[f] * ratio;
   return n;
+}
+
+// A round's faces: `rings` times, every face that shares a vertex with the set joins it (recomputed here face by
+// face), ascending; 0 rings keeps the faces.
+TEST(FoldRefinement, GrowFacesAddsTheFacesSharingAVertexRingByRing) {
+  const Mesh mesh = testing::make_torus(16, 10);
+  const std::vector<int> seed{37, 38, 200};
+  std::vector<char> in(static_cast<std::size_t>(mesh.num_faces()), 0);
+  for (int f : seed) in[f] = 1;
+  for (int rings = 0; rings <= 3; ++rings) {
+    std::vector<int> expected;
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      if (in[f]) expected.push_back(f);
+    EXPECT_EQ(grow_faces(mesh, seed, rings), expected) << rings;
+    std::vector<char> next = in;
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      for (int g = 0; g < mesh.num_faces() && !next[f]; ++g)
+        for (int a = 0; a < 3 && in[g] && !next[f]; ++a)
+          for (int b = 0; b < 3; ++b) next[f] = next[f] || mesh.F()(f, a) == mesh.F()(g, b);
+    in.swap(next);
+  }
+  EXPECT_GT(grow_faces(mesh, seed, 3).size(), grow_faces(mesh, seed, 2).size());
 }
 
 TEST(SplitMap, CarriesTheMapOverUnchangedAndItsSubspaceKeepsItSeamless) {
