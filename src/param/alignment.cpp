@@ -85,20 +85,26 @@ struct Rel {
   double tau;
 };
 
+// Every two uses of one component of one u_p by different slots i, j (vertex order, then use order), with
+// σ = sign_i sign_j: the slot graph of AlignedLines and of the relations below.
+template <class Visit>
+void for_each_slot_pair(const std::vector<std::vector<Use>>& uses, Visit visit) {
+  for (const auto& at : uses)
+    for (std::size_t a = 0; a < at.size(); ++a)
+      for (std::size_t b = a + 1; b < at.size(); ++b)
+        if (at[a].component == at[b].component && at[a].slot != at[b].slot)
+          visit(at[a], at[b], at[a].sign * at[b].sign);
+}
+
 // Relations: u-comp = sign_i (K_i - n_i) = sign_j (K_j - n_j)  =>  n_j = σ n_i + τ, σ = sign_i sign_j,
 // τ = K_j - σ K_i.
 std::vector<std::vector<Rel>> slot_relations(const SlotFrame& s, const std::vector<std::vector<Use>>& uses) {
   std::vector<std::vector<Rel>> rel(s.slots.size());
-  for (const auto& at : uses)
-    for (std::size_t a = 0; a < at.size(); ++a)
-      for (std::size_t b2 = a + 1; b2 < at.size(); ++b2) {
-        const Use &wi = at[a], &wj = at[b2];
-        if (wi.component != wj.component || wi.slot == wj.slot) continue;
-        const int sigma = wi.sign * wj.sign;
-        const double tau = std::round(known_coord(s, wj) - sigma * known_coord(s, wi));
-        rel[wi.slot].push_back({wj.slot, sigma, tau});
-        rel[wj.slot].push_back({wi.slot, sigma, -sigma * tau});  // n_i = σ n_j - σ τ
-      }
+  for_each_slot_pair(uses, [&](const Use& wi, const Use& wj, int sigma) {
+    const double tau = std::round(known_coord(s, wj) - sigma * known_coord(s, wi));
+    rel[wi.slot].push_back({wj.slot, sigma, tau});
+    rel[wj.slot].push_back({wi.slot, sigma, -sigma * tau});  // n_i = σ n_j - σ τ
+  });
   return rel;
 }
 
@@ -231,7 +237,6 @@ int drop_conflicting_curves(const SlotFrame& s, const std::vector<std::vector<Us
   return conflicts;
 }
 
-
 }  // namespace
 
 // Constant kernel on trivial-holonomy components (x and y decouple there): pin what no constraint fixes.
@@ -257,19 +262,14 @@ AlignedLines::AlignedLines(const Mesh& mesh, const CoverCut& cut, const Eigen::M
   std::vector<std::vector<int>> at_slot(static_cast<std::size_t>(ns));  // relations leaving each slot
   const std::vector<std::vector<quadcover::Use>> uses = slot_uses(frame);
   for (int p = 0; p < nv; ++p)
-    for (std::size_t a = 0; a < uses[p].size(); ++a) {
-      const auto& wa = uses[p][a];
-      uses_.push_back({wa.slot, wa.corner_face, wa.corner, wa.component * nv + p, wa.sign});
-      for (std::size_t b = a + 1; b < uses[p].size(); ++b) {
-        const auto& wb = uses[p][b];
-        if (wa.component != wb.component || wa.slot == wb.slot) continue;
-        const int sigma = wa.sign * wb.sign;
-        at_slot[wa.slot].push_back(static_cast<int>(relations_.size()));
-        relations_.push_back({wa.slot, wb.slot, sigma, wa.corner_face, wa.corner, wb.corner_face, wb.corner});
-        at_slot[wb.slot].push_back(static_cast<int>(relations_.size()));
-        relations_.push_back({wb.slot, wa.slot, sigma, wb.corner_face, wb.corner, wa.corner_face, wa.corner});
-      }
-    }
+    for (const quadcover::Use& w : uses[p])
+      uses_.push_back({w.slot, w.corner_face, w.corner, w.component * nv + p, w.sign});
+  for_each_slot_pair(uses, [&](const quadcover::Use& wa, const quadcover::Use& wb, int sigma) {
+    at_slot[wa.slot].push_back(static_cast<int>(relations_.size()));
+    relations_.push_back({wa.slot, wb.slot, sigma, wa.corner_face, wa.corner, wb.corner_face, wb.corner});
+    at_slot[wb.slot].push_back(static_cast<int>(relations_.size()));
+    relations_.push_back({wb.slot, wa.slot, sigma, wb.corner_face, wb.corner, wa.corner_face, wa.corner});
+  });
   trace_lines(mesh, cut, at_slot);
 }
 
