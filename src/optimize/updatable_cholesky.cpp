@@ -218,11 +218,14 @@ bool FactorTrial::rank1(const UpdatableCholesky& F, const std::vector<SparseEntr
     col[0] = c * sd;
     const Complex sa = s * std::conj(alpha);
     const int* rows = Li + Lp[j];
-    for (int p = 1; p < len; ++p) {
-      const Complex l = col[p];
+    const double inv_sd = 1.0 / sd;
+    for (int p = 1; p < len; ++p) {  // in real arithmetic: no NaN branches of std::complex's product, no division
+      const double lr = col[p].real(), li = col[p].imag();
       Complex& wi = w_[rows[p]];
-      col[p] = (l + sa * wi) / sd;
-      wi -= alpha * l;
+      const double wr = wi.real(), wim = wi.imag();
+      col[p] = Complex((lr + (sa.real() * wr - sa.imag() * wim)) * inv_sd,
+                       (li + (sa.real() * wim + sa.imag() * wr)) * inv_sd);
+      wi = Complex(wr - (alpha.real() * lr - alpha.imag() * li), wim - (alpha.real() * li + alpha.imag() * lr));
     }
     s /= d;
   }
@@ -297,7 +300,10 @@ double FactorTrial::evaluate_full(const UpdatableCholesky& F, const Eigen::Vecto
     x[j] = xj;
     const int len = Lp[j + 1] - Lp[j];
     const int* rows = Li + Lp[j];
-    for (int p = 1; p < len; ++p) x[rows[p]] -= col[p] * xj;
+    for (int p = 1; p < len; ++p) {  // x_i -= L_ij x_j in real arithmetic (std::complex's product has NaN branches)
+      const double a = col[p].real(), b = col[p].imag();
+      x[rows[p]] -= Complex(a * xj.real() - b * xj.imag(), a * xj.imag() + b * xj.real());
+    }
   }
   energy_ = xfull_.squaredNorm();
   evaluated_ = full_ = true;
