@@ -1,7 +1,10 @@
 #pragma once
 // Test helper: deterministic pseudo-random base sets B of interior vertices.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -24,6 +27,18 @@ inline std::vector<int> random_interior_vertices(const Mesh& mesh, int count, un
   }
   std::sort(chosen.begin(), chosen.end());
   return chosen;
+}
+
+/// A case of the suites on shipped meshes: tests/data/`mesh` with random_interior_vertices(mesh, num_base, seed).
+struct BaseSetCase {
+  std::string mesh;
+  int num_base;
+  unsigned seed;
+};
+
+/// The case's name in the test list: MESH_B<num_base>.
+inline std::string base_set_case_name(const ::testing::TestParamInfo<BaseSetCase>& info) {
+  return info.param.mesh + "_B" + std::to_string(info.param.num_base);
 }
 
 }  // namespace quadcover::testing

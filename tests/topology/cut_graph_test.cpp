@@ -10,23 +10,19 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/union_find.h"
 #include "support/test_meshes.h"
 #include "topology/base_sets.h"
-#include "common/union_find.h"
 
 namespace quadcover {
 namespace {
 
-struct CutGraphCase {
-  std::string mesh;
-  int num_base;  // random interior base vertices
-  unsigned seed;
-};
-std::string case_name(const ::testing::TestParamInfo<CutGraphCase>& info) {
+using testing::BaseSetCase;
+std::string case_name(const ::testing::TestParamInfo<BaseSetCase>& info) {
   return info.param.mesh + "_B" + std::to_string(info.param.num_base) + "_s" + std::to_string(info.param.seed);
 }
 
-class CutGraphOnMeshes : public ::testing::TestWithParam<CutGraphCase> {
+class CutGraphOnMeshes : public ::testing::TestWithParam<BaseSetCase> {
  protected:
   void SetUp() override {
     mesh_ = testing::load_test_mesh(GetParam().mesh);
@@ -138,16 +134,16 @@ TEST_P(CutGraphOnMeshes, IsDeterministic) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CutGraphOnMeshes,
-                         ::testing::Values(CutGraphCase{"torus_5k", 0, 1}, CutGraphCase{"torus_5k", 4, 2},
-                                           CutGraphCase{"eight_genus2", 0, 1}, CutGraphCase{"eight_genus2", 7, 3},
-                                           CutGraphCase{"3holes_genus3", 0, 1}, CutGraphCase{"fertility_genus4", 0, 1},
-                                           CutGraphCase{"couplingdown_genus9", 0, 1},
-                                           CutGraphCase{"couplingdown_genus9", 5, 4}, CutGraphCase{"bunny_3k", 0, 1},
-                                           CutGraphCase{"bunny_3k", 5, 5}, CutGraphCase{"spot", 2, 6},
-                                           CutGraphCase{"cow", 12, 7}, CutGraphCase{"lilium_disk", 0, 1},
-                                           CutGraphCase{"lilium_disk", 3, 8}, CutGraphCase{"camelhead_boundary", 4, 9},
-                                           CutGraphCase{"mech_holes_shark", 0, 1},
-                                           CutGraphCase{"bunny_20k_holes", 6, 10}),
+                         ::testing::Values(BaseSetCase{"torus_5k", 0, 1}, BaseSetCase{"torus_5k", 4, 2},
+                                           BaseSetCase{"eight_genus2", 0, 1}, BaseSetCase{"eight_genus2", 7, 3},
+                                           BaseSetCase{"3holes_genus3", 0, 1}, BaseSetCase{"fertility_genus4", 0, 1},
+                                           BaseSetCase{"couplingdown_genus9", 0, 1},
+                                           BaseSetCase{"couplingdown_genus9", 5, 4}, BaseSetCase{"bunny_3k", 0, 1},
+                                           BaseSetCase{"bunny_3k", 5, 5}, BaseSetCase{"spot", 2, 6},
+                                           BaseSetCase{"cow", 12, 7}, BaseSetCase{"lilium_disk", 0, 1},
+                                           BaseSetCase{"lilium_disk", 3, 8}, BaseSetCase{"camelhead_boundary", 4, 9},
+                                           BaseSetCase{"mech_holes_shark", 0, 1},
+                                           BaseSetCase{"bunny_20k_holes", 6, 10}),
                          case_name);
 
 // With one base vertex on a closed surface the output is a system of 2g loops (thesis 1.3): on a torus of revolution

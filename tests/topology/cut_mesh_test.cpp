@@ -43,13 +43,9 @@ void expect_disk(const Mesh& mesh, const Eigen::VectorXi& cut, const CutMesh& cm
   EXPECT_EQ(static_cast<int>(total), expected_length);
 }
 
-struct CutMeshCase {
-  std::string mesh;
-  int num_base;
-  unsigned seed;
-};
+using testing::BaseSetCase;
 
-class CutMeshOnMeshes : public ::testing::TestWithParam<CutMeshCase> {};
+class CutMeshOnMeshes : public ::testing::TestWithParam<BaseSetCase> {};
 
 TEST_P(CutMeshOnMeshes, CutGraphCutsToADisk) {
   const Mesh mesh = testing::load_test_mesh(GetParam().mesh);
@@ -65,20 +61,18 @@ TEST_P(CutMeshOnMeshes, CutGraphCutsToADisk) {
 
 INSTANTIATE_TEST_SUITE_P(
     Meshes, CutMeshOnMeshes,
-    ::testing::Values(CutMeshCase{"torus_5k", 0, 1}, CutMeshCase{"torus_5k", 3, 11}, CutMeshCase{"eight_genus2", 0, 1},
-                      CutMeshCase{"eight_genus2", 9, 12}, CutMeshCase{"3holes_genus3", 0, 1},
-                      CutMeshCase{"3holes_genus3", 4, 13}, CutMeshCase{"fertility_genus4", 0, 1},
-                      CutMeshCase{"fertility_genus4", 8, 14}, CutMeshCase{"couplingdown_genus9", 0, 1},
-                      CutMeshCase{"couplingdown_genus9", 6, 15}, CutMeshCase{"bunny_3k", 2, 16},
-                      CutMeshCase{"bunny_3k", 10, 17}, CutMeshCase{"spot", 8, 18}, CutMeshCase{"cow", 3, 19},
-                      CutMeshCase{"fandisk", 5, 20}, CutMeshCase{"lilium_disk", 0, 1},
-                      CutMeshCase{"lilium_disk", 6, 21}, CutMeshCase{"camelhead_boundary", 0, 1},
-                      CutMeshCase{"camelhead_boundary", 5, 22}, CutMeshCase{"mech_holes_shark", 0, 1},
-                      CutMeshCase{"mech_holes_shark", 4, 23}, CutMeshCase{"bunny_20k_holes", 0, 1},
-                      CutMeshCase{"bunny_20k_holes", 7, 24}),
-    [](const ::testing::TestParamInfo<CutMeshCase>& info) {
-      return info.param.mesh + "_B" + std::to_string(info.param.num_base);
-    });
+    ::testing::Values(BaseSetCase{"torus_5k", 0, 1}, BaseSetCase{"torus_5k", 3, 11}, BaseSetCase{"eight_genus2", 0, 1},
+                      BaseSetCase{"eight_genus2", 9, 12}, BaseSetCase{"3holes_genus3", 0, 1},
+                      BaseSetCase{"3holes_genus3", 4, 13}, BaseSetCase{"fertility_genus4", 0, 1},
+                      BaseSetCase{"fertility_genus4", 8, 14}, BaseSetCase{"couplingdown_genus9", 0, 1},
+                      BaseSetCase{"couplingdown_genus9", 6, 15}, BaseSetCase{"bunny_3k", 2, 16},
+                      BaseSetCase{"bunny_3k", 10, 17}, BaseSetCase{"spot", 8, 18}, BaseSetCase{"cow", 3, 19},
+                      BaseSetCase{"fandisk", 5, 20}, BaseSetCase{"lilium_disk", 0, 1},
+                      BaseSetCase{"lilium_disk", 6, 21}, BaseSetCase{"camelhead_boundary", 0, 1},
+                      BaseSetCase{"camelhead_boundary", 5, 22}, BaseSetCase{"mech_holes_shark", 0, 1},
+                      BaseSetCase{"mech_holes_shark", 4, 23}, BaseSetCase{"bunny_20k_holes", 0, 1},
+                      BaseSetCase{"bunny_20k_holes", 7, 24}),
+    testing::base_set_case_name);
 
 // Many random base sets on a small genus-2 mesh.
 TEST(CutMesh, RandomBaseSetsAlwaysGiveADisk) {

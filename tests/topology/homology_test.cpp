@@ -17,13 +17,9 @@
 namespace quadcover {
 namespace {
 
-struct HomologyCase {
-  std::string mesh;
-  int num_base;
-  unsigned seed;
-};
+using testing::BaseSetCase;
 
-class HomologyOnMeshes : public ::testing::TestWithParam<HomologyCase> {
+class HomologyOnMeshes : public ::testing::TestWithParam<BaseSetCase> {
  protected:
   void SetUp() override {
     mesh_ = testing::load_test_mesh(GetParam().mesh);
@@ -145,18 +141,16 @@ TEST_P(HomologyOnMeshes, GradientsHaveZeroPeriods) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, HomologyOnMeshes,
-                         ::testing::Values(HomologyCase{"torus_5k", 0, 1}, HomologyCase{"torus_5k", 5, 2},
-                                           HomologyCase{"eight_genus2", 0, 3}, HomologyCase{"eight_genus2", 8, 4},
-                                           HomologyCase{"3holes_genus3", 3, 5}, HomologyCase{"fertility_genus4", 0, 6},
-                                           HomologyCase{"couplingdown_genus9", 0, 7},
-                                           HomologyCase{"couplingdown_genus9", 6, 8}, HomologyCase{"bunny_3k", 4, 9},
-                                           HomologyCase{"lilium_disk", 3, 10}, HomologyCase{"mech_holes_shark", 0, 11},
-                                           HomologyCase{"mech_holes_shark", 5, 12},
-                                           HomologyCase{"bunny_20k_holes", 0, 13},
-                                           HomologyCase{"bunny_20k_holes", 4, 14}),
-                         [](const ::testing::TestParamInfo<HomologyCase>& info) {
-                           return info.param.mesh + "_B" + std::to_string(info.param.num_base);
-                         });
+                         ::testing::Values(BaseSetCase{"torus_5k", 0, 1}, BaseSetCase{"torus_5k", 5, 2},
+                                           BaseSetCase{"eight_genus2", 0, 3}, BaseSetCase{"eight_genus2", 8, 4},
+                                           BaseSetCase{"3holes_genus3", 3, 5}, BaseSetCase{"fertility_genus4", 0, 6},
+                                           BaseSetCase{"couplingdown_genus9", 0, 7},
+                                           BaseSetCase{"couplingdown_genus9", 6, 8}, BaseSetCase{"bunny_3k", 4, 9},
+                                           BaseSetCase{"lilium_disk", 3, 10}, BaseSetCase{"mech_holes_shark", 0, 11},
+                                           BaseSetCase{"mech_holes_shark", 5, 12},
+                                           BaseSetCase{"bunny_20k_holes", 0, 13},
+                                           BaseSetCase{"bunny_20k_holes", 4, 14}),
+                         testing::base_set_case_name);
 
 // A cylinder has one relative generator (a path from the bottom to the top circle) whose dual cycle runs around.
 TEST(Homology, CylinderHasOneBoundaryToBoundaryGenerator) {
