@@ -144,7 +144,7 @@ struct JobArgs {
   bool align_curves = true;
   int fold_refinement_rounds = PipelineOptions{}.fold_refinement_rounds;
   int validity_retries = PipelineOptions{}.validity_retries;
-  bool round_curves = false;
+  bool round_curves = ParamOptions{}.alignment.round_with_periods;
   bool merge_cones = PipelineOptions{}.merge_coincident_cones, move_cones = PipelineOptions{}.move_wound_cones;
 };
 
@@ -358,7 +358,8 @@ constexpr const char* kParameterizeDoc =
     "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
     "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
     "round_curves: with align_curves, round the periods and the curves' integers together (the CLI's "
-    "--round-curves; falls back to the map without when that one is less valid). "
+    "--round-curves; the curves through wrong windings are freed, and it falls back to the map without when "
+    "that one is more valid). "
     "fold_refinement_rounds: rounds of edge splits around triangles left flipped or collapsed (the CLI's "
     "--refine-folds; 0 = off). "
     "validity_retries: runs of the job at nearby densities while the result is not valid (the CLI's --retries; "
@@ -396,8 +397,7 @@ void def_jobs(py::module_& m) {
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones,
-         py::object progress) {
+         bool round_curves, bool merge_cones, bool move_cones, py::object progress) {
         return parameterize_py(V, F,
                                job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
                                         keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
@@ -412,19 +412,17 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries, py::arg("round_curves") = false,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
-      py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
-      py::arg("progress") = py::none(), kParameterizeDoc);
+      py::arg("move_cones") = PipelineOptions{}.move_wound_cones, py::arg("progress") = py::none(), kParameterizeDoc);
   m.def(
       "remesh",
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones,
-         int smooth_quads,
-         double smooth_rigidity,
+         bool round_curves, bool merge_cones, bool move_cones, int smooth_quads, double smooth_rigidity,
          py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
@@ -439,7 +437,8 @@ void def_jobs(py::module_& m) {
       py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
       py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
       py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries, py::arg("round_curves") = false,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,

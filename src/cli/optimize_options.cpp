@@ -66,7 +66,9 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   add_switch(cmd, "--round-curves", options.round_curves,
              "With --align: round the periods and the curves' integers together, so that the cones go where the "
              "curves can be straight (every curve of at least 3 grid units is pinned; quads up to the boundary); "
-             "when that map is less valid, the one without is kept (report: rounding.curve_rounding_dropped)");
+             "the curves through the map's wrong windings are freed, and when it is still less valid than the map "
+             "without, that one is kept (report: aligned_curves[].left_free_because, "
+             "rounding.curve_rounding_dropped)");
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
                  "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "

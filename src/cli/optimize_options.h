@@ -36,7 +36,7 @@ struct OptimizeCliOptions {
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
   std::string feature_angle = "35";  ///< sharp feature angle in degrees, or "off" (= 0), field/feature_alignment.h
   bool align = true;                 ///< see ParamOptions::alignment
-  bool round_curves = false;         ///< ParamOptions::alignment.round_with_periods
+  bool round_curves = ParamOptions{}.alignment.round_with_periods;  ///< ParamOptions::alignment.round_with_periods
 };
 
 /// --fill as FieldOptions::fill. \throw InputError naming --fill for another word.

@@ -172,7 +172,10 @@ void trace_curve(const SlotFrame& s, const std::vector<std::vector<Rel>>& rel, c
   const double shift = std::abs(sum / count - curves[k].value);
   // A line the rounding chose is pinned whatever its shift and spread on the free map: the periods were rounded for
   // it, and the constrained energy they minimized is what pinning it costs.
-  const char* because = !consistent                   ? kTwoIntegers
+  // A line the job freed (CurveAlignmentOptions::free_line_vertices) that would have been pinned says so first.
+  const bool freed = given && !given->freed.empty() && given->freed[k] && length >= limits.min_length;
+  const char* because = freed                         ? "freed: the map with it pinned was not valid there"
+                        : !consistent                 ? kTwoIntegers
                         : chosen                      ? ""
                         : length < limits.min_length  ? "shorter than the minimum length"
                         : shift > limits.max_shift    ? "too far from an integer"
@@ -323,6 +326,15 @@ void AlignedLines::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
     else
       usable_[line_of_[rel.from]] = 0;  // the line comes back reversed: it fixes its own integer, not an iso-line
   }
+}
+
+std::vector<char> AlignedLines::lines_touching(const std::vector<char>& vertex_flags) const {
+  std::vector<char> touching(static_cast<std::size_t>(num_lines_), 0);
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    const int e = slots_[i].edge;
+    if (vertex_flags[mesh_->E()(e, 0)] || vertex_flags[mesh_->E()(e, 1)]) touching[line_of_[i]] = 1;
+  }
+  return touching;
 }
 
 double AlignedLines::coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const {

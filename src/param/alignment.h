@@ -53,10 +53,14 @@ struct CurveAlignmentOptions {
   /// pinning crease fragments shorter than min_length costs distortion and folds for no visible gain.
   CurveLimits limits{.max_shift = 0.35, .min_length = 3.0, .max_spread = 1.0};
   /// Round the periods and the lines' integers together (param/curve_rounding.h): the lines of at least
-  /// limits.min_length grid units are then pinned whatever their shift and spread on the free map. Off by default:
-  /// on the shipped CAD meshes the map it gives is less valid and the job falls back, at twice the time
-  /// (BENCHMARKS.md, "Curves rounded with the periods").
+  /// limits.min_length grid units are then pinned whatever their shift and spread on the free map. The job frees the
+  /// lines through the wrong windings of that map, and falls back to the period-matrix rounding when the map is still
+  /// less valid. Off by default: it costs distortion and time where it gains nothing (BENCHMARKS.md, "Curves freed
+  /// at wrong windings").
   bool round_with_periods = false;
+  /// With round_with_periods: the lines through any of these vertices (ascending) are not rounded with the periods
+  /// and stay free. The job frees the lines around the spots where the map with every line pinned was not valid.
+  std::vector<int> free_line_vertices;
 };
 
 /// The lines of the aligned curves (connected sets of slots fixing one component of u at shared vertices), with what
@@ -76,6 +80,8 @@ class AlignedLines {
   const std::vector<char>& line_usable() const { return usable_; }
   /// Per line: the length of its edges in model units. \pre none
   const std::vector<double>& line_lengths() const { return lengths_; }
+  /// Per line: whether an endpoint of one of its edges is flagged in `vertex_flags`. \pre vertex_flags is #V.
+  std::vector<char> lines_touching(const std::vector<char>& vertex_flags) const;
   /// Residuals of the lines in `lines` only: their closing relations, and n_k − (the integer of each branch point on
   /// line k) for the per-line integers n. Linear in (known, n). \pre known #F by 3; lines and n per line.
   Eigen::VectorXd line_residuals(const Eigen::MatrixX3cd& known, const Eigen::VectorXd& n,
@@ -128,6 +134,7 @@ class AlignedLines {
 struct GivenLines {
   std::vector<char> lines;  ///< per line
   Eigen::VectorXd values;   ///< per line: its integer
+  std::vector<char> freed;  ///< per line: left free by CurveAlignmentOptions::free_line_vertices (or empty)
 };
 
 /// Fixes, on each trivial-holonomy component of `kernel_pins`, the components of u there that nothing in `fixed`

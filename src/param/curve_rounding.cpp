@@ -90,11 +90,13 @@ Responses responses(const Mesh& mesh, const CurveRoundingInputs& in, const Varia
   return r;
 }
 
-/// The lines to pin: usable and at least min_length grid units long.
-std::vector<int> chosen_lines(const AlignedLines& aligned, double edge_length, double min_length) {
+/// The lines to pin: usable, at least min_length grid units long and not left free.
+std::vector<int> chosen_lines(const CurveRoundingInputs& in, double min_length) {
   std::vector<int> lines;
-  for (int k = 0; k < aligned.num_lines(); ++k)
-    if (aligned.line_usable()[k] && aligned.line_lengths()[k] / edge_length >= min_length) lines.push_back(k);
+  for (int k = 0; k < in.aligned.num_lines(); ++k)
+    if (in.aligned.line_usable()[k] && in.aligned.line_lengths()[k] / in.edge_length >= min_length &&
+        (in.left_free.empty() || !in.left_free[k]))
+      lines.push_back(k);
   return lines;
 }
 
@@ -106,7 +108,7 @@ CurveRounding round_with_curves(const Mesh& mesh, const CurveRoundingInputs& in,
   Variables vars;
   for (int j = 0; j < in.cut.num_paths(); ++j)
     if (in.cut.dependent_path[in.cut.path_component[j]] != j) vars.paths.push_back(j);
-  vars.lines = chosen_lines(in.aligned, in.edge_length, min_length);
+  vars.lines = chosen_lines(in, min_length);
   const int m = static_cast<int>(vars.paths.size()), K = static_cast<int>(vars.lines.size()), J = vars.count();
   const double bytes = 8.0 * (J + 1) * (4.0 * mesh.num_faces() + 6.0 * mesh.num_vertices());
   if (K == 0 || bytes > max_response_bytes) return out;

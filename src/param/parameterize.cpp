@@ -258,13 +258,19 @@ bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const Harmon
                               std::optional<GivenLines>& given) {
   if (!lines.aligned || !options.alignment.round_with_periods || options.rounding.strategy == RoundingStrategy::Direct)
     return false;
-  const CurveRoundingInputs in{cc, correction, *lines.aligned, lines.known_free, P.periods, P.rounded_periods,
-                               P.edge_length};
+  std::vector<char> left_free;
+  if (!options.alignment.free_line_vertices.empty()) {
+    std::vector<char> flags(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    for (const int v : options.alignment.free_line_vertices) flags[v] = 1;
+    left_free = lines.aligned->lines_touching(flags);
+  }
+  const CurveRoundingInputs in{cc,        correction,        *lines.aligned, lines.known_free,
+                               P.periods, P.rounded_periods, P.edge_length,  left_free};
   const CurveRounding r =
       round_with_curves(mesh, in, options.lattice, options.rounding, options.alignment.limits.min_length);
   if (!r.active) return false;
   for (std::size_t a = 0; a < r.paths.size(); ++a) P.rounded_periods[r.paths[a]] = r.periods[a];
-  given = GivenLines{r.lines, r.line_values};
+  given = GivenLines{r.lines, r.line_values, std::move(left_free)};
   auto& diag = P.diagnostics.rounding;
   diag.strategy = to_string(r.search.used);
   diag.variables = r.variables;

@@ -4,13 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "common/seconds_since.h"
 #include "field/compute_frame_field.h"
-#include "pipeline/cone_merging.h"
-#include "pipeline/retry_until_valid.h"
+#include "mesh/vertex_rings.h"
 #include "optimize/optimize_field.h"
+#include "pipeline/cone_merging.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/retry_until_valid.h"
 #include "quad/extract_quads.h"
 
 namespace quadcover {
@@ -54,22 +56,53 @@ void note_cut_short(const ProgressSink& progress, bool unfinished, ParamJob& job
   if (unfinished && progress.skip_improvements()) record_cut_short(job, stage);
 }
 
+/// The vertices within `rings` rings of the map's wrongly wound vertices, ascending.
+std::vector<int> wrong_winding_spots(const Mesh& mesh, const Parameterization& map, int rings) {
+  std::vector<char> flags(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const int v : wrong_winding_vertices(mesh, map)) flags[v] = 1;
+  flags = grow_vertex_rings(mesh, std::move(flags), rings);
+  std::vector<int> spots;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (flags[v]) spots.push_back(v);
+  return spots;
+}
+
 /// Rounding the curves with the periods (param/curve_rounding.h) pins lines that a coarse triangulation cannot always
-/// hold without a fold or a wrong winding. When the map it gave is not valid, the map with the period-matrix rounding
-/// alone is made as well (from the field keep-better kept) and the more valid one goes on (a tie keeps the curves);
-/// the job's options then say which. Its time is the job's stage "curve_rounding_fallback".
-void fall_back_from_curve_rounding(const Mesh& mesh, const FrameField& kept_field, ProgressSink& progress,
+/// hold without a wrong winding (a cone beside a line's image, a fan too coarse for the lines through it; the fold
+/// refinement later removes non-positive triangles, rarely wrong windings). While the job's map has wrong windings,
+/// the lines through them (within kRings rings) are freed and the map made again with the others pinned, kept when
+/// more valid (at most kRounds times). When some are left, the map with the period-matrix rounding alone is made as
+/// well and goes on if more valid; the job's options then say which.
+/// Their times are the stages "curve_freeing" and "curve_rounding_fallback".
+void free_curves_at_wrong_windings(const Mesh& mesh, const FrameField& kept_field, ProgressSink& progress,
                                    ParamJob& job) {
+  constexpr int kRounds = 2, kRings = 2;
   ParamOptions& param = job.options.param;
-  const Validity with_curves = map_validity(mesh, job.map);
-  if (job.map.diagnostics.rounding.curve_lines == 0 || with_curves.valid()) return;
-  const auto start = std::chrono::steady_clock::now();
+  auto wound = [&] {
+    return job.map.diagnostics.rounding.curve_lines > 0 && map_validity(mesh, job.map).wrong_windings > 0;
+  };
+  if (!wound()) return;
+  StageMeter meter;
+  for (int round = 0; round < kRounds && wound(); ++round) {
+    ParamOptions freeing = param;
+    std::vector<int>& freed = freeing.alignment.free_line_vertices;
+    const std::vector<int> spots = wrong_winding_spots(mesh, job.map, kRings);
+    std::vector<int> all;
+    std::set_union(freed.begin(), freed.end(), spots.begin(), spots.end(), std::back_inserter(all));
+    freed = std::move(all);
+    Parameterization map = parameterize(mesh, kept_field, freeing, progress);
+    if (!(map_validity(mesh, map) < map_validity(mesh, job.map))) break;
+    job.map = std::move(map);
+    param = std::move(freeing);
+  }
+  lap(meter, job, "curve_freeing");
+  if (!wound()) return;
   ParamOptions plain = param;
   plain.alignment.round_with_periods = false;
+  plain.alignment.free_line_vertices.clear();
   Parameterization map = parameterize(mesh, kept_field, plain, progress);
-  job.seconds.emplace_back("curve_rounding_fallback", seconds_since(start));
-  if (!(map_validity(mesh, map) < with_curves)) return;
-  map.diagnostics.rounding.curve_rounding_dropped = true;
+  lap(meter, job, "curve_rounding_fallback");
+  if (!(map_validity(mesh, map) < map_validity(mesh, job.map))) return;
   job.map = std::move(map);
   param = plain;
 }
@@ -331,7 +364,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,
                                      job.optimize);
   job.field = job.optimize.value("kept", "optimized") == "original" ? field.field : std::move(optimized.field);
-  fall_back_from_curve_rounding(mesh, job.field, finishing, job);
+  free_curves_at_wrong_windings(mesh, job.field, finishing, job);
   if (check) check(mesh, job.map);
   note_cut_short(progress, options.keep_better && oo.mode != OptimizeMode::None && !job.optimize.contains("E_D_plus_E_H_original"),
                  job, "keep-better");
@@ -354,6 +387,9 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
   if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
   merge_close_cones(input, field, oo.lambda, before_moves, std::move(close_merges), job, finishing);
+  // The maps the stages after the fallback made do not know it: the options say it.
+  job.map.diagnostics.rounding.curve_rounding_dropped =
+      options.param.alignment.round_with_periods && !job.options.param.alignment.round_with_periods;
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
   for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
   return job;

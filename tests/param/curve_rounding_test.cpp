@@ -13,13 +13,14 @@
 namespace quadcover {
 namespace {
 
-ParamOptions rounding_the_curves() {
+ParamOptions rounding_the_curves(bool with_periods) {
   ParamOptions o;
-  o.alignment.round_with_periods = true;
+  o.alignment.round_with_periods = with_periods;
   return o;
 }
 
-/// The mesh's map with the default rounding (D) and with the curves rounded with the periods (R).
+/// The mesh's map with the period-matrix rounding alone (D, the default) and with the curves rounded with the periods
+/// (R).
 struct BothMaps {
   Mesh mesh;
   Parameterization D, R;
@@ -28,8 +29,8 @@ struct BothMaps {
 BothMaps both_maps(const char* name) {
   BothMaps m{testing::load_test_mesh(name), {}, {}};
   const FrameField field = compute_frame_field(m.mesh);
-  m.D = parameterize(m.mesh, field);
-  m.R = parameterize(m.mesh, field, rounding_the_curves());
+  m.D = parameterize(m.mesh, field, rounding_the_curves(false));
+  m.R = parameterize(m.mesh, field, rounding_the_curves(true));
   return m;
 }
 
@@ -83,6 +84,43 @@ TEST(CurveRounding, WithoutCurvesTheMapIsUnchanged) {
   const auto [mesh, D, R] = both_maps("torus_5k");
   EXPECT_EQ(R.diagnostics.rounding.curve_lines, 0);
   EXPECT_TRUE(D.uv == R.uv);
+}
+
+// CurveAlignmentOptions::free_line_vertices: the lines through the given vertices are not rounded with the periods
+// and stay free with that reason; the lines away from them are still pinned exactly.
+TEST(CurveRounding, FreesExactlyTheLinesThroughTheGivenVertices) {
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  const FrameField field = compute_frame_field(mesh);
+  const Parameterization all = parameterize(mesh, field, rounding_the_curves(true));
+  ASSERT_GT(enforced_lines(all), 2);
+  int line = -1;  // the first enforced line; free the lines through the first vertex of its first edge
+  for (std::size_t k = 0; k < all.aligned_curves.size() && line < 0; ++k)
+    if (all.aligned_curves[k].enforced) line = static_cast<int>(k);
+  ParamOptions options = rounding_the_curves(true);
+  const int vertex = mesh.E()(all.aligned_curves[line].edges.front(), 0);
+  options.alignment.free_line_vertices = {vertex};
+  const Parameterization freed = parameterize(mesh, field, options);
+  ASSERT_EQ(freed.aligned_curves.size(), all.aligned_curves.size());
+  int freed_lines = 0;
+  for (std::size_t k = 0; k < freed.aligned_curves.size(); ++k) {
+    const auto& c = freed.aligned_curves[k];
+    bool through = false;
+    for (const int e : c.edges) through = through || mesh.E()(e, 0) == vertex || mesh.E()(e, 1) == vertex;
+    SCOPED_TRACE(k);
+    if (through && all.aligned_curves[k].enforced) {
+      EXPECT_FALSE(c.enforced);
+      EXPECT_EQ(c.left_free_because, "freed: the map with it pinned was not valid there");
+      ++freed_lines;
+    } else if (!through) {
+      EXPECT_NE(c.left_free_because, "freed: the map with it pinned was not valid there");
+    }
+    if (c.enforced) {
+      EXPECT_LT(c.max_deviation, 1e-9 * (1 + std::abs(c.value)));
+    }
+  }
+  EXPECT_GE(freed_lines, 1);
+  EXPECT_LE(freed.diagnostics.rounding.curve_lines, all.diagnostics.rounding.curve_lines - freed_lines);
+  EXPECT_TRUE(measure_seams(mesh, freed.uv, 1e-9).seamless);
 }
 
 }  // namespace

@@ -228,11 +228,24 @@ TEST(ValidityRetries, AVertexMovedOutOfItsRingWindsZeroTimesAndIsFound) {
 namespace quadcover {
 namespace {
 
-// Rounding the curves with the periods (param/curve_rounding.h) pins every crease of fandisk; that map keeps more
-// wrong windings than the period-matrix rounding's, so the job falls back to the latter, says so, and ends exactly as
-// valid as without the option. Where the pinned map is as valid (lilium_disk's boundary loop), it is kept.
-TEST(CurveRoundingFallback, KeepsTheMoreValidMapAndSaysWhich) {
-  for (const char* name : {"fandisk", "lilium_disk"}) {
+/// The aligned curves of `map` that are enforced, and those freed at wrong windings.
+std::pair<int, int> enforced_and_freed(const Parameterization& map) {
+  int enforced = 0, freed = 0;
+  for (const Parameterization::Curve& c : map.aligned_curves) {
+    enforced += c.enforced ? 1 : 0;
+    freed += c.left_free_because.rfind("freed", 0) == 0 ? 1 : 0;
+  }
+  return {enforced, freed};
+}
+
+// Rounding the curves with the periods (param/curve_rounding.h, --round-curves) pins every crease of fandisk; that map
+// winds wrongly beside a few cones, so the job frees the curves there and keeps the others pinned: valid, with more
+// curves on iso-lines than the period-matrix rounding alone. cow's curves leave more wrong windings even when freed,
+// so the job falls back to the period-matrix map and says so; lilium_disk's boundary loop needs neither. The result
+// is never less valid than without the option.
+TEST(CurveRoundingFallback, FreesTheCurvesAtWrongWindingsAndFallsBackOnlyWhenStillWorse) {
+  for (const char* name : {"fandisk", "cow", "lilium_disk"}) {
+    SCOPED_TRACE(name);
     const Mesh mesh = testing::load_test_mesh(name);
     PipelineOptions plain;
     plain.validity_retries = 0;
@@ -241,18 +254,30 @@ TEST(CurveRoundingFallback, KeepsTheMoreValidMapAndSaysWhich) {
     const ParamJob a = parameterize_mesh(mesh, plain);
     const ParamJob b = parameterize_mesh(mesh, rounding);
     const Validity va = map_validity(a.mesh(mesh), a.map), vb = map_validity(b.mesh(mesh), b.map);
-    EXPECT_FALSE(va < vb) << name;  // never less valid
+    EXPECT_FALSE(va < vb);  // never less valid
     const bool dropped = b.map.diagnostics.rounding.curve_rounding_dropped;
-    EXPECT_EQ(dropped, !b.options.param.alignment.round_with_periods) << name;
-    EXPECT_EQ(b.map.diagnostics.rounding.curve_lines > 0, !dropped) << name;
-    if (std::string(name) == "fandisk") {
+    EXPECT_EQ(dropped, !b.options.param.alignment.round_with_periods);
+    EXPECT_EQ(b.map.diagnostics.rounding.curve_lines > 0, !dropped);
+    const auto [enforced_a, freed_a] = enforced_and_freed(a.map);
+    const auto [enforced_b, freed_b] = enforced_and_freed(b.map);
+    EXPECT_EQ(freed_a, 0);
+    auto ran = [&](const char* stage) {
+      return std::any_of(b.seconds.begin(), b.seconds.end(), [&](const auto& s) { return s.first == stage; });
+    };
+    if (std::string(name) == "cow") {
       EXPECT_TRUE(dropped);
-      EXPECT_TRUE(std::any_of(b.seconds.begin(), b.seconds.end(),
-                              [](const auto& s) { return s.first == "curve_rounding_fallback"; }));
-    } else {
-      EXPECT_FALSE(dropped);
-      EXPECT_TRUE(vb.valid());
+      EXPECT_TRUE(ran("curve_freeing"));
+      EXPECT_TRUE(ran("curve_rounding_fallback"));
+      continue;
     }
+    EXPECT_FALSE(dropped);
+    EXPECT_TRUE(vb.valid());
+    EXPECT_GT(enforced_b, enforced_a);
+    const bool fandisk = std::string(name) == "fandisk";
+    EXPECT_EQ(freed_b > 0, fandisk);
+    EXPECT_EQ(!b.options.param.alignment.free_line_vertices.empty(), fandisk);
+    EXPECT_EQ(ran("curve_freeing"), fandisk);
+    EXPECT_FALSE(ran("curve_rounding_fallback"));
   }
 }
 
