@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
@@ -252,7 +253,8 @@ struct CurveLines {
 };
 
 /// The rounding with the lines (param/curve_rounding.h) into P and `given`; false if it did not run (off, no line
-/// worth it, direct rounding, or too large), and the period matrix rounds alone.
+/// worth it, direct rounding, or too large), and the period matrix rounds alone. \throw InputError if
+/// options.alignment.free_line_vertices names a vertex the mesh does not have.
 bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const HarmonicCorrection& correction,
                               const CurveLines& lines, const ParamOptions& options, Parameterization& P,
                               std::optional<GivenLines>& given) {
@@ -261,7 +263,13 @@ bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const Harmon
   std::vector<char> left_free;
   if (!options.alignment.free_line_vertices.empty()) {
     std::vector<char> flags(static_cast<std::size_t>(mesh.num_vertices()), 0);
-    for (const int v : options.alignment.free_line_vertices) flags[v] = 1;
+    for (const int v : options.alignment.free_line_vertices) {
+      if (v < 0 || v >= mesh.num_vertices())
+        throw InputError("", 0,
+                         "parameterize: free_line_vertices names vertex " + std::to_string(v) + " of " +
+                             std::to_string(mesh.num_vertices()));
+      flags[v] = 1;
+    }
     left_free = lines.aligned->lines_touching(flags);
   }
   const CurveRoundingInputs in{cc,        correction,        *lines.aligned, lines.known_free,

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "common/errors.h"
 #include "field/compute_frame_field.h"
 #include "param/parameterize.h"
 #include "param/seams.h"
@@ -121,6 +122,8 @@ TEST(CurveRounding, FreesExactlyTheLinesThroughTheGivenVertices) {
   EXPECT_GE(freed_lines, 1);
   EXPECT_LE(freed.diagnostics.rounding.curve_lines, all.diagnostics.rounding.curve_lines - freed_lines);
   EXPECT_TRUE(measure_seams(mesh, freed.uv, 1e-9).seamless);
+  options.alignment.free_line_vertices = {mesh.num_vertices()};
+  EXPECT_THROW(parameterize(mesh, field, options), InputError);
 }
 
 }  // namespace
