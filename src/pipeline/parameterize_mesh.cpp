@@ -78,12 +78,12 @@ void free_curves_at_wrong_windings(const Mesh& mesh, const FrameField& kept_fiel
                                    ParamJob& job) {
   constexpr int kRounds = 2, kRings = 2;
   ParamOptions& param = job.options.param;
-  auto wound = [&] {
-    return job.map.diagnostics.rounding.curve_lines > 0 && map_validity(mesh, job.map).wrong_windings > 0;
-  };
-  if (!wound()) return;
+  const auto rounded = [&] { return job.map.diagnostics.rounding.curve_lines > 0; };
+  if (!rounded()) return;
+  Validity now = map_validity(mesh, job.map);  // of job.map
+  if (now.wrong_windings == 0) return;
   StageMeter meter;
-  for (int round = 0; round < kRounds && wound(); ++round) {
+  for (int round = 0; round < kRounds && rounded() && now.wrong_windings > 0; ++round) {
     ParamOptions freeing = param;
     std::vector<int>& freed = freeing.alignment.free_line_vertices;
     const std::vector<int> spots = wrong_winding_spots(mesh, job.map, kRings);
@@ -91,18 +91,20 @@ void free_curves_at_wrong_windings(const Mesh& mesh, const FrameField& kept_fiel
     std::set_union(freed.begin(), freed.end(), spots.begin(), spots.end(), std::back_inserter(all));
     freed = std::move(all);
     Parameterization map = parameterize(mesh, kept_field, freeing, progress);
-    if (!(map_validity(mesh, map) < map_validity(mesh, job.map))) break;
+    const Validity next = map_validity(mesh, map);
+    if (!(next < now)) break;
     job.map = std::move(map);
     param = std::move(freeing);
+    now = next;
   }
   lap(meter, job, "curve_freeing");
-  if (!wound()) return;
+  if (!rounded() || now.wrong_windings == 0) return;
   ParamOptions plain = param;
   plain.alignment.round_with_periods = false;
   plain.alignment.free_line_vertices.clear();
   Parameterization map = parameterize(mesh, kept_field, plain, progress);
   lap(meter, job, "curve_rounding_fallback");
-  if (!(map_validity(mesh, map) < map_validity(mesh, job.map))) return;
+  if (!(map_validity(mesh, map) < now)) return;
   job.map = std::move(map);
   param = plain;
 }
