@@ -3,10 +3,12 @@
 #include <iostream>
 
 #include "cli/common.h"
+#include "cli/huge_pages.h"
 #include "cli/registry.h"
 
 int main(int argc, char** argv) {
   using namespace quadcover;
+  cli::restart_with_huge_pages(argv);
   cli::run_start_time();  // --time-limit counts from here
   cli::install_interrupt_handler();
   CLI::App app{"quadcover: seamless quad-aligned parameterization and quad remeshing (QuadCover, Kälberer)"};

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdlib>
 #include <mutex>
 #include <vector>
 
@@ -73,6 +74,20 @@ std::int64_t process_peak_resident_bytes() {
   OpenStages& open = OpenStages::get();
   std::lock_guard lock(open.mutex);
   return std::max(open.process_peak, peak_resident_bytes());
+}
+
+bool malloc_asks_for_huge_pages() {
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)  // else not glibc's malloc
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (!tunables) return false;
+  const std::string t = tunables;
+  const std::string key = "glibc.malloc.hugetlb=";
+  for (std::size_t at = t.find(key); at != std::string::npos; at = t.find(key, at + 1))
+    if ((at == 0 || t[at - 1] == ':') && at + key.size() < t.size() &&
+        (t[at + key.size()] == '1' || t[at + key.size()] == '2'))
+      return true;
+#endif
+  return false;
 }
 
 StagePeakMemory::StagePeakMemory() { OpenStages::get().open(*this); }

@@ -37,6 +37,11 @@ inline std::int64_t peak_resident_bytes() { return detail::proc_status_bytes("Vm
 /// kernel refused (the peak then stays the process-wide one). \pre none
 bool reset_peak_resident();
 
+/// Whether this process's malloc asks the kernel for transparent huge pages: glibc with the tunable
+/// glibc.malloc.hugetlb=1 or 2 in GLIBC_TUNABLES, no sanitizer (read at start-up; the CLI sets it, cli/huge_pages.h).
+/// \pre none
+bool malloc_asks_for_huge_pages();
+
 /// Peak resident bytes since the process started, across resets; 0 if unknown. \pre none
 std::int64_t process_peak_resident_bytes();
 

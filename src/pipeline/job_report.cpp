@@ -150,7 +150,10 @@ nlohmann::json stage_memory_json(const std::string& stage, std::int64_t peak_byt
 nlohmann::json memory_json(const StagePeakBytes& peaks, int input_faces) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& [stage, bytes] : peaks) stages.push_back(stage_memory_json(stage, bytes, input_faces));
-  return {{"peak_bytes", process_peak_resident_bytes()}, {"input_faces", input_faces}, {"stages", stages}};
+  return {{"peak_bytes", process_peak_resident_bytes()},
+          {"input_faces", input_faces},
+          {"huge_pages", malloc_asks_for_huge_pages()},
+          {"stages", stages}};
 }
 
 }  // namespace

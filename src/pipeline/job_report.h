@@ -28,6 +28,7 @@ inline constexpr int kReportSchemaVersion = 1;
 ///   extraction, quad_mesh, surface_distance, feature_fidelity, quad_smoothing, surface_check (null for param),
 ///   warnings (sentences), seconds {stage: wall-clock seconds},
 ///   memory {peak_bytes (the process's peak resident bytes so far), input_faces (the input's triangles),
+///           huge_pages (malloc asks for transparent huge pages, common/memory.h malloc_asks_for_huge_pages),
 ///           stages [{stage, peak_bytes, bytes_per_face}]}: per stage, in pipeline order, under the names of
 ///           `seconds`, the peak resident bytes of the whole process during it (Linux VmHWM, reset at each stage;
 ///           0 elsewhere; jobs run in parallel in one process include each other's memory), and that per input face.

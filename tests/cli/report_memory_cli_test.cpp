@@ -1,8 +1,11 @@
 // The --report JSON of `param` and `remesh` carries the memory section (pipeline/job_report.h): a peak per timed
-// stage, the CLI's reading first and writing last.
+// stage, the CLI's reading first and writing last, and whether malloc asked for transparent huge pages
+// (cli/huge_pages.h).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.h"
@@ -31,6 +34,40 @@ TEST(ReportMemoryCli, ParamAndRemeshReportsHaveAPeakPerTimedStage) {
     EXPECT_GE(testing::memory_stage_index(r, "field"), 1) << command;
     EXPECT_EQ(testing::memory_stage_index(r, "extract") >= 0, command == "remesh");
   }
+  fs::remove_all(dir);
+}
+
+constexpr bool kGlibcMalloc =
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    false;  // the sanitizer's allocator
+#else
+    true;
+#endif
+
+/// Whether the CLI built like this test restarts itself with huge pages on this machine (cli/huge_pages.h).
+bool cli_restarts_with_huge_pages() {
+  if (!kGlibcMalloc) return false;
+  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(in, modes);
+  return modes.find("[madvise]") != std::string::npos;
+}
+
+TEST(ReportMemoryCli, HugePagesUnlessTheUserSetTheTunablesOrSaidNo) {
+  const fs::path dir = testing::fresh_dir("report_memory_cli", "huge_pages");
+  const std::string args = std::string(" ") + QUADCOVER_CLI + " param " + testing::data_path("bunny_3k") +
+                           testing::kWithoutRepairs + " -q -o " + (dir / "map.obj").string() + " --report ";
+  auto huge_pages = [&](const std::string& env, const std::string& name) {
+    const std::string report = (dir / (name + ".json")).string();
+    EXPECT_EQ(std::system(("env -u GLIBC_TUNABLES -u QUADCOVER_NO_HUGE_PAGES " + env + args + report).c_str()), 0);
+    fs::rename(dir / "map.obj", dir / (name + ".obj"));
+    return nlohmann::json::parse(testing::slurp(report))["memory"]["huge_pages"].get<bool>();
+  };
+  EXPECT_EQ(huge_pages("", "default"), cli_restarts_with_huge_pages());
+  EXPECT_FALSE(huge_pages("QUADCOVER_NO_HUGE_PAGES=1", "said_no"));
+  EXPECT_FALSE(huge_pages("GLIBC_TUNABLES=glibc.malloc.check=0", "own_tunables"));
+  EXPECT_EQ(huge_pages("GLIBC_TUNABLES=glibc.malloc.hugetlb=1", "own_huge_pages"), kGlibcMalloc);
+  EXPECT_EQ(testing::slurp(dir / "default.obj"), testing::slurp(dir / "said_no.obj"));  // the same map either way
   fs::remove_all(dir);
 }
 

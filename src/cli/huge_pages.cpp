@@ -1,0 +1,33 @@
+#include "cli/huge_pages.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace quadcover::cli {
+namespace {
+
+/// Whether the kernel backs memory that asks for it (madvise MADV_HUGEPAGE) with huge pages, and only that.
+bool huge_pages_on_request() {
+  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(in, modes);
+  return modes.find("[madvise]") != std::string::npos;
+}
+
+}  // namespace
+
+void restart_with_huge_pages(char** argv) {
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+  if (std::getenv("GLIBC_TUNABLES") || std::getenv(kNoHugePagesVariable) || !huge_pages_on_request()) return;
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv("GLIBC_TUNABLES");  // execv returned: it failed, run on as we are
+#else
+  (void)argv;
+#endif
+}
+
+}  // namespace quadcover::cli

@@ -1,0 +1,20 @@
+#pragma once
+// Transparent huge pages for the CLI's heap. glibc gives large blocks fresh pages from the kernel (mmap), and the
+// per-stage memory peaks give freed heap back (common/memory.h): on 10⁵ faces the solves then spend a fifth of their
+// time in page faults. glibc's tunable glibc.malloc.hugetlb=1 makes malloc ask for transparent huge pages, with 5×
+// fewer faults and the same peak (BENCHMARKS.md, "Transparent huge pages"). glibc reads tunables only when a process
+// starts, so the CLI starts itself once more with the tunable set.
+
+namespace quadcover::cli {
+
+/// The environment variable that stops the restart (any value): QUADCOVER_NO_HUGE_PAGES.
+inline constexpr const char* kNoHugePagesVariable = "QUADCOVER_NO_HUGE_PAGES";
+
+/// Executes this program again with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 and the same arguments when all hold:
+/// the C library is glibc, the build has no sanitizer, the kernel gives transparent huge pages on request
+/// (/sys/kernel/mm/transparent_hugepage/enabled is "[madvise]"), GLIBC_TUNABLES and QUADCOVER_NO_HUGE_PAGES are
+/// not set. Returns when it does not restart, or when the restart fails (the environment is then as it was).
+/// \pre called first in main, before any thread, file or signal handler exists.
+void restart_with_huge_pages(char** argv);
+
+}  // namespace quadcover::cli
