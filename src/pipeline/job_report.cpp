@@ -197,6 +197,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["feature_fidelity"] = nullptr;
   r["quad_smoothing"] = nullptr;
   r["surface_check"] = nullptr;
+  r["boundary_loops"] = nullptr;
   r["warnings"] = job.warnings;
   r["cut_short"] = job.cut_short;
   r["seconds"] = seconds_json(job.seconds);
@@ -222,6 +223,7 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
   r["feature_fidelity"] = feature_fidelity_to_json(feature_fidelity(mesh, q.V, q.faces));
   r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
   r["surface_check"] = to_json(job.surface);
+  r["boundary_loops"] = to_json(job.boundary_loops);
   add_report_stage(r, "metrics", meter.lap());
   return r;
 }

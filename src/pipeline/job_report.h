@@ -25,7 +25,8 @@ inline constexpr int kReportSchemaVersion = 1;
 ///   parameterization (metrics/report.h to_json(ParamQuality): flipped, collapsed and non-positive triangles, ARAP,
 ///          cones, seams; plus seamless, parameter_extent, cut_edges, parameter_area, flipped_faces, h_sym),
 ///   optimize, rounding, relaxation, stiffening, untangling, aligned_curves {curves, max_deviation, conflicts},
-///   extraction, quad_mesh, surface_distance, feature_fidelity, quad_smoothing, surface_check (null for param),
+///   extraction, quad_mesh, surface_distance, feature_fidelity, quad_smoothing, surface_check, boundary_loops (null
+///   for param),
 ///   warnings (sentences), seconds {stage: wall-clock seconds},
 ///   memory {peak_bytes (the process's peak resident bytes so far), input_faces (the input's triangles),
 ///           huge_pages (malloc asks for transparent huge pages, common/memory.h malloc_asks_for_huge_pages),
@@ -40,8 +41,9 @@ nlohmann::json param_report(const Mesh& mesh, const ParamJob& job, const Eigen::
 /// The report of the remesh job: param_report() of its map (job "remesh") plus extraction, quad_mesh (measured on
 /// the smoothed quad mesh), surface_distance (to the input), feature_fidelity (metrics/feature_fidelity.h: the
 /// input's boundary and sharp edges against the quad edges, in units of h), quad_smoothing and surface_check
-/// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's); the
-/// metrics' seconds are added. \pre job = remesh(mesh, …).
+/// (pipeline/surface_check.h: the quad mesh's components, boundary loops, χ, manifoldness against the input's) and
+/// boundary_loops (pipeline/boundary_loop_check.h: per input loop {loop, first_vertex, edges, length, lines,
+/// enforced_lines, non_quads, reason}); the metrics' seconds are added. \pre job = remesh(mesh, …).
 nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::string& input = "");
 
 /// Adds a stage measured after the report was made (e.g. the CLI's writing of the outputs) to its seconds and memory

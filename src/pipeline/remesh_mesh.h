@@ -2,6 +2,7 @@
 // The remesh job: the parameterization job (pipeline/parameterize_mesh.h) → quad extraction along the integer
 // iso-lines (thesis ch. 7, QEx-style) → tangential smoothing on the input surface. One call for the CLI's `remesh`,
 // the Python module and the benches.
+#include "pipeline/boundary_loop_check.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/surface_check.h"
 #include "quad/extract_quads.h"
@@ -14,6 +15,7 @@ struct RemeshJob {
   ExtractionResult extraction;  ///< the quad mesh (smoothed) and what extraction did
   QuadSmoothingReport smoothing;
   SurfaceCheck surface;  ///< the quad mesh against the input; its problems are in param.warnings
+  std::vector<BoundaryLoopCheck> boundary_loops;  ///< per boundary loop: followed by quads, or why not
 };
 
 /// The ParamJob of a remesh job (for the validity retries). \pre none

@@ -23,6 +23,10 @@ struct QuadMesh {
   int num_quads() const;  ///< faces with exactly four corners \pre none
 };
 
+/// #V flags: 1 for the vertices on an edge that only one face has (the quad mesh's boundary). \pre every face index
+/// < q.num_vertices().
+std::vector<char> quad_boundary_vertices(const QuadMesh& q);
+
 /// Where two faces use the same directed edge (possible next to cut-out folds), keeps the smallest face and drops
 /// the others. Returns the number of dropped faces.
 /// \pre every face index < q.num_vertices(). \throw only std::bad_alloc.

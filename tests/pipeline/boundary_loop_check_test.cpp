@@ -1,0 +1,93 @@
+// check_boundary_loops on real remeshes: every non-quad face at a boundary is counted for its loop, the loop's length
+// is its edges' length over h, and the reason names the cause: a hole too short for a ring of quads on a plate,
+// a boundary line that closes with another integer on lilium_disk (gone with the curves rounded with the periods).
+#include "pipeline/boundary_loop_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/remesh_mesh.h"
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+/// make_grid(40) without its four middle cells: a square hole of side 0.05 in the unit square.
+Mesh plate_with_small_hole() {
+  const Mesh grid = testing::make_grid(40);
+  std::vector<Eigen::Vector3i> kept;
+  for (int f = 0; f < grid.num_faces(); ++f) {
+    const Eigen::Vector3d c =
+        (grid.V().row(grid.F()(f, 0)) + grid.V().row(grid.F()(f, 1)) + grid.V().row(grid.F()(f, 2))) / 3;
+    if (std::abs(c.x() - 0.5) > 0.025 || std::abs(c.y() - 0.5) > 0.025) kept.push_back(grid.F().row(f));
+  }
+  Eigen::MatrixX3i F(static_cast<int>(kept.size()), 3);
+  for (int f = 0; f < F.rows(); ++f) F.row(f) = kept[f];
+  return Mesh::from_triangles(grid.V(), F);
+}
+
+int non_quads(const QuadMesh& q) { return q.num_faces() - q.num_quads(); }
+
+/// The loop's record is consistent with the mesh: its lowest input vertex is on it, its edges are the input's.
+void expect_loop_matches_mesh(const Mesh& mesh, const BoundaryLoopCheck& c) {
+  const std::vector<int>& vertices = mesh.boundary_loops()[c.loop - 1];
+  EXPECT_EQ(c.first_vertex, *std::min_element(vertices.begin(), vertices.end()) + 1);
+  EXPECT_EQ(c.edges, static_cast<int>(mesh.boundary_loop_edges()[c.loop - 1].size()));
+  EXPECT_LE(c.enforced_lines, c.lines);
+  EXPECT_EQ(c.reason.empty(), c.non_quads == 0);
+}
+
+TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
+  const Mesh plate = plate_with_small_hole();
+  ASSERT_EQ(plate.num_boundary_loops(), 2);
+  PipelineOptions options;
+  options.param.density.edge_length = 0.1;  // the hole is 0.2 around: 2 grid units
+  const RemeshJob job = remesh_mesh(plate, options);
+  ASSERT_FALSE(job.param.refinement.mesh);  // the loops and vertices are the plate's
+  ASSERT_EQ(job.boundary_loops.size(), 2u);
+  const int hole =
+      std::max_element(job.boundary_loops.begin(), job.boundary_loops.end(), [](const auto& a, const auto& b) {
+        return a.first_vertex < b.first_vertex;
+      })->loop;
+  for (const BoundaryLoopCheck& c : job.boundary_loops) {
+    expect_loop_matches_mesh(plate, c);
+    const double around = c.loop == hole ? 0.2 : 4.0;
+    EXPECT_NEAR(c.length, around / job.param.map.edge_length, 1e-9);
+  }
+  const BoundaryLoopCheck& h = job.boundary_loops[hole - 1];
+  EXPECT_EQ(h.non_quads, non_quads(job.extraction.mesh));  // every non-quad is at the hole
+  EXPECT_GT(h.non_quads, 0);
+  EXPECT_EQ(h.reason.rfind("2.0 grid units around, too short for a ring of quads (4)", 0), 0u) << h.reason;
+  EXPECT_NE(h.reason.find("at about 4.0 times the quads"), std::string::npos) << h.reason;
+  const std::string named =
+      "boundary loop " + std::to_string(hole) + " (through vertex " + std::to_string(h.first_vertex) +
+      ", 8 edges, 2.0 grid units): " + std::to_string(h.non_quads) + " non-quad faces, " + h.reason;
+  EXPECT_NE(std::find(job.param.warnings.begin(), job.param.warnings.end(), named), job.param.warnings.end());
+}
+
+TEST(BoundaryLoopCheck, ALoopOffItsIsoLineSaysWhyAndIsQuadsWhenTheCurvesAreRounded) {
+  const Mesh mesh = testing::load_test_mesh("lilium_disk");
+  PipelineOptions options;
+  const RemeshJob free_loop = remesh_mesh(mesh, options);
+  ASSERT_EQ(free_loop.boundary_loops.size(), 1u);
+  const BoundaryLoopCheck& c = free_loop.boundary_loops[0];
+  expect_loop_matches_mesh(mesh, c);
+  EXPECT_EQ(c.non_quads, non_quads(free_loop.extraction.mesh));
+  EXPECT_GT(c.non_quads, 0);
+  EXPECT_EQ(c.enforced_lines, 0);
+  EXPECT_NE(c.reason.find("because: closes on itself with another integer"), std::string::npos) << c.reason;
+  EXPECT_NE(c.reason.find("--round-curves true"), std::string::npos) << c.reason;
+
+  options.param.alignment.round_with_periods = true;
+  const RemeshJob pinned = remesh_mesh(mesh, options);
+  ASSERT_EQ(pinned.boundary_loops.size(), 1u);
+  EXPECT_EQ(pinned.boundary_loops[0].non_quads, 0);
+  EXPECT_EQ(pinned.boundary_loops[0].enforced_lines, pinned.boundary_loops[0].lines);
+  EXPECT_GT(pinned.boundary_loops[0].lines, 0);
+  expect_loop_matches_mesh(mesh, pinned.boundary_loops[0]);
+}
+
+}  // namespace
+}  // namespace quadcover
