@@ -3,8 +3,10 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 namespace quadcover::cli {
 namespace {
@@ -22,8 +24,11 @@ bool huge_pages_on_request() {
 void restart_with_huge_pages(char** argv) {
 #if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
   if (std::getenv("GLIBC_TUNABLES") || std::getenv(kNoHugePagesVariable) || !huge_pages_on_request()) return;
-  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
-  execv("/proc/self/exe", argv);
+  // The program's own path, not /proc/self/exe: the process keeps its name (ps, top, pkill quadcover).
+  std::error_code error;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
+  if (error || self.empty() || setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
+  execv(self.c_str(), argv);
   unsetenv("GLIBC_TUNABLES");  // execv returned: it failed, run on as we are
 #else
   (void)argv;

@@ -2,7 +2,12 @@
 // stage, the CLI's reading first and writing last, and whether malloc asked for transparent huge pages
 // (cli/huge_pages.h).
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -69,6 +74,43 @@ TEST(ReportMemoryCli, HugePagesUnlessTheUserSetTheTunablesOrSaidNo) {
   EXPECT_EQ(huge_pages("GLIBC_TUNABLES=glibc.malloc.hugetlb=1", "own_huge_pages"), kGlibcMalloc);
   EXPECT_EQ(testing::slurp(dir / "default.obj"), testing::slurp(dir / "said_no.obj"));  // the same map either way
   fs::remove_all(dir);
+}
+
+/// The text of /proc/PID/FILE ("" if unreadable), NULs as spaces.
+std::string proc_text(pid_t pid, const char* file) {
+  std::string text = testing::slurp("/proc/" + std::to_string(pid) + "/" + file);
+  std::replace(text.begin(), text.end(), '\0', ' ');
+  return text;
+}
+
+TEST(ReportMemoryCli, TheRestartedProcessKeepsItsNameAndPid) {
+  if (!cli_restarts_with_huge_pages()) GTEST_SKIP() << "no restart here: glibc's malloc absent or huge pages off";
+  int to_child[2];
+  ASSERT_EQ(::pipe(to_child), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {  // `quadcover info -` waits for the mesh on stdin
+    ::dup2(to_child[0], 0);
+    ::close(to_child[1]);
+    ::unsetenv("GLIBC_TUNABLES");
+    ::unsetenv("QUADCOVER_NO_HUGE_PAGES");
+    ::execl(QUADCOVER_CLI, QUADCOVER_CLI, "info", "-", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(to_child[0]);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  std::string environment;
+  while (environment.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1") == std::string::npos &&
+         std::chrono::steady_clock::now() < give_up) {
+    ::usleep(10'000);
+    environment = proc_text(pid, "environ");
+  }
+  EXPECT_NE(environment.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1"), std::string::npos);
+  EXPECT_EQ(proc_text(pid, "comm"), "quadcover\n");  // ps, top and pkill still know it
+  ::close(to_child[1]);                              // an empty mesh: info exits with an error
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status)) << status;
 }
 
 }  // namespace
