@@ -3,6 +3,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -15,7 +16,34 @@
 #include <dlfcn.h>
 #endif
 
+#ifdef QUADCOVER_HAVE_CHOLMOD
+namespace {
+std::atomic<long long> regions_in_place{0};
+}  // namespace
+
+// CHOLMOD opens several OpenMP regions per supernode. libgomp sets up a team even for a region of one thread
+// (max-active-levels 0, single_threaded_libraries below) and ends it at a barrier that makes a futex system call
+// every time: 40 % of the wall time of a bunny_20k_holes `param` on a paravirtualized VM (BENCHMARKS.md, "OpenMP
+// regions run in place"). This definition takes libgomp's place for the program it is linked into (GCC's ABI
+// since 4.9): the region runs at once on the calling thread, as a team of one would (outside a team,
+// omp_get_num_threads() is 1 and worksharing constructs are a team of one). quadcover has no OpenMP code itself.
+extern "C" __attribute__((visibility("default"), used)) void GOMP_parallel(void (*region)(void*), void* data,
+                                                                           unsigned /*num_threads*/,
+                                                                           unsigned /*flags*/) {
+  regions_in_place.fetch_add(1, std::memory_order_relaxed);
+  region(data);
+}
+#endif
+
 namespace quadcover {
+
+long long openmp_regions_run_in_place() {
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  return regions_in_place.load(std::memory_order_relaxed);
+#else
+  return 0;
+#endif
+}
 
 namespace {
 

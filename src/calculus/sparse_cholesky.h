@@ -12,6 +12,11 @@
 
 namespace quadcover {
 
+/// How many OpenMP regions (of CHOLMOD's) this process ran in place, through quadcover's GOMP_parallel instead of
+/// libgomp's (sparse_cholesky.cpp); stays 0 where libgomp's is bound first (e.g. a host program linked with
+/// libgomp loads the Python module) or without CHOLMOD. \pre none
+long long openmp_regions_run_in_place();
+
 /// Which factorization library to use. Automatic = CHOLMOD when compiled in, else Eigen.
 enum class CholeskyBackend { Automatic, Cholmod, Eigen };
 

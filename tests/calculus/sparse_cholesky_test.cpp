@@ -244,6 +244,10 @@ TEST(SparseCholesky, CholmodRunsItsOpenMpRegionsOnTheCallingThread) {
   }).join();
   EXPECT_GT(before, 0);
   EXPECT_EQ(after, 0);
+  // and without libgomp's team set-up: its regions come through quadcover's GOMP_parallel
+  const long long in_place = openmp_regions_run_in_place();
+  chol.compute(A);
+  EXPECT_GT(openmp_regions_run_in_place(), in_place);
   const Eigen::VectorXd b = random_vector(A.rows(), 63);
   EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
 }
