@@ -37,8 +37,9 @@ inline std::int64_t peak_resident_bytes() { return detail::proc_status_bytes("Vm
 /// kernel refused (the peak then stays the process-wide one). \pre none
 bool reset_peak_resident();
 
-/// Whether this process's malloc asks the kernel for transparent huge pages: glibc with the tunable
-/// glibc.malloc.hugetlb=1 or 2 in GLIBC_TUNABLES, no sanitizer (read at start-up; the CLI sets it, cli/huge_pages.h).
+/// Whether this process's malloc asks the kernel for huge pages: glibc with the tunable glibc.malloc.hugetlb=1
+/// (transparent huge pages) or 2 (hugetlbfs) in GLIBC_TUNABLES, no sanitizer (read at start-up; the CLI sets 1,
+/// cli/huge_pages.h).
 /// \pre none
 bool malloc_asks_for_huge_pages();
 
