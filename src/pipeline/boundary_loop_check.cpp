@@ -76,7 +76,6 @@ std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_
   std::vector<int> edge_loop(static_cast<std::size_t>(mesh.num_edges()), -1);
   for (int l = 0; l < n; ++l) {
     BoundaryLoopCheck& c = loops[l];
-    c.loop = l + 1;
     c.first_vertex = input_vertices;
     for (int v : loop_vertices[l])
       if (v < input_vertices) c.first_vertex = std::min(c.first_vertex, v);
@@ -105,6 +104,9 @@ std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_
     free_edges[l]["not aligned with the field"] = map_edges - edges_on_lines[l];
     if (loops[l].non_quads > 0) loops[l].reason = loop_reason(loops[l], map_edges, free_edges[l], round_with_periods);
   }
+  // Numbered by their lowest input vertex: the same numbers on the input and on a refinement of it.
+  std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.first_vertex < b.first_vertex; });
+  for (int l = 0; l < n; ++l) loops[l].loop = l + 1;
   return loops;
 }
 

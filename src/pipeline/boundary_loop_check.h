@@ -18,7 +18,7 @@ namespace quadcover {
 inline constexpr double kShortestQuadLoop = 4.0;
 
 struct BoundaryLoopCheck {
-  int loop = 0;                       ///< the loop's number, 1-based in Mesh::boundary_loops() order
+  int loop = 0;                       ///< the loop's number, 1-based, in the order of the loops' lowest vertex numbers
   int first_vertex = 0;               ///< its lowest vertex number of the input, 1-based as in the file
   int edges = 0;                      ///< the input's boundary edges along it
   double length = 0;                  ///< its length in grid units (edges of the map's grid, h = map.edge_length)
@@ -30,10 +30,11 @@ struct BoundaryLoopCheck {
   std::string reason;
 };
 
-/// One record per boundary loop of `mesh` (the map's triangulation: the input or its refinement, whose first
-/// `input_vertices` vertices are the input's). A non-quad face of `quads` counts for the loop of the triangle
-/// (source_face) under each of its vertices on the quad mesh's boundary, once per loop; `round_with_periods` is
-/// the option that was used (the reason then suggests it or not). \pre map and quads were made on mesh.
+/// One record per boundary loop of `mesh`, in the order of `loop` (the map's triangulation: the input or its
+/// refinement, whose first `input_vertices` vertices are the input's). A non-quad face of `quads` counts for the loop
+/// of the triangle (source_face) under each of its vertices on the quad mesh's boundary, once per loop;
+/// `round_with_periods` is the option that was used (the reason then suggests it or not). \pre map and quads were made
+/// on mesh.
 std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_vertices, const Parameterization& map,
                                                     const QuadMesh& quads, bool round_with_periods);
 
