@@ -47,9 +47,7 @@ Eigen::Vector3d centroid(const Eigen::MatrixX3d& V, const std::vector<int>& vert
 
 /// The boundary loops of a polygon mesh as places: boundary edges (used once) grouped by shared vertices.
 std::vector<SurfacePlace> boundary_loop_places(const Eigen::MatrixX3d& V, const std::vector<std::vector<int>>& faces) {
-  std::map<std::pair<int, int>, int> uses;  // undirected edge -> number of faces
-  for (const auto& f : faces)
-    for (std::size_t k = 0; k < f.size(); ++k) ++uses[std::minmax(f[k], f[(k + 1) % f.size()])];
+  const auto uses = polygon_edge_uses(faces);
   detail::UnionFind sets(static_cast<int>(V.rows()));
   for (const auto& [e, n] : uses)
     if (n == 1) sets.unite(e.first, e.second);

@@ -9,16 +9,23 @@ int QuadMesh::num_quads() const {
   return static_cast<int>(std::count_if(faces.begin(), faces.end(), [](const auto& f) { return f.size() == 4; }));
 }
 
-std::vector<char> quad_boundary_vertices(const QuadMesh& q) {
-  std::vector<std::pair<int, int>> sides;  // undirected, sorted: an edge of one face appears once
-  for (const auto& f : q.faces)
+std::vector<std::pair<std::pair<int, int>, int>> polygon_edge_uses(const std::vector<std::vector<int>>& faces) {
+  std::vector<std::pair<int, int>> sides;  // undirected, sorted: equal edges are adjacent
+  for (const auto& f : faces)
     for (std::size_t k = 0; k < f.size(); ++k) sides.push_back(std::minmax(f[k], f[(k + 1) % f.size()]));
   std::sort(sides.begin(), sides.end());
-  std::vector<char> on_boundary(static_cast<std::size_t>(q.num_vertices()), 0);
+  std::vector<std::pair<std::pair<int, int>, int>> uses;
   for (std::size_t i = 0, j = 0; i < sides.size(); i = j) {
     while (j < sides.size() && sides[j] == sides[i]) ++j;
-    if (j - i == 1) on_boundary[sides[i].first] = on_boundary[sides[i].second] = 1;
+    uses.push_back({sides[i], static_cast<int>(j - i)});
   }
+  return uses;
+}
+
+std::vector<char> quad_boundary_vertices(const QuadMesh& q) {
+  std::vector<char> on_boundary(static_cast<std::size_t>(q.num_vertices()), 0);
+  for (const auto& [e, n] : polygon_edge_uses(q.faces))
+    if (n == 1) on_boundary[e.first] = on_boundary[e.second] = 1;
   return on_boundary;
 }
 

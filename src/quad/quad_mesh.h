@@ -5,6 +5,7 @@
 // mesh/surface_counts.h, the one count info, metrics, the reports and the tests use.
 #include <Eigen/Core>
 #include <complex>
+#include <utility>
 #include <vector>
 
 namespace quadcover {
@@ -22,6 +23,10 @@ struct QuadMesh {
   int num_faces() const { return static_cast<int>(faces.size()); }  ///< \pre none
   int num_quads() const;  ///< faces with exactly four corners \pre none
 };
+
+/// The undirected edges {a, b} (a < b) of polygon faces, each with the number of faces that have it, sorted by edge.
+/// \pre none
+std::vector<std::pair<std::pair<int, int>, int>> polygon_edge_uses(const std::vector<std::vector<int>>& faces);
 
 /// #V flags: 1 for the vertices on an edge that only one face has (the quad mesh's boundary). \pre every face index
 /// < q.num_vertices().
