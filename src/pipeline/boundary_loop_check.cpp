@@ -41,7 +41,7 @@ void count_non_quads(const Mesh& mesh, const QuadMesh& q, std::vector<BoundaryLo
 /// Why loop l is not all quads: too short for a ring of quads, or the reason that leaves the most of its edges
 /// off the integer iso-lines (no line at all: not aligned with the field).
 std::string loop_reason(const BoundaryLoopCheck& loop, int map_edges, const std::map<std::string, int>& free_edges,
-                        bool round_with_periods) {
+                        const CurveAlignmentOptions& alignment) {
   char text[160];
   if (loop.length < kShortestQuadLoop) {
     const double factor = std::pow(kShortestQuadLoop / std::max(loop.length, 1e-9), 2);
@@ -62,14 +62,16 @@ std::string loop_reason(const BoundaryLoopCheck& loop, int map_edges, const std:
                 100.0 * most->second / map_edges);
   std::string why = text + most->first;
   const bool pinnable = most->first != "shorter than the minimum length" && most->first != "not aligned with the field";
-  if (!round_with_periods && pinnable) why += " (--round-curves true puts lines of 3 or more grid units on iso-lines)";
-  return why;
+  if (alignment.round_with_periods || !pinnable) return why;
+  std::snprintf(text, sizeof text, " (--round-curves true puts lines of %g or more grid units on iso-lines)",
+                alignment.limits.min_length);
+  return why + text;
 }
 
 }  // namespace
 
 std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_vertices, const Parameterization& map,
-                                                    const QuadMesh& quads, bool round_with_periods) {
+                                                    const QuadMesh& quads, const CurveAlignmentOptions& alignment) {
   const auto& loop_vertices = mesh.boundary_loops();
   const int n = static_cast<int>(loop_vertices.size());
   std::vector<BoundaryLoopCheck> loops(static_cast<std::size_t>(n));
@@ -102,7 +104,7 @@ std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_
   for (int l = 0; l < n; ++l) {
     const int map_edges = static_cast<int>(mesh.boundary_loop_edges()[l].size());
     free_edges[l]["not aligned with the field"] = map_edges - edges_on_lines[l];
-    if (loops[l].non_quads > 0) loops[l].reason = loop_reason(loops[l], map_edges, free_edges[l], round_with_periods);
+    if (loops[l].non_quads > 0) loops[l].reason = loop_reason(loops[l], map_edges, free_edges[l], alignment);
   }
   // Numbered by their lowest input vertex: the same numbers on the input and on a refinement of it.
   std::sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.first_vertex < b.first_vertex; });

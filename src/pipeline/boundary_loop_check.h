@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "param/alignment.h"
 #include "param/parameterization.h"
 #include "quad/quad_mesh.h"
 
@@ -32,11 +33,11 @@ struct BoundaryLoopCheck {
 
 /// One record per boundary loop of `mesh`, in the order of `loop` (the map's triangulation: the input or its
 /// refinement, whose first `input_vertices` vertices are the input's). A non-quad face of `quads` counts for the loop
-/// of the triangle (source_face) under each of its vertices on the quad mesh's boundary, once per loop;
-/// `round_with_periods` is the option that was used (the reason then suggests it or not). \pre map and quads were made
-/// on mesh.
+/// of the triangle (source_face) under each of its vertices on the quad mesh's boundary, once per loop; `alignment`
+/// is what the job was given (the reason suggests round_with_periods when it was off, with its minimum length).
+/// \pre map and quads were made on mesh.
 std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_vertices, const Parameterization& map,
-                                                    const QuadMesh& quads, bool round_with_periods);
+                                                    const QuadMesh& quads, const CurveAlignmentOptions& alignment);
 
 /// The warnings: one sentence per loop with non-quad faces, the most first, at most 5 (the rest counted). \pre none
 std::vector<std::string> boundary_loop_warnings(const std::vector<BoundaryLoopCheck>& loops);

@@ -64,8 +64,8 @@ RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, Progres
   job.surface = check_surface(mesh, job.extraction.mesh.num_vertices(), job.extraction.mesh.faces);
   locate_surface_problems(job.extraction.mesh.V, job.extraction.mesh.faces, job.surface);
   for (std::string& w : remesh_warnings(job.surface, job.extraction.report)) job.param.warnings.push_back(std::move(w));
-  job.boundary_loops = check_boundary_loops(mesh, input.num_vertices(), map, job.extraction.mesh,
-                                            options.param.alignment.round_with_periods);
+  job.boundary_loops =
+      check_boundary_loops(mesh, input.num_vertices(), map, job.extraction.mesh, options.param.alignment);
   for (std::string& w : boundary_loop_warnings(job.boundary_loops)) job.param.warnings.push_back(std::move(w));
   return job;
 }
