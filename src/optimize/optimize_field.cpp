@@ -159,21 +159,25 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
 Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                           const ParamOptions& param, OptimizeMode mode, bool keep_better,
                                           ProgressSink& progress, nlohmann::json& report) {
-  Parameterization p = parameterize(mesh, optimized, param, progress);
-  if (mode == OptimizeMode::None) return p;
+  if (mode == OptimizeMode::None) return parameterize(mesh, optimized, param, progress);
   report["kept"] = "optimized";
-  if (!keep_better || progress.skip_improvements()) return p;
+  if (!keep_better || progress.skip_improvements()) return parameterize(mesh, optimized, param, progress);
+  // E_D + E_H are fixed by steps 1-5 (param/parameterize.h SolvedMap): only the kept map is finished, and the
+  // original one, solved first and dropped, is solved again only if it wins (two solves are never held at once).
   progress.report("optimize", -1, "parameterizing the original field for comparison (keep better)");
-  Parameterization q = parameterize(mesh, original, param, progress);
-  const double total = p.energy_curl + p.energy_harmonic, total_original = q.energy_curl + q.energy_harmonic;
-  report["E_D_plus_E_H_optimized"] = total;
-  report["E_D_plus_E_H_original"] = total_original;
-  if (total_original >= total) return p;
-  report["kept"] = "original";
-  progress.report("optimize", 1,
-                  "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
-                      std::to_string(total) + " of the optimized one");
-  return q;
+  const auto total = [](const SolvedMap& s) { return s.energy_curl() + s.energy_harmonic(); };
+  const double total_original = total(SolvedMap(mesh, original, param, progress));
+  {
+    SolvedMap solved(mesh, optimized, param, progress);
+    report["E_D_plus_E_H_optimized"] = total(solved);
+    report["E_D_plus_E_H_original"] = total_original;
+    if (total_original >= total(solved)) return std::move(solved).finish();
+    report["kept"] = "original";
+    progress.report("optimize", 1,
+                    "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
+                        std::to_string(total(solved)) + " of the optimized one");
+  }
+  return parameterize(mesh, original, param, progress);
 }
 
 }  // namespace quadcover

@@ -62,6 +62,7 @@ struct ParamDiagnostics {
   /// to the frame after, seconds, and its price E_U = ½‖X̃ − ∇φ̃‖² − E_D − E_H − E_R − E_K (0 if it did not run).
   struct Untangling {
     int iterations = 0, polish_iterations = 0, non_positive_before = 0, non_positive_after = 0;
+    int regions = 0;  ///< regions untangled (UntangleOptions::rings: each a system of its own)
     double min_det = 0, seconds = 0, energy = 0;
     /// Faces the subspace holds at det ≤ 0 (all corners fixed, or two pinned to one point such as adjacent branch
     /// points rounded to one integer point): no map in it unfolds them; they stay non-positive.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -128,6 +129,8 @@ namespace {
 class StageLaps {
  public:
   StageLaps(Parameterization& P, ProgressSink& progress) : P_(P), progress_(progress) {}
+  /// Begins the next step here (the time since the last lap is not recorded).
+  void restart() { meter_.restart(); }
   void operator()(const char* stage) {
     meter_.lap(stage, P_.diagnostics.stage_seconds, P_.diagnostics.stage_peak_bytes);
     progress_.report("param", std::min(1.0, static_cast<double>(P_.diagnostics.stage_seconds.size()) / kParamSteps), stage);
@@ -434,71 +437,118 @@ void assemble_transitions(const Mesh& mesh, const CoverCut& cc, Parameterization
 
 }  // namespace
 
-Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
-                              ProgressSink& progress) {
-  if (field.X.size() != mesh.num_faces() || field.Y.size() != mesh.num_faces() ||
-      field.matching.size() != mesh.num_edges())
-    throw InputError("", 0, "parameterize: the frame field does not match the mesh");
+/// What steps 1-5 leave for the rest: heap-held, so the laps and the curve constraints may point into it.
+struct SolvedMap::State {
+  State(const Mesh& m, const FrameField& f, const ParamOptions& o, ProgressSink& p)
+      : mesh(m), field(f), options(o), progress(p), lap(P, p) {}
+  const Mesh& mesh;
+  const FrameField& field;
+  const ParamOptions options;
+  ProgressSink& progress;
   Parameterization P;
-  StageLaps lap(P, progress);
+  StageLaps lap;
+  CoverCut cc;
+  FramePairs Z, XC, Sigma;
+  std::optional<HarmonicCorrection> harmonic;
+  Eigen::MatrixX3cd known;  ///< φ = known − u
+  std::optional<AlignedCorrection> aligned;
+  Eigen::VectorXcd u;
+};
 
+namespace {
+
+/// Steps 1-5 of parameterize() into s.
+void solve_steps(SolvedMap::State& s) {
+  const Mesh& mesh = s.mesh;
+  const ParamOptions& options = s.options;
+  Parameterization& P = s.P;
   // ---- 1. cut through B and gauge (4.2)
-  const CoverCut cc = cut_and_gauge(mesh, field, P);
+  s.cc = cut_and_gauge(mesh, s.field, P);
+  const CoverCut& cc = s.cc;
   const std::vector<char> trivial = trivial_holonomy(mesh, cc);
   P.diagnostics.holonomy_without_branch_points = holonomy_without_branch_points(mesh, trivial, P.branch_points);
-  lap("cut");
-  const FramePairs Z = scaled_frames(mesh, field, cc, options, P);
+  s.lap("cut");
+  s.Z = scaled_frames(mesh, s.field, cc, options, P);
 
   // ---- 2. curl removal on the covering: 𝔏̄* v = -curl* Z̃, X̂ = Z - J∇v
-  std::optional<HarmonicCorrection> harmonic;
-  const FramePairs XC = remove_curl(mesh, cc, trivial, Z, harmonic);
-  const FramePairs Xhat = Z - XC;
-  P.energy_curl = frame_norm2(mesh, XC);
-  lap("curl_removal");
+  s.XC = remove_curl(mesh, cc, trivial, s.Z, s.harmonic);
+  const FramePairs Xhat = s.Z - s.XC;
+  P.energy_curl = frame_norm2(mesh, s.XC);
+  s.lap("curl_removal");
 
   // ---- 3. integration over the cut disk and the periods
   Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
   Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.diagnostics.integration_mismatch);
-  lap("integrate");
+  s.lap("integrate");
 
   // ---- 4. rounding (4.2.2)
   round_dependent_paths(mesh, cc, options.lattice, phi, c);
-  const HarmonicCorrection& correction = *harmonic;  // factored during the curl removal
-  const std::vector<CurveSlot> slots = curve_slots(mesh, Z, options);
+  const HarmonicCorrection& correction = *s.harmonic;  // factored during the curl removal
+  const std::vector<CurveSlot> slots = curve_slots(mesh, s.Z, options);
   const Eigen::MatrixX3cd known_free = corner_values(cc, phi);
   std::optional<AlignedLines> aligned_lines;
   if (!slots.empty()) aligned_lines.emplace(mesh, cc, correction.layers().layer, slots);
   std::optional<GivenLines> given;
   const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, {aligned_lines ? &*aligned_lines : nullptr, known_free},
-                                              options, progress, lap, P, given);
+                                              options, s.progress, s.lap, P, given);
 
   // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
   const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);
-  const FramePairs Sigma = corner_gradient(mesh, sigma);
-  const Eigen::VectorXcd b = correction.rhs(Sigma);
+  s.Sigma = corner_gradient(mesh, sigma);
+  const Eigen::VectorXcd b = correction.rhs(s.Sigma);
   const Eigen::VectorXcd u_free = correction.solve(b).col(0);
-  const Eigen::MatrixX3cd known = known_free + sigma;  // φ = known − u
+  s.known = known_free + sigma;
   // Boundary and feature curves on integer iso-lines: one real component of u fixed at every curve vertex.
-  std::optional<AlignedCorrection> aligned;
   if (!slots.empty())
-    aligned.emplace(mesh, cc, correction.layers().layer, known, u_free, correction.kernel_pins(), slots,
-                    options.alignment.limits, given ? &*given : nullptr);
-  Eigen::VectorXcd u = aligned ? aligned->solve(correction.stiffness(), b) : u_free;
-  P.energy_harmonic = correction_energy(mesh, correction, Sigma, u);
-  lap("harmonic");
-  const Eigen::VectorXi cone_index = cross_field_quarter_index(mesh, field);
-  const CorrectionInputs inputs{correction, aligned ? &*aligned : nullptr, known, Z, Sigma, XC, cone_index};
-  refine_correction(mesh, cc, inputs, options, progress, lap, P, u);
-  if (aligned) {
-    P.aligned_curves = aligned->curves(u);
-    P.diagnostics.alignment_conflicts = aligned->conflicts();
+    s.aligned.emplace(mesh, cc, correction.layers().layer, s.known, u_free, correction.kernel_pins(), slots,
+                      options.alignment.limits, given ? &*given : nullptr);
+  s.u = s.aligned ? s.aligned->solve(correction.stiffness(), b) : u_free;
+  P.energy_harmonic = correction_energy(mesh, correction, s.Sigma, s.u);
+  s.lap("harmonic");
+}
+
+}  // namespace
+
+SolvedMap::SolvedMap(const Mesh& mesh, const FrameField& field, const ParamOptions& options, ProgressSink& progress) {
+  if (field.X.size() != mesh.num_faces() || field.Y.size() != mesh.num_faces() ||
+      field.matching.size() != mesh.num_edges())
+    throw InputError("", 0, "parameterize: the frame field does not match the mesh");
+  state_ = std::make_unique<State>(mesh, field, options, progress);
+  solve_steps(*state_);
+}
+
+SolvedMap::~SolvedMap() = default;
+SolvedMap::SolvedMap(SolvedMap&&) noexcept = default;
+SolvedMap& SolvedMap::operator=(SolvedMap&&) noexcept = default;
+
+double SolvedMap::energy_curl() const { return state_->P.energy_curl; }
+double SolvedMap::energy_harmonic() const { return state_->P.energy_harmonic; }
+
+Parameterization SolvedMap::finish() && {
+  if (!state_) throw InputError("", 0, "SolvedMap::finish: the map was finished already");
+  State& s = *state_;
+  s.lap.restart();  // time spent elsewhere since the solve is not this map's
+  const HarmonicCorrection& correction = *s.harmonic;
+  const Eigen::VectorXi cone_index = cross_field_quarter_index(s.mesh, s.field);
+  const CorrectionInputs inputs{correction, s.aligned ? &*s.aligned : nullptr, s.known, s.Z, s.Sigma, s.XC, cone_index};
+  refine_correction(s.mesh, s.cc, inputs, s.options, s.progress, s.lap, s.P, s.u);
+  if (s.aligned) {
+    s.P.aligned_curves = s.aligned->curves(s.u);
+    s.P.diagnostics.alignment_conflicts = s.aligned->conflicts();
   }
 
   // ---- 6. φ = φ̂ + σ - u: the integral of X̂ + H̃_d with the rounded periods
-  P.uv = known - correction.corner_values(u);
-  assemble_transitions(mesh, cc, P);
-  lap("assemble");
+  s.P.uv = s.known - correction.corner_values(s.u);
+  assemble_transitions(s.mesh, s.cc, s.P);
+  s.lap("assemble");
+  Parameterization P = std::move(s.P);
+  state_.reset();
   return P;
+}
+
+Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options,
+                              ProgressSink& progress) {
+  return SolvedMap(mesh, field, options, progress).finish();
 }
 
 }  // namespace quadcover

@@ -7,6 +7,8 @@
 //  5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P with the conforming 𝔏̄ (branch rows removed) ((1.14) on M̃),
 //  6. φ = ∫(X̂ + H̃_d): per-corner complex coordinates in grid units (then relaxation, local stiffening and the
 //     untangling of the remaining flipped or collapsed triangles).
+#include <memory>
+
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/alignment.h"
@@ -45,10 +47,35 @@ struct ParamOptions {
   UntangleOptions untangle;
 };
 
-/// Seamless QuadCover parameterization of `mesh` guided by `field`.
+/// Seamless QuadCover parameterization of `mesh` guided by `field`: SolvedMap(…).finish().
 /// \pre mesh is a valid triangle mesh; field has #F frames (non-zero) and a #E matching.
 /// \throw InputError on size mismatches, NumericalError if a factorization fails.
 Parameterization parameterize(const Mesh& mesh, const FrameField& field, const ParamOptions& options = {},
                               ProgressSink& progress = null_progress());
+
+/// parameterize() in two parts: steps 1-5 in the constructor, which fix E_D (energy_curl) and E_H
+/// (energy_harmonic); the relaxation, stiffening, untangling and step 6 in finish(). A caller that compares maps by
+/// E_D + E_H (optimize/optimize_field.h, keep better) finishes only the one it keeps.
+class SolvedMap {
+ public:
+  /// The mesh, field and progress sink must outlive the object. \pre and \throw as parameterize().
+  SolvedMap(const Mesh& mesh, const FrameField& field, const ParamOptions& options = {},
+            ProgressSink& progress = null_progress());
+  ~SolvedMap();
+  SolvedMap(SolvedMap&&) noexcept;
+  SolvedMap& operator=(SolvedMap&&) noexcept;
+
+  /// ‖X̃_C‖² and E_H of the map, as in the finished Parameterization. \pre not finished
+  double energy_curl() const;
+  double energy_harmonic() const;
+  /// The rest of parameterize(); the object is spent. \throw InputError if called twice, NumericalError if a
+  /// factorization fails.
+  Parameterization finish() &&;
+
+  struct State;
+
+ private:
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace quadcover

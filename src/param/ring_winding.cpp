@@ -239,6 +239,7 @@ RewindPass rewind_pass(const RewindInputs& in, const std::vector<char>& fixed, c
     pass.u = untangle_map(in.mesh, in.layers, in.base, in.Z, fixed, pass.u, in.options, in.progress, r_free,
                           in.releasable);
     r_free.iterations += r.iterations;
+    r_free.regions += r.regions;
     r_free.polish_iterations += r.polish_iterations;
     r_free.seconds += r.seconds;
     r = std::move(r_free);
@@ -277,6 +278,7 @@ void merge_pass(ParamDiagnostics::Untangling& result, RewindPass& pass) {
   ParamDiagnostics::Untangling& r = pass.result;
   r.non_positive_before = result.non_positive_before;
   r.iterations += result.iterations;
+  r.regions += result.regions;
   r.polish_iterations += result.polish_iterations;
   r.seconds += result.seconds;
   r.released_vertices.insert(r.released_vertices.end(), result.released_vertices.begin(),

@@ -479,10 +479,12 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
     return out;
   };
   // Growing regions around the folds: the vertices within k rings of them move (k = rings, ×4 per attempt, then
-  // all), everything else stays where it is; most folds are local and a small system untangles them.
+  // all), everything else stays where it is; most folds are local and a small system untangles them. A region
+  // after the first that leaves as many folds as it was given ends the growth: the constraints hold them.
   std::vector<int> folds = left(X);
+  bool grow = true;
   for (int rings = std::max(options.rings, 1);
-       !folds.empty() && rings <= std::max(options.max_rings, 1) && !progress.cancelled(); rings *= 4) {
+       grow && !folds.empty() && rings <= std::max(options.max_rings, 1) && !progress.cancelled(); rings *= 4) {
     std::vector<char> seed(static_cast<std::size_t>(nv), 0);
     for (int f : folds)
       for (int c = 0; c < 3; ++c) seed[mesh.F()(f, c)] = 1;
@@ -491,11 +493,13 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
     std::vector<char> region_fixed = fixed;
     for (int p = 0; p < nv && !everything; ++p)
       if (!in[p]) region_fixed[p] = region_fixed[nv + p] = 1;
+    ++result.regions;
     untangle_region(
         maps, region_fixed, [&](const Eigen::VectorXd& Y) { return static_cast<int>(left(Y).size()); }, options,
         progress, X, result);
+    const std::size_t given = folds.size();
     folds = left(X);
-    if (everything) break;
+    grow = !everything && (rings == std::max(options.rings, 1) || folds.size() < given);
   }
   result.unresolved_faces = folds;
   const int after = flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive;

@@ -26,6 +26,8 @@ struct UntangleOptions {
   /// The folds are untangled in regions: the vertices within `rings` rings of them move, ×4 per failed attempt up
   /// to max_rings (≥ #F: the last attempt moves the whole map). Folds that a region of 32 rings cannot undo are
   /// held by the constraints (branch points rounded to one point a few edges apart): larger regions only cost time.
+  /// The growth also ends after an attempt past the first that leaves as many folds as it was given: on the shipped
+  /// meshes the next, 16× larger region then never removed one either (BENCHMARKS.md, "Untangling regions").
   int rings = 2, max_rings = 32;
   int max_iterations = 60;    ///< ε rounds per region at most (one projected Newton step each)
   int patience = 8;           ///< a region stops after this many rounds without fewer folds

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.h"
 #include "cover/complex_stiffness.h"
 #include "cover/field_helpers.h"
 #include "field/compute_frame_field.h"
@@ -205,6 +206,27 @@ TEST(Parameterize, TorusWithQuarterTurnHolonomy) {
     const SeamReport seams = measure_seams(mesh, P.uv, 1e-9);
     EXPECT_TRUE(seams.seamless) << seams.max_transition_error;
     EXPECT_LT(std::abs(flipped_triangles(mesh, P.uv).parameter_area), 1e-6 * mesh.total_area() * P.scale * P.scale);
+  }
+}
+
+// parameterize() in two parts (SolvedMap): the energies are known before the refinements and are those of the
+// finished map, a moved SolvedMap finishes to the same map, and a spent one refuses to finish again.
+TEST(Parameterize, SolvedMapFinishesToTheSameMap) {
+  for (const char* name : {"bunny_3k", "lilium_disk"}) {  // lilium_disk: with boundary curve constraints
+    SCOPED_TRACE(name);
+    const Mesh mesh = load_test_mesh(name);
+    const FrameField field = compute_frame_field(mesh);
+    const Parameterization whole = parameterize(mesh, field);
+    SolvedMap solved(mesh, field);
+    EXPECT_EQ(solved.energy_curl(), whole.energy_curl);
+    EXPECT_EQ(solved.energy_harmonic(), whole.energy_harmonic);
+    SolvedMap moved = std::move(solved);
+    const Parameterization parts = std::move(moved).finish();
+    EXPECT_EQ(parts.uv, whole.uv);
+    EXPECT_EQ(parts.transition_translation, whole.transition_translation);
+    EXPECT_EQ(parts.diagnostics.untangling.iterations, whole.diagnostics.untangling.iterations);
+    EXPECT_EQ(parts.energy_harmonic, whole.energy_harmonic);
+    EXPECT_THROW(std::move(moved).finish(), InputError);
   }
 }
 

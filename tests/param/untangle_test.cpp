@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <numbers>
 #include <random>
 #include <string>
 
@@ -234,6 +235,43 @@ TEST(Untangle, ReleasingCurveCornersOpensStuckCurveTriangles) {
               << flipped_triangles(mesh, B.uv).non_positive << " non-positive, "
               << B.diagnostics.untangling.released_vertices.size() << " curve vertices released, stuck "
               << A.diagnostics.untangling.stuck_faces.size() << " -> " << B.diagnostics.untangling.stuck_faces.size() << "\n";
+  }
+}
+
+// The regions grow around folds only while they help: a fold the constraints hold (a fan whose fixed rim crosses
+// itself, so some triangle stays non-positive wherever the apex goes) is tried in the first region and the next, not
+// in a third; an apex merely put outside its convex rim is untangled in the first region.
+TEST(Untangle, RegionsStopGrowingWhenTheConstraintsHoldTheFolds) {
+  const Mesh fan = testing::make_fan(6, /*closed=*/false);
+  const int nv = fan.num_vertices(), nf = fan.num_faces();
+  const VertexLayers layers{Eigen::MatrixX3i::Zero(nf, 3), Eigen::VectorXi::Zero(nv)};
+  FramePairs Z(nf, 2);
+  Z.col(0).setConstant(Complex(1, 0));
+  Z.col(1).setConstant(Complex(0, 1));
+  std::vector<char> rim_fixed(static_cast<std::size_t>(2 * nv), 1);
+  rim_fixed[0] = rim_fixed[nv] = 0;  // only the apex moves
+  for (const bool crossed : {false, true}) {
+    SCOPED_TRACE(crossed ? "crossed rim" : "convex rim");
+    Eigen::MatrixX3cd base(nf, 3);
+    for (int f = 0; f < nf; ++f)
+      for (int c = 0; c < 3; ++c) {
+        int p = fan.F()(f, c);
+        if (crossed && (p == 2 || p == 3)) p = 5 - p;  // rim vertices 2 and 3 swap places
+        base(f, c) = p == 0 ? Complex(3, 0) : std::polar(1.0, 2 * std::numbers::pi * (p - 1) / 6);
+      }
+    ParamDiagnostics::Untangling r;
+    const Eigen::VectorXcd u =
+        untangle_map(fan, layers, base, Z, rim_fixed, Eigen::VectorXcd::Zero(nv), {}, null_progress(), r);
+    ASSERT_GT(r.non_positive_before, 0);
+    if (crossed) {
+      EXPECT_GT(r.non_positive_after, 0);
+      EXPECT_FALSE(r.unresolved_faces.empty());
+      EXPECT_EQ(r.regions, 2);
+    } else {
+      EXPECT_EQ(r.non_positive_after, 0);
+      EXPECT_EQ(r.regions, 1);
+    }
+    for (int p = 1; p < nv; ++p) EXPECT_EQ(u[p], Complex(0)) << p;
   }
 }
 
