@@ -489,8 +489,9 @@ void solve_steps(SolvedMap::State& s) {
   std::optional<AlignedLines> aligned_lines;
   if (!slots.empty()) aligned_lines.emplace(mesh, cc, correction.layers().layer, slots);
   std::optional<GivenLines> given;
-  const Eigen::VectorXcd d = round_periods_of(mesh, cc, correction, c, {aligned_lines ? &*aligned_lines : nullptr, known_free},
-                                              options, s.progress, s.lap, P, given);
+  const Eigen::VectorXcd d =
+      round_periods_of(mesh, cc, correction, c, {aligned_lines ? &*aligned_lines : nullptr, known_free}, options,
+                       s.progress, s.lap, P, given);
 
   // ---- 5. harmonic correction H̃_d = Σ̃_d - (Σ̃_d)_P: 𝔏̄ u = -div Σ̃_d with branch rows removed
   const Eigen::MatrixX3cd sigma = jump_function(mesh, cc, d);

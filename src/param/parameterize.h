@@ -65,8 +65,9 @@ class SolvedMap {
   SolvedMap(SolvedMap&&) noexcept;
   SolvedMap& operator=(SolvedMap&&) noexcept;
 
-  /// ‖X̃_C‖² and E_H of the map, as in the finished Parameterization. \pre not finished
+  /// ‖X̃_C‖² of the map, as in the finished Parameterization. \pre not finished
   double energy_curl() const;
+  /// E_H of the map, as in the finished Parameterization. \pre not finished
   double energy_harmonic() const;
   /// The rest of parameterize(); the object is spent. \throw InputError if called twice, NumericalError if a
   /// factorization fails.
