@@ -29,6 +29,14 @@ class InputError : public std::runtime_error {
   long line_;
 };
 
+/// The density leaves too few quads in the map to extract a quad mesh (an InputError: the user's density is refused;
+/// at the default density the job is made again finer, pipeline/retry_until_valid.h).
+class DensityTooCoarse : public InputError {
+ public:
+  /// \pre none
+  explicit DensityTooCoarse(const std::string& what) : InputError("density", 0, what) {}
+};
+
 /// The mesh is readable but is not a surface quadcover can work on (non-manifold, non-orientable, ...).
 /// problems() holds one located message per defect.
 class TopologyError : public std::runtime_error {

@@ -17,12 +17,11 @@ void check_extractable(const Mesh& mesh, const Parameterization& map) {
   const double area = flipped_triangles(mesh, map.uv).parameter_area;
   if (area >= 4) return;
   const long quads = std::lround(std::max(0.0, area));
-  throw InputError("density", 0,
-                   "the map holds about " + std::to_string(quads) +
-                       " quads, too few to extract a quad mesh; ask for more quads or a smaller edge length" +
-                       (map.branch_points.empty() && mesh.num_boundary_loops() > 0
-                            ? " (if the map folds onto itself, the field's singularities are whole turns)"
-                            : ""));
+  throw DensityTooCoarse("the map holds about " + std::to_string(quads) +
+                         " quads, too few to extract a quad mesh; ask for more quads or a smaller edge length" +
+                         (map.branch_points.empty() && mesh.num_boundary_loops() > 0
+                              ? " (if the map folds onto itself, the field's singularities are whole turns)"
+                              : ""));
 }
 
 RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress) {

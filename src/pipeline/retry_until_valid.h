@@ -1,15 +1,60 @@
 #pragma once
 // The loop of the validity retries (pipeline/validity_retries.h), shared by the param and the remesh job.
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "common/errors.h"
 #include "common/progress.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
 
 namespace quadcover {
 
-/// Attempt 0 = run(given minus its retries), then, while the best so far is worth_retrying, up to
+/// A shape thinner than the default quad edge (a thin tube, a narrow strip: the default h is twice the mean edge
+/// length, param/density.h) folds most of its map at the default density, or leaves too few quads to extract. Such
+/// a first attempt (non-positive triangles and triangles the fold refinement added, pipeline/fold_refinement.h, more
+/// than kUnderResolvedShare of the input's triangles together, while the map holds fewer quads than the input has
+/// triangles: a triangulation coarser than the grid folds for other reasons; or DensityTooCoarse) is made
+/// again with the default edge factor halved, up to kCoarseHalvings times; the kept job says so in a warning. A
+/// density the user gave is never changed, and with no validity retries (`once_retries` 0) attempt 0 is kept.
+inline constexpr int kCoarseHalvings = 5;
+inline constexpr double kUnderResolvedShare = 0.25;
+
+/// Attempt 0 of retry_until_valid with the halvings above. \throw as run (DensityTooCoarse after the last halving).
+template <class Run, class Judge>
+auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judge& judge, ProgressSink& progress) {
+  const DensityOptions& density = once.param.density;
+  const bool adjustable = density.edge_length <= 0 && density.target_quads <= 0 && once_retries > 0;
+  PipelineOptions o = once;
+  for (int halvings = 0;; ++halvings) {
+    const bool last = !adjustable || halvings == kCoarseHalvings || progress.skip_improvements();
+    std::string why;
+    try {
+      auto job = run(o);
+      const Validity v = judge(job);
+      const int faces = static_cast<int>(param_job(job).map.uv.rows()) - param_job(job).refinement.added_faces;
+      const int added = param_job(job).fold_refinement.added_faces, trouble = v.non_positive + added;
+      if (last || trouble <= kUnderResolvedShare * faces || map_quads(param_job(job).map) >= faces) {
+        if (halvings > 0)
+          param_job(job).warnings.push_back(
+              "the default density was too coarse for this shape (a part thinner than the quad edge): made " +
+              std::to_string(1 << (2 * halvings)) + " times finer, h = " +
+              std::to_string(param_job(job).map.edge_length) + " (pass --faces or --edge-length to choose)");
+        return job;
+      }
+      why = std::to_string(v.non_positive) + " of " + std::to_string(faces) + " triangles folded, " +
+            std::to_string(added) + " added around folds";
+    } catch (const DensityTooCoarse& e) {
+      if (last) throw;
+      why = e.what();
+    }
+    o.param.density.default_edge_factor /= 2;
+    progress.report("retry", -1, "default density too coarse (" + why + "): attempt at half the quad edge");
+  }
+}
+
+/// Attempt 0 = first_attempt(given minus its retries), then, while the best so far is worth_retrying, up to
 /// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The
 /// kept job's ParamJob (param_job(job)) records the attempts; a warning says when the kept one is not the first or
 /// is not valid. A time limit or Ctrl-C ends the retries (recorded as cut short).
@@ -19,7 +64,7 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   validate(given);
   PipelineOptions once = given;
   once.validity_retries = 0;
-  auto first = run(once);
+  auto first = first_attempt(once, given.validity_retries, run, judge, progress);
   using Job = decltype(first);
   Validity best_validity = judge(first);
   std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};

@@ -26,6 +26,13 @@ Validity map_validity(const Mesh& mesh, const Parameterization& map) {
   return v;
 }
 
+double map_quads(const Parameterization& map) {
+  double area = 0;
+  for (Eigen::Index f = 0; f < map.uv.rows(); ++f)
+    area += 0.5 * std::imag(std::conj(map.uv(f, 1) - map.uv(f, 0)) * (map.uv(f, 2) - map.uv(f, 0)));
+  return area;
+}
+
 double attempt_quads_factor(int k, const DensityOptions& given) {
   const bool requested = given.target_quads > 0 || given.edge_length > 0;
   return 1 + (requested ? 0.02 : 0.04) * ((k + 1) / 2) * (k % 2 == 1 ? 1 : -1);

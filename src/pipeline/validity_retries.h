@@ -49,6 +49,9 @@ struct ValidityAttempt {
 /// Ascending. \pre map was made on mesh.
 std::vector<int> wrong_winding_vertices(const Mesh& mesh, const Parameterization& map);
 
+/// The quads the map holds: its signed parameter area (grid units²). \pre none
+double map_quads(const Parameterization& map);
+
 /// The map's part of Validity (non_positive, wrong_windings). \pre map was made on mesh.
 Validity map_validity(const Mesh& mesh, const Parameterization& map);
 

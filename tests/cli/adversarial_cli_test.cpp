@@ -121,18 +121,25 @@ TEST_F(AdversarialCli, SingleTriangle) {
   EXPECT_GT(remesh_["faces"].get<int>(), 20);
 }
 
-// At the default density (h = 2 × mean edge length) a single triangle asks for less than one quad: remesh exits 2
-// naming the options that fix it, and writes nothing.
-TEST_F(AdversarialCli, TooCoarseDensityIsAnInputError) {
+// A single triangle asks for less than one quad at h = 2 × its mean edge length: given by the user, remesh exits 2
+// naming the options that fix it and writes nothing; as the default density, h is made finer until the map holds
+// quads, and a warning says so.
+TEST_F(AdversarialCli, TooCoarseDensityIsAnInputErrorOrMadeFinerByDefault) {
   Eigen::MatrixX3d V(3, 3);
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
   Eigen::MatrixX3i F(1, 3);
   F << 0, 1, 2;
   const std::string in = write("coarse", V, F), out = path("coarse.quads.obj");
-  const CliRun r = run("remesh " + in + " -o " + out);
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--faces"), std::string::npos) << r.err;
+  const double default_h = 2 * (1 + 1 + std::sqrt(2.0)) / 3;
+  const CliRun given = run("remesh " + in + " -o " + out + " --edge-length " + std::to_string(default_h));
+  EXPECT_EQ(given.code, 2) << given.err;
+  EXPECT_NE(given.err.find("--faces"), std::string::npos) << given.err;
   EXPECT_FALSE(fs::exists(out));
+  const CliRun by_default = run("remesh " + in + " -o " + out);
+  EXPECT_EQ(by_default.code, 0) << by_default.err;
+  EXPECT_NE(by_default.err.find("the default density was too coarse for this shape"), std::string::npos)
+      << by_default.err;
+  EXPECT_TRUE(fs::exists(out));
 }
 
 TEST_F(AdversarialCli, Tetrahedron) {

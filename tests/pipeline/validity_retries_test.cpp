@@ -281,5 +281,36 @@ TEST(CurveRoundingFallback, FreesTheCurvesAtWrongWindingsAndFallsBackOnlyWhenSti
   }
 }
 
+// A tube thinner than the default quad edge (h = 2 × the mean edge length, here 0.15 against a circumference of
+// 0.13) folds most of the map: the default density is halved until the map holds it, the result keeps the torus,
+// and a warning says so. The same h given by the user is kept as given; a coarse triangulation of a round shape is
+// not made finer.
+TEST(ValidityRetries, ATubeThinnerThanTheDefaultQuadEdgeIsMadeFinerAndKeepsItsTopology) {
+  const Mesh tube = testing::make_torus(60, 6, 1.0, 0.02);
+  const double default_h = 2 * tube.mean_edge_length();
+  const auto warned = [](const ParamJob& job) {
+    return std::any_of(job.warnings.begin(), job.warnings.end(), [](const std::string& w) {
+      return w.find("the default density was too coarse for this shape") != std::string::npos;
+    });
+  };
+  const RemeshJob job = remesh_mesh(tube, PipelineOptions{});
+  EXPECT_TRUE(job.surface.same_topology);
+  EXPECT_EQ(job.surface.output.non_quads, 0);
+  EXPECT_EQ(flipped_triangles(job.param.mesh(tube), job.param.map.uv).non_positive, 0);
+  EXPECT_LT(job.param.map.edge_length, default_h / 2);
+  EXPECT_TRUE(warned(job.param));
+  EXPECT_LT(job.param.options.param.density.default_edge_factor, DensityOptions{}.default_edge_factor / 2);
+  PipelineOptions given;
+  given.param.density.edge_length = default_h;
+  given.validity_retries = 0;
+  const ParamJob as_given = parameterize_mesh(tube, given);
+  EXPECT_EQ(as_given.map.edge_length, default_h);
+  EXPECT_FALSE(warned(as_given));
+  const Mesh sphere = testing::make_ellipsoid(1);  // 80 triangles, more quads than triangles at the default
+  const ParamJob round = parameterize_mesh(sphere, PipelineOptions{});
+  EXPECT_FALSE(warned(round));
+  EXPECT_EQ(round.options.param.density.default_edge_factor, DensityOptions{}.default_edge_factor);
+}
+
 }  // namespace
 }  // namespace quadcover
