@@ -1,5 +1,6 @@
 #pragma once
 // The loop of the validity retries (pipeline/validity_retries.h), shared by the param and the remesh job.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,12 +22,15 @@ namespace quadcover {
 inline constexpr int kCoarseHalvings = 5;
 inline constexpr double kUnderResolvedShare = 0.25;
 
-/// Attempt 0 of retry_until_valid with the halvings above. \throw as run (DensityTooCoarse after the last halving).
+/// Attempt 0 of retry_until_valid with the halvings above. When a finer attempt is refused (the memory budget,
+/// pipeline/memory_budget.h), the coarser one is kept and a warning says why. \throw as run (DensityTooCoarse after
+/// the last halving).
 template <class Run, class Judge>
 auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judge& judge, ProgressSink& progress) {
   const DensityOptions& density = once.param.density;
   const bool adjustable = density.edge_length <= 0 && density.target_quads <= 0 && once_retries > 0;
   PipelineOptions o = once;
+  std::optional<decltype(run(once))> coarser;  // the attempt before, while a finer one runs
   for (int halvings = 0;; ++halvings) {
     const bool last = !adjustable || halvings == kCoarseHalvings || progress.skip_improvements();
     std::string why;
@@ -45,8 +49,15 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
       }
       why = std::to_string(v.non_positive) + " of " + std::to_string(faces) + " triangles folded, " +
             std::to_string(added) + " added around folds";
-    } catch (const DensityTooCoarse& e) {
-      if (last) throw;
+      coarser = std::move(job);
+    } catch (const InputError& e) {
+      const bool too_coarse = dynamic_cast<const DensityTooCoarse*>(&e) != nullptr;
+      if (!coarser && (last || !too_coarse)) throw;
+      if (coarser) {
+        param_job(*coarser).warnings.push_back(std::string("the default density is too coarse for this shape, and ") +
+                                               "a finer one was refused: " + e.what());
+        return std::move(*coarser);
+      }
       why = e.what();
     }
     o.param.density.default_edge_factor /= 2;

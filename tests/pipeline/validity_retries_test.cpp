@@ -11,6 +11,7 @@
 #include <string>
 
 #include "param/seams.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/remesh_mesh.h"
 #include "pipeline/retry_until_valid.h"
 #include "support/angle_sums.h"
@@ -310,6 +311,20 @@ TEST(ValidityRetries, ATubeThinnerThanTheDefaultQuadEdgeIsMadeFinerAndKeepsItsTo
   const ParamJob round = parameterize_mesh(sphere, PipelineOptions{});
   EXPECT_FALSE(warned(round));
   EXPECT_EQ(round.options.param.density.default_edge_factor, DensityOptions{}.default_edge_factor);
+}
+
+// When the memory budget refuses the finer default density, the coarser attempt is kept and a warning says why.
+TEST(ValidityRetries, AFinerDefaultDensityTheMemoryCannotHoldKeepsTheCoarserAttempt) {
+  const Mesh tube = testing::make_torus(60, 6, 1.0, 0.02);
+  PipelineOptions options;
+  const double quads = requested_quads(tube, options.param);  // attempt 0; half the edge asks for 4 times as many
+  options.max_memory_bytes =
+      static_cast<std::int64_t>(kBytesPerInputFace * tube.num_faces() + kBytesPerQuad * 2 * quads);
+  const ParamJob job = parameterize_mesh(tube, options);
+  EXPECT_EQ(job.options.param.density.default_edge_factor, DensityOptions{}.default_edge_factor);
+  EXPECT_TRUE(std::any_of(job.warnings.begin(), job.warnings.end(), [](const std::string& w) {
+    return w.find("a finer one was refused") != std::string::npos && w.find("GB are available") != std::string::npos;
+  }));
 }
 
 }  // namespace
