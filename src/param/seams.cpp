@@ -53,7 +53,7 @@ FlipReport flipped_triangles(const Eigen::VectorXd& face_areas, const Eigen::Mat
   std::vector<double> area(static_cast<std::size_t>(nf));
   double total_uv = 0;
   for (Eigen::Index f = 0; f < nf; ++f) {
-    area[f] = 0.5 * std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0)));
+    area[f] = signed_uv_area(uv, f);
     total_uv += std::abs(area[f]);
     r.parameter_area += area[f];
   }

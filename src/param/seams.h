@@ -2,6 +2,7 @@
 // Measuring a parameterization from its per-corner coordinates alone: the transition z ↦ i^k z + c across every
 // interior edge (seamless iff c ∈ Z[i]), and the triangles that flip or collapse in parameter space.
 #include <Eigen/Core>
+#include <complex>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -33,6 +34,11 @@ struct FlipReport {
 };
 
 inline constexpr double flip_tolerance = 1e-8;
+
+/// The signed parameter area ½ Im(conj(uv1 − uv0)(uv2 − uv0)) of face f. \pre f < #uv rows.
+inline double signed_uv_area(const Eigen::MatrixX3cd& uv, Eigen::Index f) {
+  return 0.5 * std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0)));
+}
 
 /// Signed parameter areas ½ Im(conj(uv1 - uv0)(uv2 - uv0)) of all faces, judged against the 3D areas of `mesh`.
 /// \pre uv is #F by 3.

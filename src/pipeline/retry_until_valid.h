@@ -22,15 +22,16 @@ namespace quadcover {
 inline constexpr int kCoarseHalvings = 5;
 inline constexpr double kUnderResolvedShare = 0.25;
 
-/// Attempt 0 of retry_until_valid with the halvings above. When a finer attempt is refused (the memory budget,
-/// pipeline/memory_budget.h), the coarser one is kept and a warning says why. \throw as run (DensityTooCoarse after
-/// the last halving).
+/// Attempt 0 of retry_until_valid with the halvings above, and its Validity by `judge`. When a finer attempt is
+/// refused (the memory budget, pipeline/memory_budget.h), the coarser one is kept and a warning says why.
+/// \throw as run (DensityTooCoarse after the last halving).
 template <class Run, class Judge>
 auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judge& judge, ProgressSink& progress) {
   const DensityOptions& density = once.param.density;
   const bool adjustable = density.edge_length <= 0 && density.target_quads <= 0 && once_retries > 0;
   PipelineOptions o = once;
-  std::optional<decltype(run(once))> coarser;  // the attempt before, while a finer one runs
+  using Judged = std::pair<decltype(run(once)), Validity>;
+  std::optional<Judged> coarser;  // the attempt before, while a finer one runs
   for (int halvings = 0;; ++halvings) {
     const bool last = !adjustable || halvings == kCoarseHalvings || progress.skip_improvements();
     std::string why;
@@ -45,17 +46,18 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
               "the default density was too coarse for this shape (a part thinner than the quad edge): made " +
               std::to_string(1 << (2 * halvings)) + " times finer, h = " +
               std::to_string(param_job(job).map.edge_length) + " (pass --faces or --edge-length to choose)");
-        return job;
+        return Judged{std::move(job), v};
       }
       why = std::to_string(v.non_positive) + " of " + std::to_string(faces) + " triangles folded, " +
             std::to_string(added) + " added around folds";
-      coarser = std::move(job);
+      coarser.emplace(std::move(job), v);
     } catch (const InputError& e) {
       const bool too_coarse = dynamic_cast<const DensityTooCoarse*>(&e) != nullptr;
       if (!coarser && (last || !too_coarse)) throw;
       if (coarser) {
-        param_job(*coarser).warnings.push_back(std::string("the default density is too coarse for this shape, and ") +
-                                               "a finer one was refused: " + e.what());
+        param_job(coarser->first)
+            .warnings.push_back(std::string("the default density is too coarse for this shape, and ") +
+                                "a finer one was refused: " + e.what());
         return std::move(*coarser);
       }
       why = e.what();
@@ -75,9 +77,8 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   validate(given);
   PipelineOptions once = given;
   once.validity_retries = 0;
-  auto first = first_attempt(once, given.validity_retries, run, judge, progress);
+  auto [first, best_validity] = first_attempt(once, given.validity_retries, run, judge, progress);
   using Job = decltype(first);
-  Validity best_validity = judge(first);
   std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};
   const double h0 = param_job(first).options.param.density.edge_length;
   int used = 0;

@@ -28,8 +28,7 @@ Validity map_validity(const Mesh& mesh, const Parameterization& map) {
 
 double map_quads(const Parameterization& map) {
   double area = 0;
-  for (Eigen::Index f = 0; f < map.uv.rows(); ++f)
-    area += 0.5 * std::imag(std::conj(map.uv(f, 1) - map.uv(f, 0)) * (map.uv(f, 2) - map.uv(f, 0)));
+  for (Eigen::Index f = 0; f < map.uv.rows(); ++f) area += signed_uv_area(map.uv, f);
   return area;
 }
 
