@@ -33,8 +33,24 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
   return merges;
 }
 
-std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map) {
-  constexpr int kCoincidentRings = 3;
+namespace {
+
+/// The first branch point q ≠ p in `around` (developed_around p) on p's point that `used` leaves free, or -1.
+int coincident_partner(const Mesh& mesh, const Eigen::VectorXi& quarter, const std::vector<char>& used,
+                       const std::vector<std::pair<int, Complex>>& around, int p) {
+  Complex at = 0;
+  for (const auto& [q, z] : around)
+    if (q == p) at = z;
+  for (const auto& [q, z] : around)
+    if (q != p && quarter[q] % 4 != 0 && !used[q] && !mesh.is_boundary_vertex(q) &&
+        std::abs(z - at) <= 1e-9 * (1 + std::abs(at)))
+      return q;
+  return -1;
+}
+
+}  // namespace
+
+std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map, CoincidentReach reach) {
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), map.branch_points);
   const VertexLayers layers{map.subspace.layer, map.subspace.branch};
   const Eigen::VectorXcd zero = Eigen::VectorXcd::Zero(mesh.num_vertices());
@@ -42,20 +58,25 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   std::vector<ConeMerge> merges;
   const auto wound_wrong = [&](int q) { return !mesh.is_boundary_vertex(q) && wound[q] != quarter[q]; };
+  const auto merge = [&](int p, int q) {
+    merges.push_back({std::max(p, q), std::min(p, q), mod4(quarter[std::max(p, q)])});
+    used[p] = used[q] = 1;
+  };
+  const auto candidate = [&](int p) {
+    return quarter[p] % 4 != 0 && !used[p] && !mesh.is_boundary_vertex(p) && !mesh.fan(p).empty();
+  };
+  // Near: a pair within kNearRings of a wrongly wound vertex.
   for (int p = 0; p < mesh.num_vertices(); ++p) {
-    if (quarter[p] % 4 == 0 || used[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).empty()) continue;
-    const auto around = developed_around(mesh, layers, map.uv, zero, p, kCoincidentRings);
-    if (std::none_of(around.begin(), around.end(), [&](const auto& qz) { return wound_wrong(qz.first); })) continue;
-    Complex at = 0;
-    for (const auto& [q, z] : around)
-      if (q == p) at = z;
-    for (const auto& [q, z] : around) {
-      if (q == p || quarter[q] % 4 == 0 || used[q] || mesh.is_boundary_vertex(q)) continue;
-      if (std::abs(z - at) > 1e-9 * (1 + std::abs(at))) continue;
-      merges.push_back({std::max(p, q), std::min(p, q), mod4(quarter[std::max(p, q)])});
-      used[p] = used[q] = 1;
-      break;
-    }
+    if (!candidate(p)) continue;
+    const auto near = developed_around(mesh, layers, map.uv, zero, p, kNearRings);
+    if (std::none_of(near.begin(), near.end(), [&](const auto& qz) { return wound_wrong(qz.first); })) continue;
+    if (const int q = coincident_partner(mesh, quarter, used, near, p); q >= 0) merge(p, q);
+  }
+  if (reach == CoincidentReach::Near) return merges;
+  for (int p = 0; p < mesh.num_vertices(); ++p) {
+    if (!candidate(p) || !wound_wrong(p)) continue;
+    const auto around = developed_around(mesh, layers, map.uv, zero, p, kFarRings);
+    if (const int q = coincident_partner(mesh, quarter, used, around, p); q >= 0) merge(p, q);
   }
   return merges;
 }

@@ -301,32 +301,61 @@ ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, dou
   return retry;
 }
 
+namespace {
+
+/// Appends to `merges` the pairs of close_coincident_merges(map, reach) whose vertices `used` leaves free (and are
+/// vertices of `mesh`: no midpoint of the fold refinement is a cone), marking them used. \return how many.
+std::size_t add_close_merges(const Mesh& mesh, const Mesh& map_mesh, const Parameterization& map, CoincidentReach reach,
+                             std::vector<char>& used, std::vector<ConeMerge>& merges) {
+  const std::size_t known = merges.size();
+  for (const ConeMerge& m : close_coincident_merges(map_mesh, map, reach))
+    if (m.from < mesh.num_vertices() && m.into < mesh.num_vertices() && !used[m.from] && !used[m.into]) {
+      merges.push_back(m);
+      used[m.from] = used[m.into] = 1;
+    }
+  return merges.size() - known;
+}
+
+}  // namespace
+
 void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double lambda, const ParamJob& before,
                        std::vector<ConeMerge> merges, ParamJob& job, ProgressSink& progress) {
-  constexpr int kRounds = 2;  // a second one while not valid: the remade map can put another pair on a point
+  // Rounds while not valid: the remade map can put another pair on a point. The far partners are looked for once
+  // the near ones are spent (none new, or their remake was not kept).
+  constexpr int kRounds = 3;
   if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
   const Mesh& mesh = before.mesh(input);
   const std::pair<bool, bool> kept_moves{job.merged_cone_pairs > 0, job.moved_wound_cones > 0};
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (const ConeMerge& m : merges) used[m.from] = used[m.into] = 1;
   const auto start = std::chrono::steady_clock::now();
+  bool far_tried = false, far_next = false, tried = false;
   for (int round = 0; round < kRounds; ++round) {
     const std::size_t known = merges.size();
-    for (const ConeMerge& m : close_coincident_merges(job.mesh(input), job.map))
-      if (m.from < mesh.num_vertices() && m.into < mesh.num_vertices() && !used[m.from] && !used[m.into]) {
-        // no midpoint of the fold refinement is a cone
-        merges.push_back(m);
-        used[m.from] = used[m.into] = 1;
-      }
-    if (merges.empty() || (round > 0 && merges.size() == known)) break;
+    const auto add = [&](CoincidentReach reach) {
+      return add_close_merges(mesh, job.mesh(input), job.map, reach, used, merges);
+    };
+    const std::size_t near = far_next ? 0 : add(CoincidentReach::Near);
+    if (near == 0 && (round > 0 || known == 0)) {
+      if (far_tried) break;
+      far_tried = true;
+      if (add(CoincidentReach::Far) == 0) break;
+    }
+    far_next = false;
+    tried = true;
     ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, progress);
-    if (!(map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map))) break;
+    if (!(map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map))) {
+      merges.resize(known);  // the pairs stay used: not tried again
+      if (far_tried || progress.skip_improvements()) break;
+      far_next = true;
+      continue;
+    }
     retry.seconds = std::move(job.seconds);
     retry.peak_bytes = std::move(job.peak_bytes);
     job = std::move(retry);
     if (map_validity(job.mesh(input), job.map).valid() || progress.skip_improvements()) break;
   }
-  if (!merges.empty()) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
+  if (tried) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }
 
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,

@@ -219,6 +219,39 @@ TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetwe
   EXPECT_EQ(non_positive_triangles(with.map), 0);
 }
 
+TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) {
+  // camelhead: two −1/4 branch points 7-8 rings apart rounded onto one lattice point; one winds π/2 instead of
+  // 5π/2 with a regular vertex at 4π beside it. The near search (kNearRings) does not see the pair, the far one does.
+  const Mesh mesh = testing::load_test_mesh("camelhead_boundary");
+  PipelineOptions plain;
+  plain.merge_coincident_cones = false;
+  plain.validity_retries = 0;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  const Mesh& m0 = without.mesh(mesh);
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, without.map.uv);
+  const std::vector<int> target = target_quarters(m0, without.map);
+  const std::vector<ConeMerge> near = close_coincident_merges(m0, without.map, CoincidentReach::Near);
+  const std::vector<ConeMerge> far = close_coincident_merges(m0, without.map, CoincidentReach::Far);
+  int apart = 0;
+  for (const ConeMerge& m : far) {
+    const bool in_near =
+        std::any_of(near.begin(), near.end(), [&](const ConeMerge& n) { return n.from == m.from && n.into == m.into; });
+    if (in_near) continue;
+    std::vector<char> seed(static_cast<std::size_t>(m0.num_vertices()), 0);
+    seed[m.from] = 1;
+    EXPECT_FALSE(grow_vertex_rings(m0, seed, kNearRings)[m.into]) << m.from << " " << m.into;
+    EXPECT_TRUE(grow_vertex_rings(m0, seed, kFarRings)[m.into]) << m.from << " " << m.into;
+    EXPECT_TRUE(wound[m.from] != target[m.from] || wound[m.into] != target[m.into]);
+    ++apart;
+  }
+  ASSERT_GT(apart, 0) << "the case this test is about no longer occurs";
+  // At the defaults the job merges them too, and the written map winds as the field everywhere.
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
+  EXPECT_EQ(non_positive_triangles(with.map), 0);
+}
+
 TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage) {
   // fandisk: a −1/4 branch point two edges from a feature line is rounded onto that line's image; the strip
   // between them has no width, and the cone's ring winds a turn short with a regular vertex at 4π beside it.
