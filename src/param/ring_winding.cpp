@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "mesh/vertex_rings.h"
+#include "param/cone_disk_layout.h"
 
 namespace quadcover {
 
@@ -19,6 +20,20 @@ double corner_angle(const Complex& at, const Complex& next, const Complex& prev)
   const Complex e1 = next - at, e2 = prev - at;
   return std::abs(e1) > 0 && std::abs(e2) > 0 ? std::arg(e2 / e1) : 0.0;
 }
+
+}  // namespace
+
+double fan_angle(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u,
+                 int p) {
+  double sum = 0;
+  for (const auto& fc : mesh.fan(p))
+    sum += corner_angle(corner_value(mesh, layers, base, u, fc.face, fc.corner),
+                        corner_value(mesh, layers, base, u, fc.face, (fc.corner + 1) % 3),
+                        corner_value(mesh, layers, base, u, fc.face, (fc.corner + 2) % 3));
+  return sum;
+}
+
+namespace {
 
 /// The fan of p in the chart of its first face: per fan face j, the ring vertex q_j (the corner after p), M_j (the
 /// chart of face j is i^{M_j} times the first one's, both centred on φ(p)), the current angle at p.
@@ -170,6 +185,15 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
                               const Eigen::VectorXi& target, RingRewinding& out) {
   out = {};
   Eigen::VectorXcd u = u0;
+  // Branch points first: a disk laid out again around one also rewinds the regular vertex beside it.
+  for (int p = 0; p < mesh.num_vertices(); ++p) {
+    if (!layers.branch[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).size() < 3) continue;
+    const double theta = (4 - target[p]) * kPi / 2;
+    if (theta <= 0 || std::lround(4 - 2 * fan_angle(mesh, layers, base, u, p) / kPi) == target[p]) continue;
+    if (lay_out_cone_disk(mesh, layers, base, fixed, theta, p, u).empty()) continue;
+    out.disks.push_back(p);
+    out.rewound.push_back(p);
+  }
   for (int p = 0; p < mesh.num_vertices(); ++p) {
     if (mesh.is_boundary_vertex(p) || mesh.fan(p).size() < 3) continue;
     const Fan fan = develop(mesh, layers, base, u, fixed, p);
@@ -192,6 +216,7 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
     out.rewound.push_back(p);
     out.moved.insert(out.moved.end(), fan.ring.begin(), fan.ring.end());
   }
+  std::sort(out.rewound.begin(), out.rewound.end());
   std::sort(out.moved.begin(), out.moved.end());
   out.moved.erase(std::unique(out.moved.begin(), out.moved.end()), out.moved.end());
   return u;

@@ -26,6 +26,10 @@ namespace quadcover {
 Complex corner_value(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                      const Eigen::VectorXcd& u, int f, int c);
 
+/// Θ_p: the signed angle sum of φ at p (corners with a side of zero length add nothing). \pre layers fit mesh, u #V.
+double fan_angle(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u,
+                 int p);
+
 /// 4·(1 − Θ_p / 2π) rounded, the map's quarter index at every interior vertex (0 at boundary and unused vertices);
 /// corners with a side of zero length add no angle (as metrics/param_quality.h cones_from_uv). \return #V \pre uv is #F.
 Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
@@ -36,6 +40,9 @@ struct RingRewinding {
   /// fan too small for its angle (some corner would need π or more: the fold refinement splits the ring first).
   std::vector<int> skipped;
   std::vector<int> moved;  ///< the vertices the new layouts moved (ascending): rings and moved centres
+  /// Branch points whose disk was laid out again (param/cone_disk_layout.h; ascending): also in `rewound`, their
+  /// disks' vertices not in `moved` (the layout keeps the disk's boundary: nothing beyond it needs holding).
+  std::vector<int> disks;
 };
 
 /// Lays out again, for every interior vertex p with map_quarter_index(φ) ≠ target[p], the ring of p in

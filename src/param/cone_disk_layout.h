@@ -1,0 +1,30 @@
+#pragma once
+// A disk around a wrongly wound branch point laid out again in its cone chart (beyond the thesis; issue 14).
+// A branch point p held on its lattice point L can come out of the untangling wound a turn short (e.g. π/2 for a
+// −1/4 cone, whose angle is 5π/2) with a regular vertex beside it at 4π: every triangle positive, so no untangling
+// changes it, and laying out p's ring alone leaves the turn in the rings beyond. But a few rings out the map is
+// right again: the boundary ∂D of the k-ring disk D around p sweeps the cone angle Θ_p around L (another sheet of D
+// covers L). Then D can be laid out again with the boundary where it is: in the flattened chart w = (z − L)^{2π/Θ_p}
+// (z in p's developed chart, param/map_development.h) ∂D is a closed curve around 0; Tutte's barycentric layout of
+// D's interior with p at 0 is mapped back by z = L + w^{Θ_p/2π}, which winds Θ_p around p and 2π around every other
+// interior vertex. The untangler then repairs what the layout left folded (a non-convex ∂D).
+#include <Eigen/Core>
+#include <vector>
+
+#include "cover/complex_stiffness.h"
+#include "mesh/mesh.h"
+
+namespace quadcover {
+
+inline constexpr int kMaxConeDiskRings = 6;
+
+/// Lays out again the smallest disk D of k ≤ kMaxConeDiskRings rings around the branch point p (faces with a vertex
+/// within k − 1 rings) whose boundary sweeps theta around φ(p) (see above), φ = base − layered_values(u). D must be
+/// a topological disk of interior vertices, with no branch point but p and no held component (`fixed`, 2·#V) inside.
+/// \return the vertices moved (D's interior but p, ascending; u changed there), or empty (u unchanged) if no k gives
+/// such a disk or the layout does not wind theta around p.
+/// \pre layers fit mesh, u #V, fixed 2·#V, p a branch point with faces, theta > 0.
+std::vector<int> lay_out_cone_disk(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                                   const std::vector<char>& fixed, double theta, int p, Eigen::VectorXcd& u);
+
+}  // namespace quadcover
