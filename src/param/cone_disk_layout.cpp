@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "common/union_find.h"
+#include "mesh/vertex_rings.h"
 #include "param/ring_winding.h"
 
 namespace quadcover {
@@ -18,25 +19,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kOnPoint = 1e-9;  // grid units: a boundary vertex this close to φ(p) is on it
-
-/// The faces with a vertex within rings − 1 rings of p (ascending).
-std::vector<int> disk_faces(const Mesh& mesh, int p, int rings) {
-  std::vector<int> vertices{p}, faces;
-  std::unordered_map<int, char> seen{{p, 1}};
-  for (std::size_t begin = 0, ring = 1; ring < static_cast<std::size_t>(rings); ++ring) {
-    const std::size_t end = vertices.size();
-    for (std::size_t k = begin; k < end; ++k)
-      for (const auto& fc : mesh.fan(vertices[k]))
-        for (int c = 0; c < 3; ++c)
-          if (seen.emplace(mesh.F()(fc.face, c), 1).second) vertices.push_back(mesh.F()(fc.face, c));
-    begin = end;
-  }
-  for (int q : vertices)
-    for (const auto& fc : mesh.fan(q)) faces.push_back(fc.face);
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
-}
 
 /// D: its faces, interior vertices (every face in D), the cut (edges of a shortest path from p to ∂D) and the
 /// boundary edges, each as (face, corner c) for the edge from corner c to c + 1.
@@ -75,7 +57,7 @@ bool cut_disk(const Mesh& mesh, int p, Disk& d) {
 bool make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<char>& fixed, int p, int rings,
                Disk& d) {
   const int nv = mesh.num_vertices();
-  d.faces = disk_faces(mesh, p, rings);
+  d.faces = faces_within_rings(mesh, p, rings - 1);  // faces with a vertex within rings − 1 rings
   for (std::size_t k = 0; k < d.faces.size(); ++k) d.slot[d.faces[k]] = static_cast<int>(k);
   std::unordered_map<int, int> vertex_faces, edges;
   for (int f : d.faces)

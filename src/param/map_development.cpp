@@ -4,30 +4,12 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "mesh/vertex_rings.h"
 #include "param/ring_winding.h"
 
 namespace quadcover {
 
 namespace {
-
-/// The faces touching the vertices within `rings` rings of p, ascending.
-std::vector<int> faces_within(const Mesh& mesh, int p, int rings) {
-  std::vector<int> vertices{p}, faces;
-  std::unordered_map<int, char> seen{{p, 1}};
-  for (std::size_t begin = 0, ring = 0; ring < static_cast<std::size_t>(rings); ++ring) {
-    const std::size_t end = vertices.size();
-    for (std::size_t k = begin; k < end; ++k)
-      for (const auto& fc : mesh.fan(vertices[k]))
-        for (int c = 0; c < 3; ++c)
-          if (seen.emplace(mesh.F()(fc.face, c), 1).second) vertices.push_back(mesh.F()(fc.face, c));
-    begin = end;
-  }
-  for (int q : vertices)
-    for (const auto& fc : mesh.fan(q)) faces.push_back(fc.face);
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
-}
 
 /// A chart of the walk: φ_f = i^m Z + t for Z in the first face's chart.
 struct Chart {
@@ -49,7 +31,7 @@ int shared_regular(const Mesh& mesh, const VertexLayers& layers, int f, int g) {
 std::vector<std::pair<int, Complex>> developed_around(const Mesh& mesh, const VertexLayers& layers,
                                                       const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u, int p,
                                                       int rings) {
-  const std::vector<int> faces = faces_within(mesh, p, rings - 1);
+  const std::vector<int> faces = faces_within_rings(mesh, p, rings - 1);
   std::unordered_map<int, char> reached;
   std::vector<Chart> walk{{mesh.fan(p)[0].face, 0, 0}};
   reached[walk[0].face] = 1;

@@ -71,18 +71,33 @@ ConeMap wound_cone_map(const PolarGrid& g) {
   return m;
 }
 
+/// The grid, its wound map and the held components (the centre, held on its lattice point).
+struct WoundCone {
+  PolarGrid grid;
+  ConeMap map;
+  std::vector<char> fixed;
+  int nv() const { return grid.mesh.num_vertices(); }
+};
+
+WoundCone make_wound_cone(int n, int rings) {
+  WoundCone w{make_polar_grid(n, rings), {}, {}};
+  w.map = wound_cone_map(w.grid);
+  w.fixed.assign(static_cast<std::size_t>(2 * w.nv()), 0);
+  w.fixed[0] = w.fixed[w.nv()] = 1;
+  return w;
+}
+
 TEST(ConeDiskLayout, ADiskWhoseRimSweepsTheConeAngleIsLaidOutAgainWithTheConesWinding) {
   for (const auto& [n, rings] : {std::pair{8, 3}, std::pair{12, 4}, std::pair{7, 5}}) {
     SCOPED_TRACE(n);
-    const PolarGrid g = make_polar_grid(n, rings);
-    const ConeMap m = wound_cone_map(g);
-    const int nv = g.mesh.num_vertices();
-    std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
-    fixed[0] = fixed[nv] = 1;  // the branch point is held on its lattice point
+    const WoundCone w = make_wound_cone(n, rings);
+    const PolarGrid& g = w.grid;
+    const ConeMap& m = w.map;
+    const int nv = w.nv();
     const Eigen::VectorXcd u0 = Eigen::VectorXcd::Zero(nv);
     ASSERT_NEAR(fan_angle(g.mesh, m.layers, m.base, u0, 0), kPi / 2, 1e-9);  // a turn short
     Eigen::VectorXcd u = u0;
-    const std::vector<int> moved = lay_out_cone_disk(g.mesh, m.layers, m.base, fixed, 5 * kPi / 2, 0, u);
+    const std::vector<int> moved = lay_out_cone_disk(g.mesh, m.layers, m.base, w.fixed, 5 * kPi / 2, 0, u);
     ASSERT_EQ(static_cast<int>(moved.size()), n * (rings - 1));  // every ring inside the rim
     EXPECT_NEAR(fan_angle(g.mesh, m.layers, m.base, u, 0), 5 * kPi / 2, 1e-9);
     const Eigen::MatrixX3cd uv = m.base - layered_values(g.mesh, m.layers, u);
@@ -98,11 +113,11 @@ TEST(ConeDiskLayout, ADiskWhoseRimSweepsTheConeAngleIsLaidOutAgainWithTheConesWi
 }
 
 TEST(ConeDiskLayout, NoDiskWithAnotherBranchPointOrAHeldVertexInsideAndTheMapStays) {
-  const PolarGrid g = make_polar_grid(8, 3);
-  const ConeMap m = wound_cone_map(g);
-  const int nv = g.mesh.num_vertices();
-  std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
-  fixed[0] = fixed[nv] = 1;
+  WoundCone w = make_wound_cone(8, 3);
+  const PolarGrid& g = w.grid;
+  const ConeMap& m = w.map;
+  const int nv = w.nv();
+  std::vector<char>& fixed = w.fixed;
   fixed[g.vertex(1, 3)] = 1;  // one component of a ring vertex held (a curve constraint)
   const Eigen::VectorXcd u0 = Eigen::VectorXcd::Zero(nv);
   Eigen::VectorXcd u = u0;
@@ -121,15 +136,14 @@ TEST(ConeDiskLayout, NoDiskWithAnotherBranchPointOrAHeldVertexInsideAndTheMapSta
 }
 
 TEST(ConeDiskLayout, RewindRingsLaysOutTheDiskOfAWronglyWoundBranchPointFirst) {
-  const PolarGrid g = make_polar_grid(10, 4);
-  const ConeMap m = wound_cone_map(g);
-  const int nv = g.mesh.num_vertices();
-  std::vector<char> fixed(static_cast<std::size_t>(2 * nv), 0);
-  fixed[0] = fixed[nv] = 1;
+  const WoundCone w = make_wound_cone(10, 4);
+  const PolarGrid& g = w.grid;
+  const ConeMap& m = w.map;
+  const int nv = w.nv();
   Eigen::VectorXi target = Eigen::VectorXi::Zero(nv);
   target[0] = -1;
   RingRewinding out;
-  const Eigen::VectorXcd u = rewind_rings(g.mesh, m.layers, m.base, Eigen::VectorXcd::Zero(nv), fixed, target, out);
+  const Eigen::VectorXcd u = rewind_rings(g.mesh, m.layers, m.base, Eigen::VectorXcd::Zero(nv), w.fixed, target, out);
   EXPECT_EQ(out.disks, std::vector<int>{0});
   EXPECT_EQ(out.rewound, std::vector<int>{0});
   EXPECT_TRUE(out.moved.empty());  // nothing to hold: the disk's rim did not move

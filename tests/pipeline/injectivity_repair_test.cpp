@@ -187,18 +187,33 @@ int wrongly_wound(const Mesh& mesh, const Parameterization& map) {
   return n;
 }
 
+/// The job without cone merges or validity retries, with its map's windings and the field's targets.
+struct WithoutMerges {
+  ParamJob job;
+  Eigen::VectorXi wound;
+  std::vector<int> target;
+};
+
+WithoutMerges parameterize_without_merges(const Mesh& mesh) {
+  PipelineOptions plain;
+  plain.merge_coincident_cones = false;
+  plain.validity_retries = 0;
+  WithoutMerges w{parameterize_mesh(mesh, plain), {}, {}};
+  const Mesh& m0 = w.job.mesh(mesh);
+  w.wound = testing::quarter_index_by_angle_sums(m0, w.job.map.uv);
+  w.target = target_quarters(m0, w.job.map);
+  return w;
+}
+
 TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetween) {
   // bunny_20k_holes: a +1/4 and a −1/4 branch point two edges apart rounded onto one lattice point. Both rings wind
   // as the field says; a regular vertex between them winds twice (4π), and no untangling undoes it.
   const Mesh mesh = testing::load_test_mesh("bunny_20k_holes");
-  PipelineOptions plain;
-  plain.merge_coincident_cones = false;
-  plain.validity_retries = 0;
-  const ParamJob without = parameterize_mesh(mesh, plain);
-  const Mesh& m0 = without.mesh(mesh);
-  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, without.map.uv);
-  const std::vector<int> target = target_quarters(m0, without.map);
-  const std::vector<ConeMerge> merges = close_coincident_merges(m0, without.map);
+  const WithoutMerges w = parameterize_without_merges(mesh);
+  const Mesh& m0 = w.job.mesh(mesh);
+  const Eigen::VectorXi& wound = w.wound;
+  const std::vector<int>& target = w.target;
+  const std::vector<ConeMerge> merges = close_coincident_merges(m0, w.job.map);
   const auto opposite_both_right = std::count_if(merges.begin(), merges.end(), [&](const ConeMerge& m) {
     return target[m.from] == -target[m.into] && wound[m.from] == target[m.from] && wound[m.into] == target[m.into];
   });
@@ -223,15 +238,10 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
   // camelhead: two −1/4 branch points 7-8 rings apart rounded onto one lattice point; one winds π/2 instead of
   // 5π/2 with a regular vertex at 4π beside it. The near search (kNearRings) does not see the pair, the far one does.
   const Mesh mesh = testing::load_test_mesh("camelhead_boundary");
-  PipelineOptions plain;
-  plain.merge_coincident_cones = false;
-  plain.validity_retries = 0;
-  const ParamJob without = parameterize_mesh(mesh, plain);
-  const Mesh& m0 = without.mesh(mesh);
-  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, without.map.uv);
-  const std::vector<int> target = target_quarters(m0, without.map);
-  const std::vector<ConeMerge> near = close_coincident_merges(m0, without.map, CoincidentReach::Near);
-  const std::vector<ConeMerge> far = close_coincident_merges(m0, without.map, CoincidentReach::Far);
+  const WithoutMerges w = parameterize_without_merges(mesh);
+  const Mesh& m0 = w.job.mesh(mesh);
+  const std::vector<ConeMerge> near = close_coincident_merges(m0, w.job.map, CoincidentReach::Near);
+  const std::vector<ConeMerge> far = close_coincident_merges(m0, w.job.map, CoincidentReach::Far);
   int apart = 0;
   for (const ConeMerge& m : far) {
     const bool in_near =
@@ -241,7 +251,7 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
     seed[m.from] = 1;
     EXPECT_FALSE(grow_vertex_rings(m0, seed, kNearRings)[m.into]) << m.from << " " << m.into;
     EXPECT_TRUE(grow_vertex_rings(m0, seed, kFarRings)[m.into]) << m.from << " " << m.into;
-    EXPECT_TRUE(wound[m.from] != target[m.from] || wound[m.into] != target[m.into]);
+    EXPECT_TRUE(w.wound[m.from] != w.target[m.from] || w.wound[m.into] != w.target[m.into]);
     ++apart;
   }
   ASSERT_GT(apart, 0) << "the case this test is about no longer occurs";
