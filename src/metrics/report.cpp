@@ -155,7 +155,7 @@ nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const
 // symbols (E_U, E_K) the reports have always used.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParamDiagnostics::Untangling, iterations, polish_iterations, regions,
                                    non_positive_before, non_positive_after, stuck_faces, unresolved_faces,
-                                   released_vertices, rewound_vertices, min_det)
+                                   released_vertices, rewound_vertices, cone_disk_vertices, min_det)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ParamDiagnostics::Stiffening, iterations, kept_iteration, flipped_before,
                                    flipped_after)
 

@@ -75,6 +75,8 @@ struct ParamDiagnostics {
     /// Vertices whose ring was laid out again before the untangling because the map wound around them other than
     /// the field's index says (param/ring_winding.h).
     std::vector<int> rewound_vertices;
+    /// Those of them, branch points, whose disk was laid out again in the cone's chart (param/cone_disk_layout.h).
+    std::vector<int> cone_disk_vertices;
   } untangling;
   /// Wall-clock seconds and peak resident bytes per stage, in pipeline order (common/stage_meter.h).
   StageSeconds stage_seconds;

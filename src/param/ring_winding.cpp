@@ -334,7 +334,7 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
   };
   std::vector<char> holding = fixed;
   bool loosened = releasable.empty() || !options.release_curve_corners || !options.release_near_wrong_windings;
-  std::vector<int> rewound;
+  std::vector<int> rewound, disks;
   for (int pass = 0; pass < kRewindPasses && (result.non_positive_after > 0 || wrong_now > 0); ++pass) {
     RewindPass p = rewind_pass(in, holding, u);
     if (!better(p) && !loosened && wrong_now > 0 && !progress.cancelled()) {
@@ -352,12 +352,16 @@ Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layer
     if (!better(p)) break;
     merge_pass(result, p);
     rewound.insert(rewound.end(), p.rings.rewound.begin(), p.rings.rewound.end());
+    disks.insert(disks.end(), p.rings.disks.begin(), p.rings.disks.end());
     u = std::move(p.u);
     wrong_now = p.wrong;
   }
   std::sort(rewound.begin(), rewound.end());
   rewound.erase(std::unique(rewound.begin(), rewound.end()), rewound.end());
   result.rewound_vertices = std::move(rewound);
+  std::sort(disks.begin(), disks.end());
+  disks.erase(std::unique(disks.begin(), disks.end()), disks.end());
+  result.cone_disk_vertices = std::move(disks);
   return u;
 }
 

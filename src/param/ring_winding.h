@@ -63,8 +63,8 @@ inline constexpr int kRewindPasses = 3;
 /// release_near_wrong_windings, a pass that is not kept is tried once more with the `releasable` components within
 /// 2 rings of the wrongly wound vertices free, kept for fewer wrong windings at no more non-positive triangles (those
 /// vertices join released_vertices; later passes keep them free). The record is the last kept pass's, with
-/// non_positive_before, the iterations and the released vertices of all passes and the rewound vertices in
-/// rewound_vertices.
+/// non_positive_before, the iterations and the released vertices of all passes, the rewound vertices in
+/// rewound_vertices and among them the branch points whose disk was laid out again in cone_disk_vertices.
 /// target: per vertex the field's cross-field quarter index (field/indices.h); other arguments as untangle_map's.
 /// \throw NumericalError if a factorization fails.
 Eigen::VectorXcd untangle_and_rewind(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,

@@ -127,7 +127,8 @@ void keep_round(Round& r, int coarse_faces, int split_edges, FoldRefinement& out
   u.unresolved_faces = std::move(r.untangling.unresolved_faces);
   for (int p : r.untangling.released_vertices) u.released_vertices.push_back(p);
   for (int p : r.untangling.rewound_vertices) u.rewound_vertices.push_back(p);
-  for (std::vector<int>* list : {&u.released_vertices, &u.rewound_vertices}) {
+  for (int p : r.untangling.cone_disk_vertices) u.cone_disk_vertices.push_back(p);
+  for (std::vector<int>* list : {&u.released_vertices, &u.rewound_vertices, &u.cone_disk_vertices}) {
     std::sort(list->begin(), list->end());
     list->erase(std::unique(list->begin(), list->end()), list->end());
   }

@@ -6,14 +6,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "field/feature_alignment.h"
+#include "mesh/vertex_rings.h"
+#include "metrics/report.h"
+#include "param/seams.h"
 #include "pipeline/cone_merging.h"
 #include "pipeline/curve_refinement.h"
-#include "field/feature_alignment.h"
 #include "pipeline/job_report.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
-#include "mesh/vertex_rings.h"
-#include "param/seams.h"
 #include "support/angle_sums.h"
 #include "support/test_meshes.h"
 
@@ -260,6 +261,24 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
   EXPECT_GT(with.merged_cone_pairs, 0);
   EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
   EXPECT_EQ(non_positive_triangles(with.map), 0);
+}
+
+TEST(RingRewinding, TheReportNamesTheConesWhoseDiskWasLaidOutAgain) {
+  // fandisk: a branch point wound a turn short during the untangling whose disk (param/cone_disk_layout.h) is laid
+  // out again; the final map winds there as the field says.
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  const ParamJob job = parameterize_mesh(mesh, PipelineOptions{});
+  const Mesh& m0 = job.mesh(mesh);
+  const ParamDiagnostics::Untangling& u = job.map.diagnostics.untangling;
+  ASSERT_FALSE(u.cone_disk_vertices.empty()) << "the case this test is about no longer occurs";
+  const Eigen::VectorXi wound = testing::quarter_index_by_angle_sums(m0, job.map.uv);
+  const std::vector<int> target = target_quarters(m0, job.map);
+  for (const int v : u.cone_disk_vertices) {
+    EXPECT_TRUE(std::binary_search(u.rewound_vertices.begin(), u.rewound_vertices.end(), v)) << v;
+    EXPECT_NE(target[v], 0) << v;
+    EXPECT_EQ(wound[v], target[v]) << v;
+  }
+  EXPECT_EQ(untangling_to_json(job.map)["cone_disk_vertices"].get<std::vector<int>>(), u.cone_disk_vertices);
 }
 
 TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage) {
