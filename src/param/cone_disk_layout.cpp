@@ -8,6 +8,7 @@
 #include <numbers>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "common/union_find.h"
 #include "mesh/vertex_rings.h"
@@ -26,8 +27,8 @@ struct Disk {
   std::vector<int> faces;
   std::unordered_map<int, int> slot;                      ///< face → index in faces
   std::vector<int> interior;                              ///< ascending, with p
-  std::vector<char> is_interior;                          ///< #V
-  std::vector<char> cut;                                  ///< #E
+  std::unordered_set<int> inside;                         ///< the interior vertices
+  std::unordered_set<int> cut;                            ///< edges
   int cut_end = -1;                                       ///< the boundary vertex the cut reaches
   std::unordered_map<int, std::pair<int, int>> out_edge;  ///< boundary vertex → (face, corner) of its outgoing edge
   bool in(int f) const { return f >= 0 && slot.count(f) > 0; }
@@ -42,14 +43,14 @@ bool cut_disk(const Mesh& mesh, int p, Disk& d) {
       const int q = mesh.F()(fc.face, (fc.corner + 1) % 3);
       if (prev.count(q)) continue;
       prev[q] = {queue[k], mesh.FE()(fc.face, (fc.corner + 2) % 3)};
-      if (!d.is_interior[q]) {
+      if (!d.inside.count(q)) {
         d.cut_end = q;
         break;
       }
       queue.push_back(q);
     }
   if (d.cut_end < 0) return false;
-  for (int v = d.cut_end; prev[v].first >= 0; v = prev[v].first) d.cut[prev[v].second] = 1;
+  for (int v = d.cut_end; prev[v].first >= 0; v = prev[v].first) d.cut.insert(prev[v].second);
   return true;
 }
 
@@ -62,18 +63,16 @@ bool make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<c
   std::unordered_map<int, int> vertex_faces, edges;
   for (int f : d.faces)
     for (int c = 0; c < 3; ++c) ++vertex_faces[mesh.F()(f, c)], ++edges[mesh.FE()(f, c)];
-  d.is_interior.assign(static_cast<std::size_t>(nv), 0);
-  for (const auto& [v, n] : vertex_faces)
-    if (n == static_cast<int>(mesh.fan(v).size()) && !mesh.is_boundary_vertex(v)) d.is_interior[v] = 1;
   for (const auto& [v, n] : vertex_faces) {
-    if (!d.is_interior[v]) continue;
+    if (n != static_cast<int>(mesh.fan(v).size()) || mesh.is_boundary_vertex(v)) continue;
     if (v != p && (layers.branch[v] || fixed[v] || fixed[nv + v])) return false;
     d.interior.push_back(v);
+    d.inside.insert(v);
   }
   std::sort(d.interior.begin(), d.interior.end());
   const long chi =
       static_cast<long>(vertex_faces.size()) - static_cast<long>(edges.size()) + static_cast<long>(d.faces.size());
-  if (chi != 1 || !d.is_interior[p]) return false;
+  if (chi != 1 || !d.inside.count(p)) return false;
   for (int f : d.faces)  // boundary edges: one face in D; one outgoing edge per boundary vertex
     for (int c = 0; c < 3; ++c)
       if (edges[mesh.FE()(f, (c + 2) % 3)] == 1 && !d.out_edge.emplace(mesh.F()(f, c), std::pair{f, c}).second)
@@ -89,7 +88,6 @@ bool make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<c
     ++steps;
   } while (v != v0 && steps <= d.out_edge.size());
   if (v != v0 || steps != d.out_edge.size()) return false;
-  d.cut.assign(static_cast<std::size_t>(mesh.num_edges()), 0);
   return cut_disk(mesh, p, d);
 }
 
@@ -110,7 +108,7 @@ Charts develop_disk(const Mesh& mesh, const VertexLayers& layers, const Eigen::M
   for (std::size_t k = 0; k < walk.size(); ++k)
     for (int e = 0; e < 3; ++e) {
       const int f = walk[k], g = mesh.neighbor(f, e);
-      if (!d.in(g) || ch.reached[d.slot.at(g)] || d.cut[mesh.FE()(f, e)]) continue;
+      if (!d.in(g) || ch.reached[d.slot.at(g)] || d.cut.count(mesh.FE()(f, e))) continue;
       int r = -1;  // a regular vertex of the shared edge
       for (int c : {(e + 1) % 3, (e + 2) % 3})
         if (!layers.branch[mesh.F()(f, c)]) r = mesh.F()(f, c);
@@ -143,7 +141,7 @@ Copies disk_copies(const Mesh& mesh, const Disk& d) {
   for (std::size_t k = 0; k < d.faces.size(); ++k)
     for (int e = 0; e < 3; ++e) {
       const int f = d.faces[k], g = mesh.neighbor(f, e);
-      if (!d.in(g) || d.cut[mesh.FE()(f, e)]) continue;
+      if (!d.in(g) || d.cut.count(mesh.FE()(f, e))) continue;
       for (int c : {(e + 1) % 3, (e + 2) % 3})
         sets.unite(static_cast<int>(3 * k) + c, 3 * d.slot.at(g) + mesh.corner_of(g, mesh.F()(f, c)));
     }

@@ -5,9 +5,11 @@
 // changes it, and laying out p's ring alone leaves the turn in the rings beyond. But a few rings out the map is
 // right again: the boundary ∂D of the k-ring disk D around p sweeps the cone angle Θ_p around L (another sheet of D
 // covers L). Then D can be laid out again with the boundary where it is: in the flattened chart w = (z − L)^{2π/Θ_p}
-// (z in p's developed chart, param/map_development.h) ∂D is a closed curve around 0; Tutte's barycentric layout of
-// D's interior with p at 0 is mapped back by z = L + w^{Θ_p/2π}, which winds Θ_p around p and 2π around every other
-// interior vertex. The untangler then repairs what the layout left folded (a non-convex ∂D).
+// (z in p's developed chart, param/map_development.h) ∂D is a closed curve around 0. If it is star-shaped around 0,
+// D is laid out by Tutte's barycentric layout with ∂D's vertices evenly on the unit circle (p lands near the centre),
+// moved so that p is at 0 by a warp that keeps the rim, and carried onto the flattened disk by the radial
+// homeomorphism that sends the circle onto ∂D; z = L + w^{Θ_p/2π} then winds Θ_p around p and 2π around every other
+// interior vertex. The untangler repairs what the piecewise-linear layout leaves folded.
 #include <Eigen/Core>
 #include <vector>
 

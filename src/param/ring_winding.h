@@ -46,7 +46,9 @@ struct RingRewinding {
 };
 
 /// Lays out again, for every interior vertex p with map_quarter_index(φ) ≠ target[p], the ring of p in
-/// φ = base − layered_values(mesh, layers, u) (see above); p itself stays. Returns the new u (u0 elsewhere).
+/// φ = base − layered_values(mesh, layers, u) (see above); p itself stays. Branch points come first, each with the
+/// disk of param/cone_disk_layout.h where one exists (listed in out.disks), then the rings in vertex order. Returns
+/// the new u (u0 elsewhere).
 /// `fixed`: 2·#V flags of the held components (param/untangle.h); a ring with a held component is skipped, and so
 /// is a fan whose winding is not defined (a side of zero length, or a corner angle within 1e-6 of ±π).
 /// \pre layers fit mesh (the transitions preserve them off the branch points); fixed 2·#V, u0 and target #V.
