@@ -12,6 +12,7 @@
 
 #include "common/union_find.h"
 #include "mesh/vertex_rings.h"
+#include "param/map_development.h"
 #include "param/ring_winding.h"
 
 namespace quadcover {
@@ -113,10 +114,7 @@ Charts develop_disk(const Mesh& mesh, const VertexLayers& layers, const Eigen::M
       for (int c : {(e + 1) % 3, (e + 2) % 3})
         if (!layers.branch[mesh.F()(f, c)]) r = mesh.F()(f, c);
       if (r < 0) continue;
-      const int cf = mesh.corner_of(f, r), cg = mesh.corner_of(g, r);
-      const int m = layers.layer(g, cg) - layers.layer(f, cf);
-      const Complex t =
-          corner_value(mesh, layers, base, u, g, cg) - ipow(m) * corner_value(mesh, layers, base, u, f, cf);
+      const auto [m, t] = face_transition(mesh, layers, base, u, f, g, r);
       const int sf = d.slot.at(f), sg = d.slot.at(g);
       ch.m[sg] = ch.m[sf] + m;
       ch.t[sg] = ipow(m) * ch.t[sf] + t;
@@ -158,84 +156,71 @@ Copies disk_copies(const Mesh& mesh, const Disk& d) {
   return cp;
 }
 
+/// ∂D in the flattened chart walked from the cut's end: its vertices, positions and continuous arguments, the cut's
+/// end again at the end (on the cut's other side, argument + 2π).
+struct Rim {
+  std::vector<int> vertex;
+  std::vector<Complex> w;
+  std::vector<double> arg;
+};
+
 /// Walks ∂D from the cut's end: the boundary copies get w = r^a e^{i a θ} (θ the argument around L, continuous along
-/// the walk; a = 2π / theta). False unless ∂D sweeps theta around L and avoids it.
-bool flatten_boundary(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
-                      const Eigen::VectorXcd& u, const Disk& d, const Charts& ch, Complex L, double theta, Copies& cp) {
+/// the walk; a = 2π / theta). \return the rim, empty unless ∂D sweeps theta around L and avoids it.
+Rim flatten_boundary(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                     const Eigen::VectorXcd& u, const Disk& d, const Charts& ch, Complex L, double theta, Copies& cp) {
   const auto developed = [&](int f, int c) {
     const int s = d.slot.at(f);
     return ipow(-ch.m[s]) * (corner_value(mesh, layers, base, u, f, c) - ch.t[s]);
   };
   const double a = 2 * kPi / theta;
+  Rim rim;
   const auto set = [&](int f, int c, double arg) {
     const Complex z = developed(f, c) - L;
     const int k = cp.of_corner[3 * d.slot.at(f) + c];
     cp.arg[k] = a * arg;
     cp.w[k] = std::polar(std::pow(std::abs(z), a), a * arg);
     cp.known[k] = 1;
+    rim.vertex.push_back(mesh.F()(f, c));
+    rim.w.push_back(cp.w[k]);
+    rim.arg.push_back(cp.arg[k]);
   };
   const auto [f0, c0] = d.out_edge.at(d.cut_end);
   const Complex z0 = developed(f0, c0) - L;
-  if (!(std::abs(z0) > kOnPoint)) return false;
+  if (!(std::abs(z0) > kOnPoint)) return {};
   double arg = std::arg(z0);
   set(f0, c0, arg);
   int v = d.cut_end;
   do {
     const auto [f, c] = d.out_edge.at(v);
     const Complex from = developed(f, c) - L, to = developed(f, (c + 1) % 3) - L;
-    if (!(std::abs(to) > kOnPoint)) return false;
+    if (!(std::abs(to) > kOnPoint)) return {};
     arg += std::arg(to / from);
     v = mesh.F()(f, (c + 1) % 3);
-    if (v != d.cut_end)
-      set(f, (c + 1) % 3, arg);
-    else if (std::abs(arg - std::arg(z0) - theta) > 0.1 ||
-             cp.of_corner[3 * d.slot.at(f) + (c + 1) % 3] == cp.of_corner[3 * d.slot.at(f0) + c0])
-      return false;
-    else
-      set(f, (c + 1) % 3, arg);  // the cut's end again, on the cut's other side
+    if (v == d.cut_end && (std::abs(arg - std::arg(z0) - theta) > 0.1 ||
+                           cp.of_corner[3 * d.slot.at(f) + (c + 1) % 3] == cp.of_corner[3 * d.slot.at(f0) + c0]))
+      return {};
+    set(f, (c + 1) % 3, arg);  // at the end: the cut's end again, on the cut's other side
   } while (v != d.cut_end);
-  return true;
+  return rim;
 }
 
-/// ∂D in the flattened chart walked from the cut's end: its vertices, positions and continuous arguments, the first
-/// again at the end (argument + 2π). Empty if ∂D is not star-shaped around 0 (an argument does not increase).
-struct StarBoundary {
-  std::vector<int> vertex;
-  std::vector<Complex> w;
-  std::vector<double> arg;
-};
-
-StarBoundary star_boundary(const Mesh& mesh, const Disk& d, const Copies& cp) {
-  StarBoundary star;
-  int v = d.cut_end;
-  auto [f, c] = d.out_edge.at(v);
-  int k = cp.of_corner[3 * d.slot.at(f) + c];
-  do {
-    star.vertex.push_back(v);
-    star.w.push_back(cp.w[k]);
-    star.arg.push_back(cp.arg[k]);
-    v = mesh.F()(f, (c + 1) % 3);
-    k = cp.of_corner[3 * d.slot.at(f) + (c + 1) % 3];
-    if (v != d.cut_end) std::tie(f, c) = d.out_edge.at(v);
-  } while (v != d.cut_end);
-  star.vertex.push_back(v);
-  star.w.push_back(cp.w[k]);
-  star.arg.push_back(cp.arg[k]);
-  for (std::size_t j = 0; j + 1 < star.arg.size(); ++j)
-    if (!(star.arg[j + 1] > star.arg[j]) || std::imag(std::conj(star.w[j]) * star.w[j + 1]) <= 0) return {};
-  return star;
+/// True if the rim is star-shaped around 0: every argument increases along it, every edge turning left around 0.
+bool star_shaped(const Rim& rim) {
+  for (std::size_t j = 0; j + 1 < rim.arg.size(); ++j)
+    if (!(rim.arg[j + 1] > rim.arg[j]) || std::imag(std::conj(rim.w[j]) * rim.w[j + 1]) <= 0) return false;
+  return true;
 }
 
 /// The homeomorphism from the unit disk onto the flattened disk that sends e^{2πij/n} to ∂D's j-th vertex (n
 /// boundary vertices, evenly spaced: p, D's combinatorial centre, then lands near 0): r e^{iψ} ↦ r ρ(θ) e^{iθ}, θ
 /// linear in ψ between the vertices' arguments, ρ(θ) the distance from 0 to ∂D along the ray of angle θ.
-Complex from_unit_disk(const StarBoundary& star, Complex v) {
+Complex from_unit_disk(const Rim& rim, Complex v) {
   if (!(std::abs(v) > 0)) return v;
-  const double n = static_cast<double>(star.arg.size() - 1);
+  const double n = static_cast<double>(rim.arg.size() - 1);
   const double psi = std::fmod(std::arg(v) + 2 * kPi, 2 * kPi) * n / (2 * kPi);
-  const std::size_t j = std::min(static_cast<std::size_t>(psi), star.arg.size() - 2);
-  const double theta = star.arg[j] + (psi - static_cast<double>(j)) * (star.arg[j + 1] - star.arg[j]);
-  const Complex a = star.w[j], e = star.w[j + 1] - a, u = std::polar(1.0, theta);
+  const std::size_t j = std::min(static_cast<std::size_t>(psi), rim.arg.size() - 2);
+  const double theta = rim.arg[j] + (psi - static_cast<double>(j)) * (rim.arg[j + 1] - rim.arg[j]);
+  const Complex a = rim.w[j], e = rim.w[j + 1] - a, u = std::polar(1.0, theta);
   return std::abs(v) * std::imag(std::conj(a) * e) / std::imag(std::conj(u) * e) * u;
 }
 
@@ -289,18 +274,17 @@ bool centre_on_cone(const Mesh& mesh, const Disk& d, int p, std::unordered_map<i
 }
 
 /// The layout of D's interior around p at 0 (barycentric, then centred), with every copy's continuous argument by a
-/// walk from the boundary (arguments of neighbours differ by less than π). False if it cannot be centred or a
-/// vertex but p lands on 0.
-bool lay_out_flattened(const Mesh& mesh, const Disk& d, int p, Copies& cp) {
-  const StarBoundary star = star_boundary(mesh, d, cp);
-  if (star.arg.empty()) return false;
+/// walk from the boundary (arguments of neighbours differ by less than π). False if the rim is not star-shaped, the
+/// layout cannot be centred or a vertex but p lands on 0.
+bool lay_out_flattened(const Mesh& mesh, const Disk& d, int p, const Rim& rim, Copies& cp) {
+  if (!star_shaped(rim)) return false;
   std::unordered_map<int, Complex> w;
-  const double n = static_cast<double>(star.arg.size() - 1);
-  for (std::size_t j = 0; j + 1 < star.arg.size(); ++j)
-    w.emplace(star.vertex[j], std::polar(1.0, 2 * kPi * static_cast<double>(j) / n));
+  const double n = static_cast<double>(rim.arg.size() - 1);
+  for (std::size_t j = 0; j + 1 < rim.arg.size(); ++j)
+    w.emplace(rim.vertex[j], std::polar(1.0, 2 * kPi * static_cast<double>(j) / n));
   w = barycentric_layout(mesh, d, std::move(w));
   if (!centre_on_cone(mesh, d, p, w)) return false;
-  for (int v : d.interior) w[v] = from_unit_disk(star, w[v]);
+  for (int v : d.interior) w[v] = from_unit_disk(rim, w[v]);
   for (std::size_t k = 0; k < cp.vertex.size(); ++k)
     if (!cp.known[k]) cp.w[k] = w.at(cp.vertex[k]);
   std::vector<std::vector<int>> faces_of(cp.vertex.size());
@@ -353,7 +337,8 @@ std::vector<int> lay_out_cone_disk(const Mesh& mesh, const VertexLayers& layers,
     const Charts ch = develop_disk(mesh, layers, base, u, d, p);
     if (std::count(ch.reached.begin(), ch.reached.end(), 0) > 0) continue;
     Copies cp = disk_copies(mesh, d);
-    if (!flatten_boundary(mesh, layers, base, u, d, ch, L, theta, cp) || !lay_out_flattened(mesh, d, p, cp)) continue;
+    const Rim rim = flatten_boundary(mesh, layers, base, u, d, ch, L, theta, cp);
+    if (rim.arg.empty() || !lay_out_flattened(mesh, d, p, rim, cp)) continue;
     Eigen::VectorXcd laid = mapped_back(mesh, layers, base, u, d, ch, cp, L, theta, p);
     if (std::abs(fan_angle(mesh, layers, base, laid, p) - theta) > 0.1) continue;
     u = std::move(laid);

@@ -28,6 +28,13 @@ int shared_regular(const Mesh& mesh, const VertexLayers& layers, int f, int g) {
 
 }  // namespace
 
+std::pair<int, Complex> face_transition(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                                        const Eigen::VectorXcd& u, int f, int g, int r) {
+  const int cf = mesh.corner_of(f, r), cg = mesh.corner_of(g, r);
+  const int m = layers.layer(g, cg) - layers.layer(f, cf);
+  return {m, corner_value(mesh, layers, base, u, g, cg) - ipow(m) * corner_value(mesh, layers, base, u, f, cf)};
+}
+
 std::vector<std::pair<int, Complex>> developed_around(const Mesh& mesh, const VertexLayers& layers,
                                                       const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u, int p,
                                                       int rings) {
@@ -41,9 +48,7 @@ std::vector<std::pair<int, Complex>> developed_around(const Mesh& mesh, const Ve
       if (g < 0 || reached.count(g) || !std::binary_search(faces.begin(), faces.end(), g)) continue;
       const int r = shared_regular(mesh, layers, f, g);
       if (r < 0) continue;
-      const int cf = mesh.corner_of(f, r), cg = mesh.corner_of(g, r);
-      const int m = layers.layer(g, cg) - layers.layer(f, cf);
-      const Complex t = corner_value(mesh, layers, base, u, g, cg) - ipow(m) * corner_value(mesh, layers, base, u, f, cf);
+      const auto [m, t] = face_transition(mesh, layers, base, u, f, g, r);
       walk.push_back({g, walk[k].m + m, ipow(m) * walk[k].t + t});
       reached[g] = 1;
     }

@@ -13,6 +13,12 @@
 
 namespace quadcover {
 
+/// The transition φ_g = i^m φ_f + t from face f to the adjacent face g, read at a regular vertex r they share
+/// (m = λ_g(r) − λ_f(r), t from φ there, φ = base − layered_values(mesh, layers, u)).
+/// \pre layers fit mesh, u #V, r a regular vertex of both f and g.
+std::pair<int, Complex> face_transition(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                                        const Eigen::VectorXcd& u, int f, int g, int r);
+
 /// Per corner of the faces touching the vertices within rings − 1 rings of p that a breadth-first walk over edges
 /// with a regular end reaches (from p's first fan face, neighbours in face-edge order): its vertex and φ there in
 /// the chart of p's first fan face, φ = base − layered_values(mesh, layers, u). A vertex can appear with several

@@ -21,6 +21,9 @@ double corner_angle(const Complex& at, const Complex& next, const Complex& prev)
   return std::abs(e1) > 0 && std::abs(e2) > 0 ? std::arg(e2 / e1) : 0.0;
 }
 
+/// The quarter index 4·(1 − Θ / 2π) of an angle sum Θ, rounded.
+int quarter_index_of_angle(double theta) { return static_cast<int>(std::lround(4 - 2 * theta / kPi)); }
+
 }  // namespace
 
 double fan_angle(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u,
@@ -175,8 +178,7 @@ Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv)
     for (int c = 0; c < 3; ++c) theta[mesh.F()(f, c)] += corner_angle(uv(f, c), uv(f, (c + 1) % 3), uv(f, (c + 2) % 3));
   Eigen::VectorXi q = Eigen::VectorXi::Zero(nv);
   for (int p = 0; p < nv; ++p)
-    if (!mesh.is_boundary_vertex(p) && !mesh.fan(p).empty())
-      q[p] = static_cast<int>(std::lround(4 - 2 * theta[p] / kPi));
+    if (!mesh.is_boundary_vertex(p) && !mesh.fan(p).empty()) q[p] = quarter_index_of_angle(theta[p]);
   return q;
 }
 
@@ -189,7 +191,7 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
   for (int p = 0; p < mesh.num_vertices(); ++p) {
     if (!layers.branch[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).size() < 3) continue;
     const double theta = (4 - target[p]) * kPi / 2;
-    if (theta <= 0 || std::lround(4 - 2 * fan_angle(mesh, layers, base, u, p) / kPi) == target[p]) continue;
+    if (theta <= 0 || quarter_index_of_angle(fan_angle(mesh, layers, base, u, p)) == target[p]) continue;
     if (lay_out_cone_disk(mesh, layers, base, fixed, theta, p, u).empty()) continue;
     out.disks.push_back(p);
     out.rewound.push_back(p);
@@ -199,7 +201,7 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
     const Fan fan = develop(mesh, layers, base, u, fixed, p);
     double theta = 0;
     for (double a : fan.angle) theta += a;
-    if (std::lround(4 - 2 * theta / kPi) == target[p]) continue;
+    if (quarter_index_of_angle(theta) == target[p]) continue;
     const int nv = mesh.num_vertices();
     const bool free = !layers.branch[p] && !fixed[p] && !fixed[nv + p];
     if (free && !fan.undefined && move_centre(mesh, layers, base, fan, (4 - target[p]) * kPi / 2, p, u)) {

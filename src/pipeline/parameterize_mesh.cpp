@@ -323,7 +323,9 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   // Rounds while not valid: the remade map can put another pair on a point. The far partners are looked for once
   // the near ones are spent (none new, or their remake was not kept).
   constexpr int kRounds = 3;
-  if (!job.options.merge_coincident_cones || map_validity(job.mesh(input), job.map).valid()) return;
+  if (!job.options.merge_coincident_cones) return;
+  Validity now = map_validity(job.mesh(input), job.map);
+  if (now.valid()) return;
   const Mesh& mesh = before.mesh(input);
   const std::pair<bool, bool> kept_moves{job.merged_cone_pairs > 0, job.moved_wound_cones > 0};
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
@@ -344,7 +346,8 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
     far_next = false;
     tried = true;
     ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, progress);
-    if (!(map_validity(retry.mesh(input), retry.map) < map_validity(job.mesh(input), job.map))) {
+    const Validity remade = map_validity(retry.mesh(input), retry.map);
+    if (!(remade < now)) {
       merges.resize(known);  // the pairs stay used: not tried again
       if (far_tried || progress.skip_improvements()) break;
       far_next = true;
@@ -353,7 +356,8 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
     retry.seconds = std::move(job.seconds);
     retry.peak_bytes = std::move(job.peak_bytes);
     job = std::move(retry);
-    if (map_validity(job.mesh(input), job.map).valid() || progress.skip_improvements()) break;
+    now = remade;
+    if (now.valid() || progress.skip_improvements()) break;
   }
   if (tried) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }

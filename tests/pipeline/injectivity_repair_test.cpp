@@ -206,6 +206,15 @@ WithoutMerges parameterize_without_merges(const Mesh& mesh) {
   return w;
 }
 
+/// At the defaults the job merges cones, and the written map winds as the field everywhere, every triangle positive.
+void expect_merged_and_valid_at_the_defaults(const Mesh& mesh) {
+  SCOPED_TRACE("the default job");
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
+  EXPECT_EQ(non_positive_triangles(with.map), 0);
+}
+
 TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetween) {
   // bunny_20k_holes: a +1/4 and a −1/4 branch point two edges apart rounded onto one lattice point. Both rings wind
   // as the field says; a regular vertex between them winds twice (4π), and no untangling undoes it.
@@ -227,12 +236,7 @@ TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetwe
     EXPECT_NE(target[m.from], 0);
     EXPECT_NE(target[m.into], 0);
   }
-  // At the defaults the job merges the pair and the written map winds as the field everywhere, every triangle
-  // positive.
-  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
-  EXPECT_GT(with.merged_cone_pairs, 0);
-  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
-  EXPECT_EQ(non_positive_triangles(with.map), 0);
+  expect_merged_and_valid_at_the_defaults(mesh);
 }
 
 TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) {
@@ -256,11 +260,7 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
     ++apart;
   }
   ASSERT_GT(apart, 0) << "the case this test is about no longer occurs";
-  // At the defaults the job merges them too, and the written map winds as the field everywhere.
-  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
-  EXPECT_GT(with.merged_cone_pairs, 0);
-  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
-  EXPECT_EQ(non_positive_triangles(with.map), 0);
+  expect_merged_and_valid_at_the_defaults(mesh);
 }
 
 TEST(RingRewinding, TheReportNamesTheConesWhoseDiskWasLaidOutAgain) {
