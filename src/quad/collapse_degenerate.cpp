@@ -57,6 +57,11 @@ int choose_collapses(const Mesh& mesh, const Parameterization& param, double tol
     const int a = mesh.E()(e, 0), b = mesh.E()(e, 1);
     const int ca = grid::local_corner(mesh, s, a), cb = grid::local_corner(mesh, s, b);
     if (std::abs(param.uv(s, ca) - param.uv(s, cb)) > tol) continue;
+    // Two vertices a micro-unit apart under triangles the map keeps positive are not one point (the grid map keeps
+    // them apart), unless both sit on a lattice point, where the snapping joins them.
+    const bool on_lattice =
+        grid::at_lattice_point(param.uv(s, ca), tol / 2) && grid::at_lattice_point(param.uv(s, cb), tol / 2);
+    if (!on_lattice && grid::positive_in_map(param.uv.row(s)) && grid::positive_in_map(param.uv.row(t))) continue;
     const int c = mesh.F()(s, 3 - ca - cb),
               d = mesh.F()(t, 3 - grid::local_corner(mesh, t, a) - grid::local_corner(mesh, t, b));
     if (locked[a] || locked[b] || locked[c] || locked[d] || c == d) continue;

@@ -20,7 +20,9 @@ struct CollapsedMap {
 };
 
 /// Collapses interior edges whose endpoints' coordinates (in either adjacent chart) differ by at most `tol` grid
-/// units, when the collapse keeps the mesh manifold (link condition; edges with a boundary endpoint are kept).
+/// units and that are one point for the extraction: one of the edge's triangles is not grid::positive_in_map, or
+/// both endpoints are within tol / 2 of one lattice point (the grid map snaps them together); and when the collapse
+/// keeps the mesh manifold (link condition; edges with a boundary endpoint are kept).
 /// Repeats while clusters remain (at most `max_passes` rebuilds). collapsed_edges == 0: nothing changed.
 /// \pre param.uv is #F by 3 and the transitions are per edge (Parameterization's convention).
 CollapsedMap collapse_zero_edges(const Mesh& mesh, const Parameterization& param, double tol, int max_passes = 4);

@@ -31,9 +31,10 @@ double snap_value(double x, double snap) {
 }
 
 /// Fixed-point corner coordinates of the map: a power-of-two scale keeping |coordinates| below 2^50 so that
-/// orient() products stay far inside 128 bits; values within `snap` of a half-integer are snapped to it.
+/// orient() products stay far inside 128 bits; values within `snap` of a half-integer are snapped to it, except at
+/// the vertices flagged in `unsnapped` (#V, or empty).
 void fixed_point_corners(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance,
-                         GridMap& g) {
+                         const std::vector<char>& unsnapped, GridMap& g) {
   const int nf = mesh.num_faces();
   double max_abs = 1;
   for (int f = 0; f < nf; ++f)
@@ -48,8 +49,9 @@ void fixed_point_corners(const Mesh& mesh, const Parameterization& param, double
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < 3; ++c) {
       const Complex z = param.uv(f, c);
-      g.q[3 * f + c] = {static_cast<I64>(std::llround(snap_value(z.real(), snap) * S)),
-                        static_cast<I64>(std::llround(snap_value(z.imag(), snap) * S))};
+      const double to = unsnapped.empty() || !unsnapped[mesh.F()(f, c)] ? snap : -1;
+      g.q[3 * f + c] = {static_cast<I64>(std::llround(snap_value(z.real(), to) * S)),
+                        static_cast<I64>(std::llround(snap_value(z.imag(), to) * S))};
     }
   for (int e = 0; e < param.transition_translation.size(); ++e) {
     const Complex c = param.transition_translation[e];
@@ -194,13 +196,50 @@ void build_sectors(const Mesh& mesh, GridMap& g) {
   }
 }
 
+/// Flags in `unsnapped` the vertices of the faces that are positive in the map but not in `g` (the snapping moved
+/// their corners onto one line), except vertices at lattice points. \return whether it flagged any.
+bool unsnap_flattened_faces(const Mesh& mesh, const Parameterization& param, double snap, const GridMap& g,
+                            std::vector<char>& unsnapped) {
+  bool flagged = false;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    if (orient(g.corner(f, 0), g.corner(f, 1), g.corner(f, 2)) > 0 || !positive_in_map(param.uv.row(f))) continue;
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.F()(f, c);
+      if (unsnapped[v] || at_lattice_point(param.uv(f, c), snap)) continue;
+      unsnapped[v] = 1;
+      flagged = true;
+    }
+  }
+  return flagged;
+}
+
 }  // namespace
 
+bool at_lattice_point(Complex z, double snap) {
+  return std::abs(z.real() - std::round(2 * z.real()) / 2) <= snap &&
+         std::abs(z.imag() - std::round(2 * z.imag()) / 2) <= snap;
+}
+
+bool positive_in_map(const Eigen::RowVector3cd& corners) {
+  const Complex a = corners[1] - corners[0], b = corners[2] - corners[0], c = corners[2] - corners[1];
+  const double longest2 = std::max({std::norm(a), std::norm(b), std::norm(c)});
+  return std::imag(std::conj(a) * b) > 1e-12 * longest2;
+}
+
 GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance) {
+  // Snapping must not flatten a triangle the map keeps positive (a sliver across an iso-line, two vertices a
+  // micro-unit apart): those vertices keep their own coordinates; a few passes settle the fans that share them.
+  constexpr int kPasses = 3;
   GridMap g;
-  g.mesh = &mesh;
-  fixed_point_corners(mesh, param, snap, seam_tolerance, g);
-  const std::vector<char> torn = carry_corners_across_seams(mesh, param, seam_tolerance, g);
+  std::vector<char> unsnapped(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  std::vector<char> torn;
+  for (int pass = 0;; ++pass) {
+    g = GridMap{};
+    g.mesh = &mesh;
+    fixed_point_corners(mesh, param, snap, seam_tolerance, unsnapped, g);
+    torn = carry_corners_across_seams(mesh, param, seam_tolerance, g);
+    if (pass == kPasses || !unsnap_flattened_faces(mesh, param, snap, g, unsnapped)) break;
+  }
   g.torn_edges = static_cast<int>(std::count(torn.begin(), torn.end(), 1));
   link_active_faces(mesh, param, torn, g);
   build_sectors(mesh, g);

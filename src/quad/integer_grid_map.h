@@ -74,10 +74,18 @@ struct GridMap {
   double to_double(I64 v) const { return static_cast<double>(v) / static_cast<double>(scale); }  ///< \pre scale > 0
 };
 
+/// Whether a triangle with these corner coordinates is positive in the map, robustly: its height is more than
+/// 1e-12 of its longest edge. \pre none
+bool positive_in_map(const Eigen::RowVector3cd& corners);
+
+/// Whether both coordinates of z are within `snap` of multiples of ½ (a lattice point: where cones sit). \pre none
+bool at_lattice_point(Complex z, double snap);
+
 /// Builds the exact map. `snap` (grid units): coordinates this close to a multiple of ½ are snapped onto it
-/// (branch points of odd index sit at such points, thesis 4.2.2); `seam_tolerance`: how far the two sides of a
-/// seam may disagree before the seam counts as torn.
-/// \pre param.uv is #F by 3; its transitions are empty or #E. The map keeps a pointer to mesh. \throw only std::bad_alloc.
+/// (branch points of odd index sit at such points, thesis 4.2.2), except at the vertices of a triangle that is
+/// positive_in_map but would not be positive after it (unless at a lattice point); `seam_tolerance`: how far the two
+/// sides of a seam may disagree before the seam counts as torn. \pre param.uv is #F by 3; its transitions are empty or
+/// #E. The map keeps a pointer to mesh. \throw only std::bad_alloc.
 GridMap build_grid_map(const Mesh& mesh, const Parameterization& param, double snap, double seam_tolerance);
 
 /// Index of local corner of face f at vertex v, or -1. \pre 0 <= f < #F

@@ -4,6 +4,7 @@
 // input's topology, all quads where the input is closed; so must the ones with curves with --round-curves.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <string>
 
 #include "param/seams.h"
@@ -45,6 +46,9 @@ bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, b
   if (mesh.num_boundary_loops() == 0) {
     EXPECT_EQ(job.surface.output.non_quads, 0);
   }
+  // From an injective map the extraction cuts nothing out (issue 14 item 5).
+  const ExtractionReport& cut = job.extraction.report;
+  EXPECT_EQ(cut.flipped_triangles + cut.degenerate_triangles + cut.collapsed_edges + cut.filled_holes, 0);
   for (const std::string& w : job.param.warnings) EXPECT_EQ(w.find("not valid"), std::string::npos) << w;
   const auto& rounding = job.param.map.diagnostics.rounding;
   return rounding.curve_lines > 0 || rounding.curve_rounding_dropped;
@@ -54,6 +58,25 @@ TEST(HardCases, CoarseSpheresWithManyQuadsPerTriangle) {
   expect_valid_remesh(testing::make_ellipsoid(1), 100, "octahedron subdivided once, 100 quads");
   expect_valid_remesh(testing::make_ellipsoid(2), 300, "subdivided twice, 300 quads");
   expect_valid_remesh(testing::make_ellipsoid(2, 1.0, 0.6, 0.35), 300, "a flat ellipsoid");
+}
+
+/// The sphere of make_ellipsoid(level) turned by 0.5 rad about (1, 2, 3), then scaled to 10 × 1 × 0.1: no edge loop
+/// runs along the rim, whose triangles form a band between two crease chains a few hundredths of a quad apart.
+Mesh tilted_flat_ellipsoid(int level) {
+  const Mesh sphere = testing::make_ellipsoid(level);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Eigen::MatrixX3d V = sphere.V() * turn.transpose();
+  V.col(0) *= 10.0;
+  V.col(2) *= 0.1;
+  return Mesh::from_triangles(V, sphere.F());
+}
+
+// The rim band is pinned to one iso-line and the map squeezes its triangles into slivers micro-units high.
+TEST(HardCases, AVeryFlatEllipsoid) {
+  for (const int level : {3, 4})
+    for (const int quads : {150, 2000})
+      expect_valid_remesh(tilted_flat_ellipsoid(level), quads,
+                          "flat ellipsoid, level " + std::to_string(level) + ", " + std::to_string(quads) + " quads");
 }
 
 TEST(HardCases, AnInwardFacingSurfaceIsAsValidAsTheOutwardOne) {
