@@ -197,13 +197,13 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t cu
 
 }  // namespace
 
-DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
+DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress, int target_quads) {
   ParamOptions& param = job.options.param;
   DensityReport d;
-  d.target_quads = param.density.target_quads;
+  d.target_quads = target_quads;
   d.quads = d.first_quads = expected_face_count(mesh, job.map.uv);
-  if (param.density.target_quads <= 0 || d.first_quads <= 0) return d;
-  const double target = param.density.target_quads;
+  if (target_quads <= 0 || d.first_quads <= 0) return d;
+  const double target = target_quads;
   StageMeter meter;
   // Quad count ≈ c / h²: re-solve the kept field (field and matching stay) at the h this predicts, interpolating in
   // log h between the closest tries below and above N once both exist (the periods round to the lattice, so the
@@ -280,11 +280,15 @@ std::vector<std::string> map_warnings(const Parameterization& map) {
 /// kept when more valid, and once more with the pairs on the new final map while it is not valid.
 /// Its time is the stage "close_cone_merging".
 /// `before` made again with `merges` applied to its field: map, the cone moves in `moves` (merge, move), density
-/// and fold refinement.
+/// and fold refinement. With a requested quad count the map starts at `found_edge_length`, the h the job's density
+/// stage settled on, so that the density stage re-solves only when the merges moved the count.
 ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, double lambda, const ParamJob& before,
-                            const std::vector<ConeMerge>& merges, std::pair<bool, bool> moves,
+                            const std::vector<ConeMerge>& merges, std::pair<bool, bool> moves, double found_edge_length,
                             ProgressSink& progress) {
   ParamJob retry = before;
+  DensityOptions& density = retry.options.param.density;
+  const int target_quads = density.target_quads;
+  if (target_quads > 0 && found_edge_length > 0) density.edge_length = found_edge_length, density.target_quads = 0;
   retry.field = merge_cones(mesh, stage, retry.field, lambda, merges);
   retry.map = parameterize(mesh, retry.field, retry.options.param, progress);
   retry.merged_cone_pairs += static_cast<int>(merges.size());
@@ -296,7 +300,7 @@ ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, dou
   move_cones(mesh, stage, lambda, retry, progress);
   o.merge_coincident_cones = merge;
   o.move_wound_cones = move;
-  retry.density = hit_target_count(mesh, retry, progress);
+  retry.density = hit_target_count(mesh, retry, progress, target_quads);
   refine_job_folds(mesh, retry, progress);
   return retry;
 }
@@ -345,7 +349,7 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
     }
     far_next = false;
     tried = true;
-    ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, progress);
+    ParamJob retry = remade_with_merges(mesh, stage, lambda, before, merges, kept_moves, job.map.edge_length, progress);
     const Validity remade = map_validity(retry.mesh(input), retry.map);
     if (!(remade < now)) {
       merges.resize(known);  // the pairs stay used: not tried again
@@ -415,7 +419,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   if (!map_validity(mesh, job.map).valid()) close_merges = close_coincident_merges(mesh, job.map);
   move_cones(mesh, field, oo.lambda, job, finishing);
   if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
-  job.density = hit_target_count(mesh, job, finishing);
+  job.density = hit_target_count(mesh, job, finishing, param.density.target_quads);
   meter.restart();
   const std::size_t curve_splits = job.refinement.split.size();
   refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on

@@ -89,9 +89,10 @@ using FirstMapCheck = std::function<void(const Mesh&, const Parameterization&)>;
 ParamJob parameterize_once(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check = {});
 
-/// The density stage of the job (see DensityReport): re-solves job.map from job.field when a requested count is missed.
-/// \pre job = parameterize_mesh(mesh, …). \throw NumericalError if a factorization fails.
-DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress);
+/// The density stage of the job (see DensityReport): re-solves job.map from job.field when it misses `target_quads`
+/// (> 0; 0: nothing to hit) by more than 2 %. \pre job = parameterize_mesh(mesh, …).
+/// \throw NumericalError if a factorization fails.
+DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress, int target_quads);
 
 /// Appends `stage` to job.cut_short and keeps its one warning in job.warnings ("stopped (Ctrl-C or time limit) ...:
 /// skipped or cut short: STAGES; ...") up to date. \pre none
