@@ -25,8 +25,11 @@ void raw_transition(const Mesh& mesh, const Parameterization& param, I64 scale, 
   }
 }
 
+/// The multiple of ½ nearest to x.
+double nearest_half_integer(double x) { return std::round(2 * x) / 2; }
+
 double snap_value(double x, double snap) {
-  const double h = std::round(2 * x) / 2;
+  const double h = nearest_half_integer(x);
   return std::abs(x - h) <= snap ? h : x;
 }
 
@@ -216,8 +219,8 @@ bool unsnap_flattened_faces(const Mesh& mesh, const Parameterization& param, dou
 }  // namespace
 
 bool at_lattice_point(Complex z, double snap) {
-  return std::abs(z.real() - std::round(2 * z.real()) / 2) <= snap &&
-         std::abs(z.imag() - std::round(2 * z.imag()) / 2) <= snap;
+  return std::abs(z.real() - nearest_half_integer(z.real())) <= snap &&
+         std::abs(z.imag() - nearest_half_integer(z.imag())) <= snap;
 }
 
 bool positive_in_map(const Eigen::RowVector3cd& corners) {
