@@ -9,6 +9,7 @@
 #include "pipeline/memory_budget.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/remesh_mesh.h"
+#include "pipeline/validity_retries.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -108,6 +109,26 @@ TEST(RemeshMesh, HitsTheRequestedQuadCount) {
       EXPECT_NEAR(quads / target, 1.0, 0.03) << name << " " << target << ": " << quads;
       EXPECT_NEAR(job.param.density.quads / target, 1.0, 0.03) << name;
     }
+}
+
+// The density stage hits the count it is given, whatever the job's options say (a remake passes the requested count
+// while its map starts at the h found): a job at an explicit edge length re-solved towards 1.5 × its count, and left
+// alone with no count.
+TEST(ParameterizeMesh, DensityStageHitsTheCountItIsGiven) {
+  const Mesh mesh = testing::make_torus(60, 24);
+  PipelineOptions options;
+  options.param.density.edge_length = 0.2;
+  ParamJob job = parameterize_mesh(mesh, options);
+  const double before = map_quads(job.map);
+  const DensityReport none = hit_target_count(mesh, job, null_progress(), 0);
+  EXPECT_EQ(none.resolves, 0);
+  EXPECT_DOUBLE_EQ(map_quads(job.map), before);
+  const int target = static_cast<int>(std::lround(1.5 * before));
+  const DensityReport hit = hit_target_count(mesh, job, null_progress(), target);
+  EXPECT_EQ(hit.target_quads, target);
+  EXPECT_GT(hit.resolves, 0);
+  EXPECT_NEAR(hit.quads / target, 1.0, 0.02);
+  EXPECT_NEAR(map_quads(job.map) / target, 1.0, 0.02);
 }
 
 TEST(RemeshMesh, TooCoarseADensityIsAnInputErrorNotATinyMesh) {
