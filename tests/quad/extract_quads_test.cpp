@@ -121,22 +121,14 @@ TEST(ExtractQuads, RobustToRoundOffInCornerValues) {
 // the exact 17 × 7 grid.
 TEST(ExtractQuads, KeepsASliverStripAcrossAnIsoLine) {
   const int nM = 24, nm = 12, P = 17, Q = 7;
-  testing::MeshAndMap m{testing::make_torus(nM, nm), {}};
   const double gap = 4e-7;
   const auto row_y = [&](int j) {  // rows 0..5 spread over [0.2, 3 - gap], rows 6..12 over [3 + gap, 7.2]
     const int jj = ((j % nm) + nm) % nm, wrap = (j - jj) / nm;
     const double y = jj <= 5 ? 0.2 + (3 - gap - 0.2) * jj / 5.0 : 3 + gap + (7.2 - 3 - gap) * (jj - 6) / 6.0;
     return y + Q * wrap;
   };
-  Eigen::MatrixX3cd uv(m.mesh.num_faces(), 3);
-  const auto phi = [&](int i, int j) { return Complex(P * double(i) / nM + 0.31, row_y(j)); };
-  for (int i = 0; i < nM; ++i)
-    for (int j = 0; j < nm; ++j) {
-      const int q = 2 * (i * nm + j);
-      uv.row(q) << phi(i, j), phi(i + 1, j), phi(i + 1, j + 1);
-      uv.row(q + 1) << phi(i, j), phi(i + 1, j + 1), phi(i, j + 1);
-    }
-  m.param = parameterization_from_uv(m.mesh, uv);
+  const testing::MeshAndMap m =
+      testing::torus_map_of(nM, nm, [&](int i, int j) { return Complex(P * double(i) / nM + 0.31, row_y(j)); });
   for (int f = 0; f < m.mesh.num_faces(); ++f) ASSERT_TRUE(grid::positive_in_map(m.param.uv.row(f))) << f;
   const grid::GridMap g = grid::build_grid_map(m.mesh, m.param, 1e-6, 1e-6);
   EXPECT_EQ(g.degenerate_faces + g.flipped_faces, 0);

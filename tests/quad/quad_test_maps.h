@@ -19,13 +19,12 @@ struct MeshAndMap {
   Parameterization param;
 };
 
-/// Torus of make_torus(nM, nm) with φ(i, j) = (P i/nM + shear j/nm + x0, Q j/nm + y0): P·Q quads, all regular.
-inline MeshAndMap torus_map(int nM, int nm, int P, int Q, int shear = 0, double x0 = 0.31, double y0 = 0.17) {
+/// Torus of make_torus(nM, nm) with the map φ(i, j) at its grid vertex (i, j), for 0 <= i <= nM, 0 <= j <= nm (the
+/// seams come from φ(i + nM, j) − φ(i, j) and φ(i, j + nm) − φ(i, j)).
+template <class Phi>
+MeshAndMap torus_map_of(int nM, int nm, const Phi& phi) {
   MeshAndMap r{make_torus(nM, nm), {}};
   Eigen::MatrixX3cd uv(r.mesh.num_faces(), 3);
-  auto phi = [&](int i, int j) {
-    return Complex(P * double(i) / nM + shear * double(j) / nm + x0, Q * double(j) / nm + y0);
-  };
   for (int i = 0; i < nM; ++i)
     for (int j = 0; j < nm; ++j) {
       const int q = 2 * (i * nm + j);
@@ -34,6 +33,13 @@ inline MeshAndMap torus_map(int nM, int nm, int P, int Q, int shear = 0, double 
     }
   r.param = parameterization_from_uv(r.mesh, uv);
   return r;
+}
+
+/// Torus of make_torus(nM, nm) with φ(i, j) = (P i/nM + shear j/nm + x0, Q j/nm + y0): P·Q quads, all regular.
+inline MeshAndMap torus_map(int nM, int nm, int P, int Q, int shear = 0, double x0 = 0.31, double y0 = 0.17) {
+  return torus_map_of(nM, nm, [&](int i, int j) {
+    return Complex(P * double(i) / nM + shear * double(j) / nm + x0, Q * double(j) / nm + y0);
+  });
 }
 
 /// The surface of the unit cube, each side an n×n grid, mapped to [0,m]² rotated by i^(side) and shifted by
