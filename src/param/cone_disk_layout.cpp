@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "common/union_find.h"
+#include "mesh/segment_grid.h"
 #include "mesh/vertex_rings.h"
 #include "param/map_development.h"
 #include "param/ring_winding.h"
@@ -249,11 +250,10 @@ std::unordered_map<int, Complex> barycentric_layout(const Mesh& mesh, const Disk
   return w;
 }
 
-/// Distance from c to the segment [a, b].
+/// Distance from c to the segment [a, b] in the plane.
 double segment_distance(Complex c, Complex a, Complex b) {
-  const Complex ab = b - a;
-  const double t = std::norm(ab) > 0 ? std::clamp(std::real(std::conj(ab) * (c - a)) / std::norm(ab), 0.0, 1.0) : 0.0;
-  return std::abs(c - (a + t * ab));
+  const auto in_space = [](Complex z) { return Eigen::Vector3d(z.real(), z.imag(), 0); };
+  return (in_space(c) - closest_point_on_segment(in_space(c), in_space(a), in_space(b))).norm();
 }
 
 /// Moves the layout so that p is at 0 and the boundary stays: w ↦ w − w_p β(|w − w_p| / R), β(t) = (1 − t²)² on

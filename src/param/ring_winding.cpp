@@ -24,6 +24,9 @@ double corner_angle(const Complex& at, const Complex& next, const Complex& prev)
 /// The quarter index 4·(1 − Θ / 2π) of an angle sum Θ, rounded.
 int quarter_index_of_angle(double theta) { return static_cast<int>(std::lround(4 - 2 * theta / kPi)); }
 
+/// The angle sum Θ = (4 − q)·π/2 of a quarter index q (the inverse of quarter_index_of_angle).
+double angle_of_quarter_index(int q) { return (4 - q) * kPi / 2; }
+
 }  // namespace
 
 double fan_angle(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base, const Eigen::VectorXcd& u,
@@ -190,7 +193,7 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
   // Branch points first: a disk laid out again around one also rewinds the regular vertex beside it.
   for (int p = 0; p < mesh.num_vertices(); ++p) {
     if (!layers.branch[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).size() < 3) continue;
-    const double theta = (4 - target[p]) * kPi / 2;
+    const double theta = angle_of_quarter_index(target[p]);
     if (theta <= 0 || quarter_index_of_angle(fan_angle(mesh, layers, base, u, p)) == target[p]) continue;
     if (lay_out_cone_disk(mesh, layers, base, fixed, theta, p, u).empty()) continue;
     out.disks.push_back(p);
@@ -204,13 +207,13 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
     if (quarter_index_of_angle(theta) == target[p]) continue;
     const int nv = mesh.num_vertices();
     const bool free = !layers.branch[p] && !fixed[p] && !fixed[nv + p];
-    if (free && !fan.undefined && move_centre(mesh, layers, base, fan, (4 - target[p]) * kPi / 2, p, u)) {
+    if (free && !fan.undefined && move_centre(mesh, layers, base, fan, angle_of_quarter_index(target[p]), p, u)) {
       out.rewound.push_back(p);
       out.moved.push_back(p);
       continue;
     }
     const std::vector<double> a =
-        fan.held || fan.undefined ? std::vector<double>{} : target_angles(mesh, p, (4 - target[p]) * kPi / 2);
+        fan.held || fan.undefined ? std::vector<double>{} : target_angles(mesh, p, angle_of_quarter_index(target[p]));
     if (a.empty() || !lay_out_ring(mesh, layers, base, fan, a, p, u)) {
       out.skipped.push_back(p);
       continue;
