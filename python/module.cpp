@@ -303,11 +303,12 @@ py::object face_list(const std::vector<std::vector<int>>& faces) {
 }
 
 py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args, int smooth_quads_rounds,
-                    double smooth_rigidity, py::object progress_callback) {
+                    double smooth_rigidity, bool boundary_quads, py::object progress_callback) {
   const Mesh mesh = make_mesh(V, F);
   PipelineOptions options = pipeline_options(args);
   options.smoothing.iterations = smooth_quads_rounds;
   options.smoothing.rigidity = smooth_rigidity;
+  options.extraction.quadrangulate_boundary = boundary_quads;
   PythonProgress progress(std::move(progress_callback));
   nlohmann::json report;
   RemeshJob job;
@@ -376,7 +377,9 @@ constexpr const char* kRemeshDoc =
     "quad, else a list of polygons, and report the same document as `remesh --report`. Options as in "
     "parameterize(); smooth_quads rounds of tangential smoothing on the input surface (0 = off: vertices at the "
     "integer points) with target squares of the mean edge length (smooth_rigidity 1) or of each quad's own size "
-    "(0). Raises ValueError for invalid input or options (the CLI's checks), RuntimeError if the job fails.";
+    "(0); boundary_quads makes the polygons the boundary clips out of grid cells into quads (the CLI's "
+    "--boundary-quads). Raises ValueError for invalid input or options (the CLI's checks), RuntimeError if the job "
+    "fails.";
 
 JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
@@ -423,12 +426,12 @@ void def_jobs(py::module_& m) {
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
          bool round_curves, bool merge_cones, bool move_cones, int smooth_quads, double smooth_rigidity,
-         py::object progress) {
+         bool boundary_quads, py::object progress) {
         return remesh_py(V, F,
                          job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
                                   stiffening, relaxation, field, fill, feature_angle, align_curves,
                                   fold_refinement_rounds, validity_retries, round_curves, merge_cones, move_cones),
-                         smooth_quads, smooth_rigidity, std::move(progress));
+                         smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
       py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
@@ -442,7 +445,9 @@ void def_jobs(py::module_& m) {
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
-      py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity, py::arg("progress") = py::none(), kRemeshDoc);
+      py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
+      py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("progress") = py::none(),
+      kRemeshDoc);
 }
 
 }  // namespace

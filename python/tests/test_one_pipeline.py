@@ -60,6 +60,17 @@ def test_remesh_report_has_the_cli_shape():
         quadcover.remesh(V, F, faces=800, quads=900)
 
 
+def test_boundary_quads_is_the_cli_option():
+    V, F = mesh("lilium_disk")
+    _, Q, made = quadcover.remesh(V, F)
+    _, P, clipped = quadcover.remesh(V, F, boundary_quads=False)
+    assert made["options"]["boundary_quads"] and not clipped["options"]["boundary_quads"]
+    assert isinstance(Q, np.ndarray) and Q.shape[1] == 4  # all quads
+    assert made["quad_mesh"]["non_quads"] == 0 < clipped["quad_mesh"]["non_quads"]
+    assert sum(len(f) != 4 for f in P) == clipped["quad_mesh"]["non_quads"]
+    assert made["surface_check"]["same_topology"] and clipped["surface_check"]["same_topology"]
+
+
 def test_remesh_dict_has_a_memory_peak_per_timed_stage():
     V, F = mesh("bunny_3k")
     _, _, report = quadcover.remesh(V, F, faces=800)

@@ -25,6 +25,7 @@ struct RemeshOptions : MeshFiles {
   std::string param_output;
   bool ply_quality = false;
   QuadSmoothingOptions smoothing;
+  bool boundary_quads = ExtractOptions{}.quadrangulate_boundary;
   OptimizeCliOptions optimize;
   PictureCliOptions pictures;
 };
@@ -58,6 +59,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
                           ProgressSink& progress) {
   PipelineOptions po;
   po.smoothing = opt.smoothing;
+  po.extraction.quadrangulate_boundary = opt.boundary_quads;
   apply_optimize_options(opt.optimize, po);
   validate(po);
   check_plot_request(out.extras, po.optimize);
@@ -119,6 +121,13 @@ void register_remesh(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--smooth-rigidity", opt->smoothing.rigidity,
                   "Smoothing target: 1 evens out edge lengths, 0 only squares up the quads")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--boundary-quads", opt->boundary_quads,
+                  "Make the polygons that the boundary clips out of grid cells into quads: a triangle cut off where "
+                  "an iso-line meets the boundary at a shallow angle is collapsed onto it, odd pairs are merged, odd "
+                  "polygons get a vertex on the boundary, and each is split into convex quads (the report's "
+                  "extraction.boundary_* counts them); false keeps the clipped polygons of the integer grid "
+                  "(true/false)")
       ->capture_default_str();
   cmd->add_option("--report", opt->report, "Write the JSON report (one input) or a folder for NAME.remesh.json");
   cmd->add_option("--param", opt->param_output,

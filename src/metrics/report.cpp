@@ -54,7 +54,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExtractionReport, quads, non_quads, grid_vert
                                    unfolded_triangles, moved_vertices, collapsed_edges, flipped_triangles,
                                    degenerate_triangles, torn_seams, non_integer_translations, failed_traces,
                                    dropped_faces, degenerate_faces, removed_spikes, split_vertices, split_polygons,
-                                   merged_polygons, filled_holes, active_parameter_area)
+                                   merged_polygons, boundary_collapsed_triangles, boundary_split_polygons,
+                                   boundary_merged_polygons, filled_holes, active_parameter_area)
 
 nlohmann::json to_json(const ExtractionReport& r) { return r; }
 
@@ -94,8 +95,8 @@ std::string to_text(const Report& r) {
     line("quads: %d, other polygons: %d, boundary vertices: %d", e.quads, e.non_quads, e.boundary_vertices);
     line("untangled: %d triangles (%d vertices moved, %d edges mapped to a point collapsed)", e.unfolded_triangles,
          e.moved_vertices, e.collapsed_edges);
-    line("polygons split into quads: %d (%d odd pairs merged first), fold holes closed: %d", e.split_polygons,
-         e.merged_polygons, e.filled_holes);
+    line("polygons split into quads: %d (%d odd pairs merged first; %d and %d at the boundary), fold holes closed: %d",
+         e.split_polygons, e.merged_polygons, e.boundary_split_polygons, e.boundary_merged_polygons, e.filled_holes);
     line("cut out: %d flipped, %d degenerate triangles, %d torn seams, %d failed traces, %d dropped faces",
          e.flipped_triangles, e.degenerate_triangles, e.torn_seams, e.failed_traces, e.dropped_faces);
   }

@@ -29,15 +29,24 @@ nlohmann::json mesh_json(const Mesh& mesh) {
 }
 
 nlohmann::json options_json(const PipelineOptions& o) {
-  return {{"field", to_string(o.field_style)},           {"optimize", to_string(o.optimize)},
-          {"max_iterations", o.max_evaluations},         {"keep_better", o.keep_better},
-          {"lattice", to_string(o.param.lattice)},       {"rounding", to_string(o.param.rounding.strategy)},
-          {"relaxation", o.param.relaxation.iterations}, {"stiffening", o.param.stiffening.max_iterations},
+  return {{"field", to_string(o.field_style)},
+          {"optimize", to_string(o.optimize)},
+          {"max_iterations", o.max_evaluations},
+          {"keep_better", o.keep_better},
+          {"lattice", to_string(o.param.lattice)},
+          {"rounding", to_string(o.param.rounding.strategy)},
+          {"relaxation", o.param.relaxation.iterations},
+          {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.alignment.enabled},
-          {"round_curves", o.param.alignment.round_with_periods},        {"smooth_quads", o.smoothing.iterations},
-          {"smooth_rigidity", o.smoothing.rigidity},     {"refine_curve_triangles", o.refine_curve_triangles},
-          {"merge_coincident_cones", o.merge_coincident_cones}, {"move_wound_cones", o.move_wound_cones},
-          {"fold_refinement_rounds", o.fold_refinement_rounds}, {"validity_retries", o.validity_retries},
+          {"round_curves", o.param.alignment.round_with_periods},
+          {"smooth_quads", o.smoothing.iterations},
+          {"smooth_rigidity", o.smoothing.rigidity},
+          {"refine_curve_triangles", o.refine_curve_triangles},
+          {"boundary_quads", o.extraction.quadrangulate_boundary},
+          {"merge_coincident_cones", o.merge_coincident_cones},
+          {"move_wound_cones", o.move_wound_cones},
+          {"fold_refinement_rounds", o.fold_refinement_rounds},
+          {"validity_retries", o.validity_retries},
           {"feature_angle", o.param.features.sharp_angle_degrees},
           {"fill", to_string(o.fill)}};
 }

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include "common/errors.h"
+#include "mesh/segment_grid.h"
 #include "quad/collapse_degenerate.h"
 #include "quad/integer_grid_map.h"
 #include "quad/quadrangulate.h"
@@ -14,6 +17,39 @@
 namespace quadcover {
 using namespace grid;
 namespace {
+
+/// The input's boundary point closest to the middle of the side a–b, if it is nearer to that middle than half the
+/// side and at least a quarter of the side from either end; its φ is interpolated along the boundary edge in the
+/// snapped map's chart of the edge's face. The boundary edges are binned on the first call.
+BoundaryMidpoint boundary_midpoints(const Mesh& mesh, const GridMap& g) {
+  auto grid = std::make_shared<std::optional<std::pair<SegmentGrid, std::vector<int>>>>();
+  return [&mesh, &g, grid](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::optional<BoundaryPoint> {
+    if (!*grid) {
+      std::vector<int> edges;
+      for (int e = 0; e < mesh.num_edges(); ++e)
+        if (mesh.is_boundary_edge(e)) edges.push_back(e);
+      Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
+      for (std::size_t i = 0; i < edges.size(); ++i) E.row(static_cast<Eigen::Index>(i)) = mesh.E().row(edges[i]);
+      grid->emplace(SegmentGrid(mesh.V(), E), std::move(edges));
+    }
+    const double side = (b - a).norm();
+    int segment = -1;
+    const Eigen::Vector3d p = (*grid)->first.closest_point(0.5 * (a + b), &segment);
+    if (segment < 0 || (p - 0.5 * (a + b)).norm() > 0.5 * side || (p - a).norm() < 0.25 * side ||
+        (p - b).norm() < 0.25 * side)
+      return std::nullopt;
+    const int e = (*grid)->second[static_cast<std::size_t>(segment)];
+    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    const int v0 = mesh.E()(e, 0), v1 = mesh.E()(e, 1);
+    const Eigen::Vector3d p0 = mesh.V().row(v0), p1 = mesh.V().row(v1);
+    const double t = std::clamp((p - p0).dot(p1 - p0) / std::max((p1 - p0).squaredNorm(), 1e-300), 0.0, 1.0);
+    const IPt q0 = g.corner(f, mesh.corner_of(f, v0)), q1 = g.corner(f, mesh.corner_of(f, v1));
+    const double s = static_cast<double>(g.scale);
+    const std::complex<double> uv{((1 - t) * static_cast<double>(q0.x) + t * static_cast<double>(q1.x)) / s,
+                                  ((1 - t) * static_cast<double>(q0.y) + t * static_cast<double>(q1.y)) / s};
+    return BoundaryPoint{p, f, uv};
+  };
+}
 
 enum class GVType { Vertex, Edge, Face, Crossing };
 enum SlotKind : char { kNormal = 0, kLinkFwd = 1, kLinkBwd = 2 };
@@ -485,8 +521,18 @@ class Extractor {
       rep_.dropped_faces += drop_closed_debris(qm);
       rep_.filled_holes = fill_small_holes(qm, 10, inside);
     }
-    const QuadrangulateReport qr = quadrangulate_polygons(qm);
-    rep_.split_polygons = qr.split_polygons, rep_.merged_polygons = qr.merged_pairs;
+    for (int round = 0, k = 1; opt_.quadrangulate_boundary && round < 4 && k > 0; ++round)
+      rep_.boundary_collapsed_triangles += k = collapse_boundary_triangles(qm);
+    const QuadrangulateReport qr = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
+    if (opt_.quadrangulate_boundary && qm.num_quads() < qm.num_faces()) {
+      const BoundaryMidpoint midpoint = boundary_midpoints(mesh_, g_);
+      rep_.boundary_split_polygons += split_odd_boundary_polygons(qm, midpoint);
+      for (int round = 0, k = 1; round < 4 && k > 0; ++round)  // one collapse around a vertex per call
+        rep_.boundary_collapsed_triangles += k = collapse_boundary_sides(qm, midpoint);
+    }
+    rep_.split_polygons = qr.split_polygons + qr.boundary_split_polygons;
+    rep_.merged_polygons = qr.merged_pairs + qr.boundary_merged_pairs;
+    rep_.boundary_split_polygons = qr.boundary_split_polygons, rep_.boundary_merged_polygons = qr.boundary_merged_pairs;
   }
   ExtractionResult assemble() {
     std::vector<char> visited(slots_.size(), 0);

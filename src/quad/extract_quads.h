@@ -28,6 +28,10 @@ struct ExtractOptions {
   /// Close small holes of cut-out folds, split interior even polygons into quads and merge adjacent odd ones
   /// first (see quadrangulate.h; default on).
   bool quadrangulate = true;
+  /// Then the same with the clipped polygons at the boundary, after collapsing the triangles that iso-lines meeting
+  /// the boundary at a shallow angle cut off (quadrangulate.h collapse_boundary_triangles, `with_boundary`; default
+  /// on).
+  bool quadrangulate_boundary = true;
 };
 
 /// What extraction found and repaired. A valid seamless map on a closed surface with integer branch points gives
@@ -50,6 +54,9 @@ struct ExtractionReport {
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
   int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
   int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting
+  int boundary_collapsed_triangles = 0;  ///< triangles cut off by iso-lines meeting the boundary, collapsed
+  int boundary_split_polygons = 0;       ///< of those, polygons with sides on the boundary (clipped by it) split
+  int boundary_merged_polygons = 0;      ///< of those, pairs with sides on the boundary merged
   int filled_holes = 0;          ///< small holes of cut-out folds closed by one polygon (away from the boundary)
   /// Parameter area of the triangles that were extracted (not cut out): the quad count of a valid closed map.
   double active_parameter_area = 0;

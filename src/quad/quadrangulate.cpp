@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <tuple>
 #include <unordered_map>
@@ -132,7 +133,8 @@ class Splitter {
 // The state of quadrangulate_polygons: edge uses and faces, the polygons consumed and the quads that replace them.
 class PolygonQuadrangulation {
  public:
-  PolygonQuadrangulation(QuadMesh& q, int max_size) : q_(q), max_size_(max_size), nf_(q.num_faces()) {
+  PolygonQuadrangulation(QuadMesh& q, int max_size, bool with_boundary)
+      : q_(q), max_size_(max_size), nf_(q.num_faces()), with_boundary_(with_boundary) {
     for (int f = 0; f < nf_; ++f) {
       const auto& F = q.faces[f];
       for (std::size_t i = 0; i < F.size(); ++i) {
@@ -149,7 +151,7 @@ class PolygonQuadrangulation {
   void split_even() {
     for (int f = 0; f < nf_; ++f) {
       const int n = static_cast<int>(q_.faces[f].size());
-      if (n == 4 || n % 2 || n > max_size_ || !interior(f)) continue;
+      if (n == 4 || n % 2 || n > max_size_ || !allowed(f)) continue;
       std::vector<std::vector<int>> quads;
       if (!splitter_.split(q_.faces[f], quads)) continue;
       consumed_[f] = 1;
@@ -195,7 +197,9 @@ class PolygonQuadrangulation {
   }
 
  private:
-  bool interior(int f) {
+  // Every side of f has two faces, or f may have sides on the boundary (with_boundary_).
+  bool allowed(int f) {
+    if (with_boundary_) return true;
     const auto& F = q_.faces[f];
     for (std::size_t i = 0; i < F.size(); ++i)
       if (uses_[edge_key(F[i], F[(i + 1) % F.size()])] != 2) return false;
@@ -222,7 +226,7 @@ class PolygonQuadrangulation {
   }
   bool usable(int g, bool odd) {
     return !consumed_[g] && (q_.faces[g].size() % 2 == 1) == odd && static_cast<int>(q_.faces[g].size()) <= max_size_ &&
-           interior(g);
+           allowed(g);
   }
   bool take(const std::vector<int>& loop, const std::vector<Key>& removed, const std::vector<int>& from) {
     std::vector<std::vector<int>> quads;
@@ -237,6 +241,7 @@ class PolygonQuadrangulation {
 
   QuadMesh& q_;
   const int max_size_, nf_;
+  const bool with_boundary_;
   std::unordered_map<Key, int> uses_;
   std::unordered_map<Key, std::pair<int, int>> faces_of_;  // undirected edge -> (first face, second face)
   std::vector<char> consumed_;
@@ -247,12 +252,288 @@ class PolygonQuadrangulation {
 
 }  // namespace
 
-QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size) {
+QuadrangulateReport quadrangulate_polygons(QuadMesh& q, int max_size, bool with_boundary) {
   if (q.num_quads() == q.num_faces()) return {};
-  PolygonQuadrangulation run(q, max_size);
-  run.split_even();
-  run.merge_odd();
+  PolygonQuadrangulation interior(q, max_size, false);
+  interior.split_even();
+  interior.merge_odd();
+  QuadrangulateReport rep = interior.finish();
+  if (!with_boundary || q.num_quads() == q.num_faces()) return rep;
+  PolygonQuadrangulation boundary(q, max_size, true);
+  boundary.split_even();
+  boundary.merge_odd();
+  const QuadrangulateReport b = boundary.finish();
+  rep.boundary_split_polygons = b.split_polygons;
+  rep.boundary_merged_pairs = b.merged_pairs;
+  return rep;
+}
+
+namespace {
+
+/// Per vertex: the faces around it and its neighbours along face sides (sorted).
+struct PolygonStar {
+  std::vector<std::vector<int>> faces, neighbours;
+  explicit PolygonStar(const QuadMesh& q)
+      : faces(static_cast<std::size_t>(q.num_vertices())), neighbours(static_cast<std::size_t>(q.num_vertices())) {
+    for (int f = 0; f < q.num_faces(); ++f) {
+      const auto& F = q.faces[f];
+      for (std::size_t i = 0; i < F.size(); ++i) {
+        faces[F[i]].push_back(f);
+        neighbours[F[i]].push_back(F[(i + 1) % F.size()]);
+        neighbours[F[(i + 1) % F.size()]].push_back(F[i]);
+      }
+    }
+    for (auto& n : neighbours) {
+      std::sort(n.begin(), n.end());
+      n.erase(std::unique(n.begin(), n.end()), n.end());
+    }
+  }
+  // The vertices next to both a and b.
+  std::vector<int> common(int a, int b) const {
+    std::vector<int> out;
+    std::set_intersection(neighbours[a].begin(), neighbours[a].end(), neighbours[b].begin(), neighbours[b].end(),
+                          std::back_inserter(out));
+    return out;
+  }
+};
+
+}  // namespace
+
+int collapse_boundary_triangles(QuadMesh& q) {
+  const std::vector<char> on_boundary = quad_boundary_vertices(q);
+  const PolygonStar star(q);
+  std::unordered_map<Key, std::vector<int>> faces_of;
+  for (int f = 0; f < q.num_faces(); ++f)
+    for (std::size_t i = 0; i < q.faces[f].size(); ++i)
+      faces_of[edge_key(q.faces[f][i], q.faces[f][(i + 1) % q.faces[f].size()])].push_back(f);
+  std::vector<char> touched(static_cast<std::size_t>(q.num_vertices()), 0), removed(q.faces.size(), 0);
+  int collapsed = 0;
+  for (int t = 0; t < q.num_faces(); ++t) {
+    const auto& T = q.faces[t];
+    if (T.size() != 3 || removed[t]) continue;
+    for (int k = 0; k < 6; ++k) {  // g = T[i] and c either of the other two corners
+      const int i = k / 2, g = T[i], c = T[(i + 1 + k % 2) % 3], x = T[(i + 2 - k % 2) % 3];
+      const auto& across = faces_of[edge_key(g, c)];
+      if (on_boundary[g] || !on_boundary[c] || !on_boundary[x] || faces_of[edge_key(c, x)].size() != 1 ||
+          across.size() != 2)
+        continue;
+      const int p = across[0] == t ? across[1] : across[0];
+      const bool odd = q.faces[p].size() % 2 == 1 && q.faces[p].size() >= 5;
+      if (!odd || removed[p] || star.common(g, c) != std::vector<int>{x}) continue;
+      bool free = true;
+      for (int f : star.faces[g])
+        for (int v : q.faces[f]) free = free && !touched[v];
+      if (!free) continue;
+      for (int f : star.faces[g])
+        for (int v : q.faces[f]) touched[v] = 1;
+      for (int f : star.faces[g])
+        if (f != t) std::replace(q.faces[f].begin(), q.faces[f].end(), g, c);
+      auto& P = q.faces[p];
+      P.erase(std::unique(P.begin(), P.end()), P.end());
+      if (P.front() == P.back()) P.pop_back();
+      removed[t] = 1;
+      ++collapsed;
+      break;
+    }
+  }
+  if (collapsed == 0) return 0;
+  std::vector<std::vector<int>> kept;
+  for (int f = 0; f < q.num_faces(); ++f)
+    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
+  q.faces = std::move(kept);
+  return collapsed;
+}
+
+namespace {
+
+// The state of split_odd_boundary_polygons: the edges' uses and faces, the faces consumed and the quads added.
+class OddBoundarySplit {
+ public:
+  OddBoundarySplit(QuadMesh& q, const BoundaryMidpoint& midpoint) : q_(q), midpoint_(midpoint) {
+    for (int f = 0; f < q.num_faces(); ++f)
+      for (std::size_t i = 0; i < q.faces[f].size(); ++i) {
+        const Key k = edge_key(q.faces[f][i], q.faces[f][(i + 1) % q.faces[f].size()]);
+        ++uses_[k];
+        faces_of_[k].push_back(f);
+      }
+    consumed_.assign(q.faces.size(), 0);
+  }
+
+  // f alone, else merged with each quad beside it: the first loop that splits.
+  bool try_face(int f, int max_size) {
+    const auto& F = q_.faces[f];
+    if (consumed_[f] || F.size() % 2 == 0 || static_cast<int>(F.size()) > max_size) return false;
+    // A triangle alone becomes a quad with its new corner on the boundary: worth it only where the boundary turns
+    // between its two boundary sides (a corner cut off), else that corner is flat.
+    if ((F.size() >= 5 || boundary_sides(F) >= 2) && try_loop(F, {f}, {}, F.size() == 3)) return true;
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      const Key k = edge_key(F[i], F[(i + 1) % F.size()]);
+      const auto& two = faces_of_[k];
+      if (two.size() != 2) continue;
+      const int g = two[0] == f ? two[1] : two[0];
+      std::vector<int> merged;
+      Key removed = 0;
+      if (consumed_[g] || q_.faces[g].size() != 4 || !merge_loops(F, q_.faces[g], merged, removed)) continue;
+      if (try_loop(merged, {f, g}, {removed})) return true;
+      if (F.size() == 3 && try_second_quad(f, g, merged, removed)) return true;
+    }
+    return false;
+  }
+
+  // A triangle f merged with quad g (`merged`), then with the quad across another side of f.
+  bool try_second_quad(int f, int g, const std::vector<int>& merged, Key removed) {
+    const auto& F = q_.faces[f];
+    for (std::size_t i = 0; i < F.size(); ++i) {
+      const auto& two = faces_of_[edge_key(F[i], F[(i + 1) % F.size()])];
+      if (two.size() != 2) continue;
+      const int h = two[0] == f ? two[1] : two[0];
+      std::vector<int> both;
+      Key second = 0;
+      if (h == g || consumed_[h] || q_.faces[h].size() != 4 || !merge_loops(merged, q_.faces[h], both, second))
+        continue;
+      if (try_loop(both, {f, g, h}, {removed, second})) return true;
+    }
+    return false;
+  }
+
+  int finish() {
+    if (added_.empty()) return 0;
+    std::vector<std::vector<int>> faces;
+    for (int f = 0; f < static_cast<int>(consumed_.size()); ++f)
+      if (!consumed_[f]) faces.push_back(std::move(q_.faces[f]));
+    for (auto& Q : added_) faces.push_back(std::move(Q));
+    q_.faces = std::move(faces);
+    return made_;
+  }
+
+ private:
+  // The loop made even by a boundary vertex on one of its boundary sides (the longest first), then split.
+  int boundary_sides(const std::vector<int>& F) {
+    int n = 0;
+    for (std::size_t i = 0; i < F.size(); ++i) n += uses_[edge_key(F[i], F[(i + 1) % F.size()])] == 1;
+    return n;
+  }
+  // The largest corner angle of quad Q (radians).
+  double largest_corner(const std::vector<int>& Q) const {
+    double largest = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d u = q_.V.row(Q[(i + 3) % 4]) - q_.V.row(Q[i]),
+                            w = q_.V.row(Q[(i + 1) % 4]) - q_.V.row(Q[i]);
+      largest = std::max(largest, std::atan2(u.cross(w).norm(), u.dot(w)));
+    }
+    return largest;
+  }
+  bool try_loop(const std::vector<int>& loop, const std::vector<int>& from, const std::vector<Key>& removed,
+                bool no_flat_corner = false) {
+    constexpr double kFlat = 160 * std::numbers::pi / 180;
+    const int n = static_cast<int>(loop.size());
+    std::vector<std::pair<double, int>> sides;  // (−length, index) of the boundary sides
+    for (int i = 0; i < n; ++i)
+      if (uses_[edge_key(loop[i], loop[(i + 1) % n])] == 1)
+        sides.emplace_back(-(q_.V.row(loop[i]) - q_.V.row(loop[(i + 1) % n])).norm(), i);
+    std::sort(sides.begin(), sides.end());
+    for (const auto& [minus_length, side] : sides) {
+      const int a = loop[side], b = loop[(side + 1) % n];
+      const std::optional<BoundaryPoint> mid = midpoint_(q_.V.row(a).transpose(), q_.V.row(b).transpose());
+      if (!mid) continue;
+      const int m = add_vertex(*mid);
+      std::vector<int> even(loop.begin(), loop.begin() + side + 1);
+      even.push_back(m);
+      even.insert(even.end(), loop.begin() + side + 1, loop.end());
+      std::vector<std::vector<int>> quads;
+      if (!splitter_.split(even, quads) || (no_flat_corner && largest_corner(quads[0]) > kFlat)) {
+        remove_last_vertex();
+        continue;
+      }
+      uses_.erase(edge_key(a, b));
+      for (Key k : removed) uses_.erase(k);
+      uses_[edge_key(a, m)] = uses_[edge_key(m, b)] = 1;
+      for (const auto& Q : quads)
+        for (int i = 0; i < 4; ++i) uses_.try_emplace(edge_key(Q[i], Q[(i + 1) % 4]), 2);
+      for (int g : from) consumed_[g] = 1;
+      added_.insert(added_.end(), quads.begin(), quads.end());
+      ++made_;
+      return true;
+    }
+    return false;
+  }
+  int add_vertex(const BoundaryPoint& p) {
+    const int m = q_.num_vertices();
+    q_.V.conservativeResize(m + 1, Eigen::NoChange);
+    q_.V.row(m) = p.position.transpose();
+    q_.uv.conservativeResize(m + 1);
+    q_.uv[m] = p.uv;
+    q_.source_face.conservativeResize(m + 1);
+    q_.source_face[m] = p.face;
+    q_.on_grid.conservativeResize(m + 1);
+    q_.on_grid[m] = 0;
+    return m;
+  }
+  void remove_last_vertex() {
+    const int m = q_.num_vertices() - 1;
+    q_.V.conservativeResize(m, Eigen::NoChange);
+    q_.uv.conservativeResize(m);
+    q_.source_face.conservativeResize(m);
+    q_.on_grid.conservativeResize(m);
+  }
+
+  QuadMesh& q_;
+  const BoundaryMidpoint& midpoint_;
+  std::unordered_map<Key, int> uses_;
+  std::unordered_map<Key, std::vector<int>> faces_of_;
+  std::vector<char> consumed_;
+  std::vector<std::vector<int>> added_;
+  Splitter splitter_{q_.V, uses_};
+  int made_ = 0;
+};
+
+}  // namespace
+
+int split_odd_boundary_polygons(QuadMesh& q, const BoundaryMidpoint& midpoint, int max_size) {
+  if (q.num_quads() == q.num_faces()) return 0;
+  OddBoundarySplit run(q, midpoint);
+  for (int f = 0; f < q.num_faces(); ++f) run.try_face(f, max_size);
   return run.finish();
+}
+
+int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
+  const std::vector<char> on_boundary = quad_boundary_vertices(q);
+  const PolygonStar star(q);
+  std::vector<char> touched(static_cast<std::size_t>(q.num_vertices()), 0), removed(q.faces.size(), 0);
+  int collapsed = 0;
+  for (int t = 0; t < q.num_faces(); ++t) {
+    const auto& T = q.faces[t];
+    if (T.size() != 3) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int g = T[i], c = T[(i + 1) % 3], x = T[(i + 2) % 3];
+      if (on_boundary[g] || !on_boundary[c] || !on_boundary[x] || star.common(c, x) != std::vector<int>{g}) continue;
+      bool free = true;
+      for (int v : {c, x})
+        for (int f : star.faces[v])
+          for (int w : q.faces[f]) free = free && !touched[w];
+      if (!free) continue;
+      const std::optional<BoundaryPoint> mid = midpoint(q.V.row(c).transpose(), q.V.row(x).transpose());
+      if (!mid) continue;
+      for (int v : {c, x})
+        for (int f : star.faces[v])
+          for (int w : q.faces[f]) touched[w] = 1;
+      for (int f : star.faces[x])
+        if (f != t) std::replace(q.faces[f].begin(), q.faces[f].end(), x, c);
+      q.V.row(c) = mid->position.transpose();
+      q.uv[c] = mid->uv;
+      q.source_face[c] = mid->face;
+      q.on_grid[c] = 0;
+      removed[t] = 1;
+      ++collapsed;
+      break;
+    }
+  }
+  if (collapsed == 0) return 0;
+  std::vector<std::vector<int>> kept;
+  for (int f = 0; f < q.num_faces(); ++f)
+    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
+  q.faces = std::move(kept);
+  return collapsed;
 }
 
 int drop_closed_debris(QuadMesh& q, int min_faces) {

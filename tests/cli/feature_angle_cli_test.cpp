@@ -67,12 +67,22 @@ TEST_F(FeatureAngleCli, OffKeepsTheBoundariesAligned) {
   EXPECT_TRUE(free["aligned_curves"]["curves"].empty());
 }
 
-// `remesh --round-curves true` on lilium_disk: the boundary loop is one integer iso-line (its line enforced, the rounding
-// reports the line it rounded), so the quad mesh is all quads up to the boundary; without it the loop is left free
-// (with its reason) and the boundary cells are clipped polygons.
+// `remesh --round-curves true` on lilium_disk: the boundary loop is one integer iso-line (its line enforced, the
+// rounding reports the line it rounded), so the quad mesh is all quads up to the boundary; without it the loop is left
+// free (with its reason) and the boundary cells are clipped polygons (--boundary-quads false keeps them; by default
+// they are made quads, with the same loop left free).
 TEST_F(FeatureAngleCli, RoundCurvesPutsTheBoundaryLoopOnQuadEdges) {
-  const nlohmann::json plain = report("remesh", "lilium_disk", "");
-  const nlohmann::json rounded = report("remesh", "lilium_disk", "", "--round-curves true");
+  const nlohmann::json plain = report("remesh", "lilium_disk", "", "--boundary-quads false");
+  const nlohmann::json rounded = report("remesh", "lilium_disk", "", "--round-curves true --boundary-quads false");
+  const nlohmann::json made = report("remesh", "lilium_disk", "");
+  EXPECT_FALSE(plain["options"]["boundary_quads"].get<bool>());
+  EXPECT_TRUE(made["options"]["boundary_quads"].get<bool>());
+  EXPECT_EQ(made["quad_mesh"]["non_quads"], 0);
+  EXPECT_GT(made["extraction"]["boundary_collapsed_triangles"].get<int>() +
+                made["extraction"]["boundary_split_polygons"].get<int>(),
+            0);
+  EXPECT_EQ(made["aligned_curves"]["curves"][0]["left_free_because"], "closes on itself with another integer");
+  EXPECT_TRUE(made["surface_check"]["same_topology"].get<bool>());
   EXPECT_FALSE(plain["options"]["round_curves"].get<bool>());
   EXPECT_TRUE(rounded["options"]["round_curves"].get<bool>());
   EXPECT_EQ(plain["rounding"]["curve_lines"], 0);

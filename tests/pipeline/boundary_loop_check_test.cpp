@@ -54,6 +54,7 @@ TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
   ASSERT_EQ(plate.num_boundary_loops(), 2);
   PipelineOptions options;
   options.param.density.edge_length = 0.1;  // the hole is 0.2 around: 2 grid units
+  options.extraction.quadrangulate_boundary = false;  // the clipped polygons are what is named
   const RemeshJob job = remesh_mesh(plate, options);
   ASSERT_FALSE(job.param.refinement.mesh);  // the loops and vertices are the plate's
   ASSERT_EQ(job.boundary_loops.size(), 2u);
@@ -76,11 +77,20 @@ TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
       "boundary loop " + std::to_string(hole) + " (through vertex " + std::to_string(h.first_vertex) +
       ", 8 edges, 2.0 grid units): " + std::to_string(h.non_quads) + " non-quad faces, " + h.reason;
   EXPECT_NE(std::find(job.param.warnings.begin(), job.param.warnings.end(), named), job.param.warnings.end());
+
+  // By default the clipped polygons around the hole are made quads, and the hole stays.
+  options.extraction.quadrangulate_boundary = true;
+  const RemeshJob quads = remesh_mesh(plate, options);
+  EXPECT_EQ(non_quads(quads.extraction.mesh), 0);
+  EXPECT_TRUE(quads.surface.same_topology);
+  EXPECT_EQ(quads.surface.output.boundary_loops, 2);
+  for (const BoundaryLoopCheck& c : quads.boundary_loops) EXPECT_EQ(c.non_quads, 0);
 }
 
 TEST(BoundaryLoopCheck, ALoopOffItsIsoLineSaysWhyAndIsQuadsWhenTheCurvesAreRounded) {
   const Mesh mesh = testing::load_test_mesh("lilium_disk");
   PipelineOptions options;
+  options.extraction.quadrangulate_boundary = false;  // the clipped polygons are what is named
   const RemeshJob free_loop = remesh_mesh(mesh, options);
   ASSERT_EQ(free_loop.boundary_loops.size(), 1u);
   const BoundaryLoopCheck& c = free_loop.boundary_loops[0];
