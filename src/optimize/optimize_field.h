@@ -62,9 +62,10 @@ struct OptimizeResult {
 /// The CurlReductionOptions of `options` as given (creation with mode full; budget and time limit unresolved). \pre none
 CurlReductionOptions curl_reduction_options(const OptimizeOptions& options);
 
-/// The default evaluation budget (deterministic, no clock): enough for `relocate` to converge on the test meshes
-/// and for `full` to stay within the whole-pipeline goals of BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on
-/// two cores). Grows with the number of interior edges, capped. \pre none
+/// The default evaluation budget (deterministic, no clock): `relocate` 3000 up to 33k faces (enough to converge on
+/// the test meshes), then 1e8 / #faces, at least 300 (each evaluation costs time in proportion to the faces);
+/// `full` grows with the number of interior edges, capped, to stay within the whole-pipeline goals of
+/// BENCHMARKS.md (20k faces < 10 s, 270k < 5 min on two cores). \pre none
 long auto_evaluation_budget(const Mesh& mesh, OptimizeMode mode);
 /// The default time limit in seconds with the auto budget: `full` 2 s + 0.25 ms per face, `relocate` none (0).
 /// \pre none

@@ -55,9 +55,13 @@ TEST(OptimizeBudget, RelocationOnManyHolesConvergesWithBoundedEvaluations) {
 
 TEST(OptimizeBudget, AutoBudgetGrowsWithTheMeshAndIsCapped) {
   const Mesh small = grid_with_holes(12), large = testing::load_test_mesh("bunny_20k_holes");
-  // relocate: 3000 on every mesh (the budget of the e2e baselines); full: grows with the interior edges.
+  // relocate: 3000 up to 33k faces (the budget of the e2e baselines), then 1e8 evaluated faces, at least 300;
+  // full: grows with the interior edges.
   EXPECT_EQ(auto_evaluation_budget(small, OptimizeMode::Relocate), 3000);
   EXPECT_EQ(auto_evaluation_budget(large, OptimizeMode::Relocate), 3000);
+  EXPECT_EQ(auto_evaluation_budget(testing::make_torus(250, 100), OptimizeMode::Relocate), 2000);  // 50k faces
+  EXPECT_EQ(auto_evaluation_budget(testing::make_torus(400, 250), OptimizeMode::Relocate), 500);   // 200k
+  EXPECT_EQ(auto_evaluation_budget(testing::make_torus(500, 400), OptimizeMode::Relocate), 300);   // 400k: the floor
   EXPECT_EQ(auto_evaluation_budget(small, OptimizeMode::Full), 3000);  // the floor
   EXPECT_GT(auto_evaluation_budget(large, OptimizeMode::Full), 3000);
   EXPECT_EQ(auto_evaluation_budget(large, OptimizeMode::Full),
