@@ -85,9 +85,9 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->check(CLI::IsMember({"direct", "greedy", "search1", "search2", "search3", "exact"}))
       ->capture_default_str();
   cmd.add_option("--max-iterations", options.max_iterations,
-                 "Budget of E_D evaluations for --optimize: -1 = auto (relocate 3000, above 33k faces 1e8 / faces and at "
-                 "least 300; full one per 8 interior "
-                 "edges, 3000 to 20000, and at most 2 s + 0.25 ms per face, so that the whole pipeline stays "
+                 "Budget of E_D evaluations for --optimize: -1 = auto (relocate 3000, above 33k faces 1e8 / "
+                 "faces and at least 300; full one per 8 interior edges, 3000 to 20000, and at most 2 s + 0.25 ms "
+                 "per face, so that the whole pipeline stays "
                  "within the goal times of BENCHMARKS.md), 0 = until converged; "
                  "--time-limit and Ctrl-C also stop it, keeping the best field so far. The report's "
                  "optimize.stopped_by says whether it converged or what stopped it")
