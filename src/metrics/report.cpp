@@ -145,11 +145,17 @@ nlohmann::json relaxation_to_json(const Parameterization& p) {
 }
 
 nlohmann::json quad_smoothing_to_json(const QuadSmoothingOptions& options, const QuadSmoothingReport& r) {
-  return {{"iterations", r.iterations},           {"rigidity", options.rigidity},
-          {"feature_snap", options.feature_snap},   {"feature_vertices", r.feature_vertices},
-          {"edge_length", r.edge_length},         {"fixed_vertices", r.fixed_vertices},
-          {"rejected_moves", r.rejected_moves},   {"mean_displacement", r.mean_displacement},
-          {"max_displacement", r.max_displacement}};
+  return {{"iterations", r.iterations},
+          {"rigidity", options.rigidity},
+          {"feature_snap", options.feature_snap},
+          {"feature_vertices", r.feature_vertices},
+          {"edge_length", r.edge_length},
+          {"fixed_vertices", r.fixed_vertices},
+          {"rejected_moves", r.rejected_moves},
+          {"mean_displacement", r.mean_displacement},
+          {"max_displacement", r.max_displacement},
+          {"slide_boundary", options.slide_boundary},
+          {"boundary_vertices", r.boundary_vertices}};
 }
 
 // The counters of the untangling and the stiffening under their own names; their prices under the thesis-style

@@ -135,6 +135,55 @@ void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int
   }
 }
 
+// The input's boundary as polylines to slide on: its edges binned, and its corners (turns over 40°).
+struct BoundaryPolylines {
+  std::vector<int> edges;
+  SegmentGrid grid;
+  std::vector<char> corner;  // per input vertex
+  static Eigen::MatrixX2i segments(const Mesh& mesh, const std::vector<int>& edges) {
+    Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
+    for (std::size_t s = 0; s < edges.size(); ++s) E.row(static_cast<Eigen::Index>(s)) = mesh.E().row(edges[s]);
+    return E;
+  }
+  BoundaryPolylines(const Mesh& mesh, std::vector<int> boundary_edges)
+      : edges(std::move(boundary_edges)), grid(mesh.V(), segments(mesh, edges)), corner(feature_corners(mesh, edges)) {}
+  // Whether a vertex may go from boundary edge s to t in one move: the same edge, or the next one through a vertex
+  // that is not a corner.
+  bool may_pass(const Mesh& mesh, int s, int t) const {
+    if (s == t) return true;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j)
+        if (mesh.E()(edges[s], i) == mesh.E()(edges[t], j)) return !corner[mesh.E()(edges[s], i)];
+    return false;
+  }
+};
+
+// The boundary vertices of q that slide (boundary_segment ≥ 0): on the input's boundary, in quads only and in two
+// or more of them, not at a corner of the input's boundary. They are taken out of `fixed`.
+void slide_on_boundary(const QuadMesh& q, const Mesh& mesh, const BoundaryPolylines& boundary,
+                       const std::vector<std::vector<std::pair<int, int>>>& corners, double h, std::vector<char>& fixed,
+                       std::vector<int>& boundary_segment) {
+  if (boundary.grid.num_segments() == 0) return;
+  std::vector<int> faces_at(static_cast<std::size_t>(q.num_vertices()), 0);
+  for (const auto& f : q.faces)
+    for (int v : f) ++faces_at[v];
+  const std::vector<char> on_boundary = quad_boundary_vertices(q);
+  const double on = 1e-6 * h;
+  for (int v = 0; v < q.num_vertices(); ++v) {
+    if (!on_boundary[v] || faces_at[v] < 2 || static_cast<int>(corners[v].size()) != faces_at[v]) continue;
+    int s = -1;
+    const Eigen::Vector3d p = q.V.row(v).transpose(), c = boundary.grid.closest_point(p, &s);
+    if (s < 0 || (c - p).norm() > on) continue;
+    const int e = boundary.edges[static_cast<std::size_t>(s)];
+    bool at_corner = false;
+    for (int j = 0; j < 2; ++j)
+      at_corner |= boundary.corner[mesh.E()(e, j)] && (c - mesh.V().row(mesh.E()(e, j)).transpose()).norm() <= on;
+    if (at_corner) continue;
+    boundary_segment[v] = s;
+    fixed[v] = 0;
+  }
+}
+
 // Fixed vertices on the boundary (edges of one face) and at corners of non-quads into `fixed`. \return h, the mean
 // length of the quads' edges.
 double fix_boundary_and_edge_length(const QuadMesh& q, std::vector<char>& fixed) {
@@ -170,6 +219,8 @@ struct SmoothingRound {
   const SegmentGrid& feature_grid;
   const TriangleTree& tree;
   std::vector<int>& feature_segment;  // sliding vertices: the feature edge (index into feature_edges) under it
+  const BoundaryPolylines& boundary;
+  std::vector<int>& boundary_segment;  // boundary vertices that slide: the boundary edge under it
 
   int feature_face(int s) const {
     const int e = feature_edges[static_cast<std::size_t>(s)];
@@ -207,6 +258,16 @@ struct SmoothingRound {
       }
       if (count == 0) return;
       const Eigen::Vector3d p = before.row(v);
+      if (boundary_segment[v] >= 0) {
+        int s = -1;
+        const Eigen::Vector3d c = boundary.grid.closest_point(p + options.step * (target / count - p), &s);
+        if (s < 0 || !boundary.may_pass(mesh, boundary_segment[v], s)) return;
+        const int e = boundary.edges[static_cast<std::size_t>(s)];
+        q.V.row(v) = c.transpose();
+        q.source_face[v] = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+        boundary_segment[v] = s;
+        return;
+      }
       if (feature_segment[v] >= 0) {
         int s = -1;
         q.V.row(v) = feature_grid.closest_point(p + options.step * (target / count - p), &s).transpose();
@@ -239,7 +300,7 @@ struct SmoothingRound {
     });
     const Eigen::MatrixX3d before = q.V;
     const Eigen::VectorXi face_before = q.source_face;
-    const std::vector<int> segment_before = feature_segment;
+    const std::vector<int> segment_before = feature_segment, boundary_before = boundary_segment;
     move_vertices(fits, before);
     int rejected = 0;
     for (bool changed = true; changed;) {
@@ -251,6 +312,7 @@ struct SmoothingRound {
             q.V.row(v) = before.row(v);
             q.source_face[v] = face_before[v];
             feature_segment[v] = segment_before[v];
+            boundary_segment[v] = boundary_before[v];
             ++rejected;
             changed = true;
           }
@@ -317,14 +379,32 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   const SegmentGrid feature_grid(mesh.V(), feature_segments);
   std::vector<int> feature_segment(nv, -1);
   snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);
+  std::vector<int> boundary_edges;
+  for (int e = 0; options.slide_boundary && e < mesh.num_edges(); ++e)
+    if (mesh.is_boundary_edge(e)) boundary_edges.push_back(e);
+  const BoundaryPolylines boundary(mesh, std::move(boundary_edges));
+  std::vector<int> boundary_segment(nv, -1);
+  slide_on_boundary(q, mesh, boundary, corners, h, fixed, boundary_segment);
   for (int v = 0; v < nv; ++v) {
     report.fixed_vertices += fixed[v];
     report.feature_vertices += feature_segment[v] >= 0;
+    report.boundary_vertices += boundary_segment[v] >= 0;
   }
 
   const TriangleTree tree(mesh.V(), mesh.F());
   const Eigen::MatrixX3d original = q.V;
-  SmoothingRound round{q, mesh, options, h, fixed, corners, feature_edges, feature_grid, tree, feature_segment};
+  SmoothingRound round{q,
+                       mesh,
+                       options,
+                       h,
+                       fixed,
+                       corners,
+                       feature_edges,
+                       feature_grid,
+                       tree,
+                       feature_segment,
+                       boundary,
+                       boundary_segment};
   std::vector<SquareFit> fits(nf);
   std::vector<int> bad_before(nf, 0);
   for (int it = 0; it < options.iterations && !progress.skip_improvements(); ++it) {

@@ -27,19 +27,25 @@ struct QuadSmoothingOptions {
   /// ends, turns > 40°) do not move. Moving a row by up to this much stretches the quads beside it (the measured trade
   /// of coverage against RSD: BENCHMARKS.md, "Feature fidelity").
   double feature_snap = 0.4;
+  /// Boundary vertices slide along the input's boundary (their moves are projected onto the boundary polyline),
+  /// but not past a corner of it (a turn of more than 40° at an input vertex) nor away from one; corners of the quad
+  /// mesh's boundary (one face) and of non-quads stay. false: every boundary vertex stays where extraction put it.
+  bool slide_boundary = true;
 };
 
 struct QuadSmoothingReport {
   int iterations = 0;
   double edge_length = 0;        ///< h: mean edge length of the quads before smoothing
   int fixed_vertices = 0;        ///< on the boundary, at feature corners or corners of non-quads: not moved
+  int boundary_vertices = 0;     ///< on the boundary and sliding along it (QuadSmoothingOptions::slide_boundary)
   int feature_vertices = 0;      ///< snapped onto a sharp feature curve and sliding along it
   int rejected_moves = 0;        ///< moves undone because they would have turned a corner of a quad inside out
   double mean_displacement = 0;  ///< mean distance of a free vertex from where extraction put it, in units of h
   double max_displacement = 0;   ///< the largest such distance, in units of h
 };
 
-/// Smooths q in place. Boundary vertices of q and corners of non-quad faces stay where they are; a move that
+/// Smooths q in place. Boundary vertices of q slide along the input's boundary (slide_boundary) and corners of
+/// non-quad faces stay where they are; a move that
 /// would make a corner of an incident quad point against the surface normal is undone. Updates V, source_face
 /// and uv (φ at the new point, so grid vertices are no longer at integer points). Deterministic; O(#V log #F) a
 /// round. \pre q was extracted from `param` on `mesh`.

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -101,7 +102,8 @@ TEST(SmoothQuads, ExactGridIsAFixedPoint) {
     const QuadSmoothingReport r = smooth_quads(q, mesh, param, o);
     EXPECT_EQ(r.iterations, o.iterations);
     EXPECT_NEAR(r.edge_length, 1.0 / 6, 1e-12);
-    EXPECT_EQ(r.fixed_vertices, 24);  // the boundary of the 7 × 7 grid
+    EXPECT_EQ(r.fixed_vertices, 4);      // the corners of the 7 × 7 grid
+    EXPECT_EQ(r.boundary_vertices, 20);  // the rest of its boundary slides (and stays: the grid is square)
     EXPECT_EQ(r.rejected_moves, 0);
     EXPECT_LT((q.V - extracted.V).cwiseAbs().maxCoeff(), 1e-12) << "rigidity " << rigidity;
     EXPECT_LT(r.max_displacement, 1e-10);
@@ -259,15 +261,61 @@ TEST_P(SmoothShipped, StaysOnTheSurfaceAndEvensOutTheQuads) {
       if (f.size() != 4)
         for (int v : f) in_polygon[v] = 1;
   }
+  // Boundary vertices slide along the input's boundary; with slide_boundary off they stay, as corners of polygons do.
+  QuadMesh held = extracted;
+  QuadSmoothingOptions no_slide;
+  no_slide.slide_boundary = false;
+  const QuadSmoothingReport rh = smooth_quads(held, mesh, P, no_slide);
+  EXPECT_EQ(rh.boundary_vertices, 0);
+  EXPECT_EQ(r.boundary_vertices > 0, mesh.num_boundary_loops() > 0);
+  std::vector<int> boundary_edges;
+  for (int e = 0; e < mesh.num_edges(); ++e)
+    if (mesh.is_boundary_edge(e)) boundary_edges.push_back(e);
+  Eigen::MatrixX2i E(static_cast<Eigen::Index>(boundary_edges.size()), 2);
+  for (std::size_t i = 0; i < boundary_edges.size(); ++i)
+    E.row(static_cast<Eigen::Index>(i)) = mesh.E().row(boundary_edges[i]);
+  const SegmentGrid boundary(mesh.V(), E);
   for (int v = 0; v < q.num_vertices(); ++v) {
     int face = -1;
     EXPECT_LT(std::sqrt(tree.squared_distance(q.V.row(v).transpose(), &face)), 1e-9 * diagonal) << "vertex " << v;
-    if (on_boundary[v] || in_polygon[v]) {
-      EXPECT_EQ(q.V.row(v), extracted.V.row(v)) << "fixed vertex " << v << " moved";
-      EXPECT_EQ(q.uv[v], extracted.uv[v]);
+    if (on_boundary[v]) {
+      EXPECT_LT(std::sqrt(boundary.squared_distance(q.V.row(v).transpose())), 1e-9 * diagonal) << "vertex " << v;
     }
+    if (on_boundary[v] || in_polygon[v]) {
+      EXPECT_EQ(held.V.row(v), extracted.V.row(v)) << "fixed vertex " << v << " moved";
+      EXPECT_EQ(held.uv[v], extracted.uv[v]);
+    }
+    if (in_polygon[v]) EXPECT_EQ(q.V.row(v), extracted.V.row(v)) << "polygon corner " << v << " moved";
   }
   EXPECT_LT(r.max_displacement, 3.0);
+}
+
+// The boundary quads of a rotated square (clipped cells made quads, quad/quadrangulate.h): sliding the boundary
+// vertices along the square's sides squares them up better than holding them, and no vertex leaves a side or
+// rounds a corner of the square.
+TEST(SmoothQuads, BoundaryVerticesSlideAlongTheBoundary) {
+  const auto [mesh, param] = testing::square_map(5, 7.3, 0.4, {0.21, 0.13});
+  const QuadMesh extracted = extract_quads(mesh, param).mesh;
+  QuadMesh slid = extracted, held = extracted;
+  const QuadSmoothingReport r = smooth_quads(slid, mesh, param, {});
+  QuadSmoothingOptions no_slide;
+  no_slide.slide_boundary = false;
+  smooth_quads(held, mesh, param, no_slide);
+  EXPECT_GT(r.boundary_vertices, 10);
+  EXPECT_LT(quad_rsd(slid).second, quad_rsd(held).second);
+  const std::vector<char> on_boundary = quad_boundary_vertices(slid);
+  for (int v = 0; v < slid.num_vertices(); ++v) {
+    if (!on_boundary[v]) continue;
+    const Eigen::Vector3d p = slid.V.row(v), p0 = extracted.V.row(v);
+    EXPECT_NEAR(std::min({p.x(), 1 - p.x(), p.y(), 1 - p.y()}), 0, 1e-12) << "vertex " << v;
+    const auto side = [](const Eigen::Vector3d& x) {  // which side of the square (corners count as both)
+      return std::array<bool, 4>{x.x() < 1e-12, x.x() > 1 - 1e-12, x.y() < 1e-12, x.y() > 1 - 1e-12};
+    };
+    const auto s = side(p), s0 = side(p0);
+    bool shared = false;
+    for (int k = 0; k < 4; ++k) shared |= s[k] && s0[k];
+    EXPECT_TRUE(shared) << "vertex " << v << " went round a corner";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SmoothShipped,
