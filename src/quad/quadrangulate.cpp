@@ -320,9 +320,9 @@ int collapse_boundary_triangles(QuadMesh& q) {
       const int p = across[0] == t ? across[1] : across[0];
       const bool odd = q.faces[p].size() % 2 == 1 && q.faces[p].size() >= 5;
       if (!odd || removed[p] || star.common(g, c) != std::vector<int>{x}) continue;
-      bool free = true;
+      bool free = true;  // nothing around g touched yet, and no face but T and P holds both g and c
       for (int f : star.faces[g])
-        for (int v : q.faces[f]) free = free && !touched[v];
+        for (int v : q.faces[f]) free = free && !touched[v] && (v != c || f == t || f == p);
       if (!free) continue;
       for (int f : star.faces[g])
         for (int v : q.faces[f]) touched[v] = 1;
@@ -407,7 +407,6 @@ class OddBoundarySplit {
   }
 
  private:
-  // The loop made even by a boundary vertex on one of its boundary sides (the longest first), then split.
   int boundary_sides(const std::vector<int>& F) {
     int n = 0;
     for (std::size_t i = 0; i < F.size(); ++i) n += uses_[edge_key(F[i], F[(i + 1) % F.size()])] == 1;
@@ -423,6 +422,8 @@ class OddBoundarySplit {
     }
     return largest;
   }
+  // The loop made even by a boundary vertex on one of its boundary sides (the longest first), then split; with
+  // `no_flat_corner` (a triangle alone) not where its quad would have a corner over 160°.
   bool try_loop(const std::vector<int>& loop, const std::vector<int>& from, const std::vector<Key>& removed,
                 bool no_flat_corner = false) {
     constexpr double kFlat = 160 * std::numbers::pi / 180;
@@ -510,7 +511,7 @@ int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
       bool free = true;
       for (int v : {c, x})
         for (int f : star.faces[v])
-          for (int w : q.faces[f]) free = free && !touched[w];
+          for (int w : q.faces[f]) free = free && !touched[w] && (v != x || w != c || f == t);  // only T has both
       if (!free) continue;
       const std::optional<BoundaryPoint> mid = midpoint(q.V.row(c).transpose(), q.V.row(x).transpose());
       if (!mid) continue;
