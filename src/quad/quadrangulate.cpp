@@ -297,6 +297,28 @@ struct PolygonStar {
   }
 };
 
+// Whether quad F, with vertex `from` renamed `to` and `to` placed at `at`, is not folded over: its Newell normal
+// keeps its side and at most one corner turns against it (a reflex corner, which smoothing can straighten; two make
+// a bow-tie). Faces that are not quads after the renaming pass.
+bool unfolded_after(const QuadMesh& q, const std::vector<int>& F, int from, int to, const Eigen::Vector3d& at) {
+  std::vector<int> G = F;
+  std::replace(G.begin(), G.end(), from, to);
+  G.erase(std::unique(G.begin(), G.end()), G.end());
+  if (G.size() > 1 && G.front() == G.back()) G.pop_back();
+  if (G.size() != 4) return true;
+  const auto before = [&](int v) { return Eigen::Vector3d(q.V.row(v).transpose()); };
+  const auto after = [&](int v) { return v == to ? at : before(v); };
+  Eigen::Vector3d n0 = Eigen::Vector3d::Zero(), n1 = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < F.size(); ++i) n0 += before(F[i]).cross(before(F[(i + 1) % F.size()]));
+  for (int i = 0; i < 4; ++i) n1 += after(G[i]).cross(after(G[(i + 1) % 4]));
+  int against = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d a = after(G[(i + 3) % 4]), b = after(G[i]), c = after(G[(i + 1) % 4]);
+    against += (b - a).cross(c - b).dot(n0) <= 0;
+  }
+  return n1.dot(n0) > 0 && against <= 1;
+}
+
 }  // namespace
 
 int collapse_boundary_triangles(QuadMesh& q) {
@@ -323,6 +345,7 @@ int collapse_boundary_triangles(QuadMesh& q) {
       bool free = true;  // nothing around g touched yet, and no face but T and P holds both g and c
       for (int f : star.faces[g])
         for (int v : q.faces[f]) free = free && !touched[v] && (v != c || f == t || f == p);
+      for (int f : star.faces[g]) free = free && (f == t || unfolded_after(q, q.faces[f], g, c, q.V.row(c)));
       if (!free) continue;
       for (int f : star.faces[g])
         for (int v : q.faces[f]) touched[v] = 1;
@@ -515,6 +538,9 @@ int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
       if (!free) continue;
       const std::optional<BoundaryPoint> mid = midpoint(q.V.row(c).transpose(), q.V.row(x).transpose());
       if (!mid) continue;
+      for (int v : {c, x})
+        for (int f : star.faces[v]) free = free && (f == t || unfolded_after(q, q.faces[f], x, c, mid->position));
+      if (!free) continue;
       for (int v : {c, x})
         for (int f : star.faces[v])
           for (int w : q.faces[f]) touched[w] = 1;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 #include "quad/extract_quads.h"
@@ -113,6 +114,38 @@ TEST(Quadrangulate, LeavesBoundaryPolygonsAlone) {
   const testing::PolygonCheck c = testing::check_polygons(q.num_vertices(), q.faces);
   EXPECT_EQ(c.problems, 0);
   EXPECT_EQ(c.boundary_loops, 1);
+}
+
+// A triangle (c, x, g) with its side c–x on the boundary between two quads: c and x become one boundary vertex at
+// the midpoint the caller gives, the quads beside it stay quads; a midpoint that would fold a quad over is refused.
+TEST(Quadrangulate, BoundarySideOfATriangleIsCollapsed) {
+  QuadMesh q;
+  q.V.resize(8, 3);
+  q.V << -1, 0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, -1, 1, 0, 0.5, 0.8, 0, 2, 1, 0, 0.5, 2, 0;
+  enum { b0, c, x, b3, u0, g, u3, t };
+  q.faces = {{b0, c, g, u0}, {c, x, g}, {x, b3, u3, g}, {u0, g, u3, t}};
+  q.uv = Eigen::VectorXcd::Zero(8);
+  q.source_face = Eigen::VectorXi::Zero(8);
+  q.on_grid = Eigen::VectorXi::Zero(8);
+  const auto at = [](double px) {
+    return [px](const Eigen::Vector3d&, const Eigen::Vector3d&) {
+      return std::optional<BoundaryPoint>(BoundaryPoint{Eigen::Vector3d(px, 0, 0), 7, {px, 0}});
+    };
+  };
+  QuadMesh folding = q;
+  EXPECT_EQ(collapse_boundary_sides(folding, at(5.0)), 0);  // x past b3: the right quad would fold over
+  EXPECT_EQ(folding.faces, q.faces);
+  EXPECT_EQ(collapse_boundary_sides(q, at(0.5)), 1);
+  EXPECT_EQ(q.num_faces(), 3);
+  EXPECT_EQ(q.num_quads(), 3);
+  EXPECT_EQ(q.V.row(c), Eigen::RowVector3d(0.5, 0, 0));
+  EXPECT_EQ(q.source_face[c], 7);
+  const testing::PolygonCheck check = testing::check_polygons(q.num_vertices(), q.faces);
+  EXPECT_EQ(check.problems, 0);
+  EXPECT_EQ(check.unreferenced, 1);  // x
+  EXPECT_EQ(check.euler(), 1);
+  EXPECT_EQ(check.boundary_loops, 1);
+  for (const auto& f : q.faces) EXPECT_EQ(std::count(f.begin(), f.end(), x), 0);
 }
 
 // Holes: removing two adjacent squares leaves a hexagonal hole; closing it gives a hexagon face that is split back
