@@ -99,6 +99,8 @@ std::vector<char> check_faces(const PolygonSoup& soup, const ValidationOptions& 
   polygon.hint = " (`quadcover repair MESH -o FIXED.obj` splits polygons into triangles)";
   ProblemCollector repeated(soup, options, ProblemKind::RepeatedVertex, "face with a repeated vertex", "faces with a repeated vertex");
   ProblemCollector degenerate(soup, options, ProblemKind::DegenerateFace, "zero-area (degenerate) face", "zero-area (degenerate) faces");
+  repeated.hint = " (`quadcover repair MESH -o FIXED.obj` drops them)";
+  degenerate.hint = " (`quadcover repair MESH -o FIXED.obj` removes those that carry no surface)";
   std::vector<char> usable(static_cast<std::size_t>(nf), 0);
   for (long f = 0; f < nf; ++f) {
     const std::int64_t* c = soup.face_begin(static_cast<std::size_t>(f));
@@ -154,6 +156,7 @@ std::vector<char> check_duplicates(const PolygonSoup& soup, const ValidationOpti
   }
   std::sort(keys.begin(), keys.end());
   ProblemCollector duplicate(soup, options, ProblemKind::DuplicateFace, "duplicate face", "duplicate faces");
+  duplicate.hint = " (`quadcover repair MESH -o FIXED.obj` keeps the first of each)";
   std::vector<char> is_duplicate(static_cast<std::size_t>(nf), 0);
   for (std::size_t i = 1; i < keys.size(); ++i) {
     if (keys[i].first == keys[i - 1].first) {

@@ -174,6 +174,31 @@ TEST_F(HardeningCli, RepairDoesWhatTheMessagesSuggest) {
   EXPECT_EQ(nlohmann::json::parse(tri.out)["faces"], 2 * 2928);
   EXPECT_EQ(run("info " + path("spot.ply")).code, 0);
 
+  // Faces that carry no surface: a zero-area cap (its edge flipped), a repeated vertex, a repeated face. The
+  // messages point to repair, which removes them and says how many; the result is valid with the input's topology.
+  struct Degenerate {
+    const char* file;
+    const char* counter;
+    int genus, faces;
+  };
+  for (const Degenerate& d : {Degenerate{"fertility_zero_area_face", "zero_area_faces_flipped", 4, 9000},
+                              Degenerate{"spot_degenerate_face", "repeated_vertex_faces_dropped", 0, 5856},
+                              Degenerate{"spot_duplicate_face", "duplicate_faces_dropped", 0, 5856}}) {
+    SCOPED_TRACE(d.file);
+    const std::string in = testing::data_path(std::string("bad/") + d.file);
+    EXPECT_NE(run("info " + in).err.find("quadcover repair"), std::string::npos);
+    const CliRun r = run("repair " + in + " -o " + path("fixed.obj") + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j[d.counter], 1);
+    EXPECT_EQ(j["faces"], d.faces);
+    const CliRun check = run("info " + path("fixed.obj") + " --json");
+    ASSERT_EQ(check.code, 0) << check.err;
+    const nlohmann::json i = nlohmann::json::parse(check.out);
+    EXPECT_EQ(i["genus"], d.genus);
+    EXPECT_TRUE(i["manifold"].get<bool>());
+  }
+
   // What cannot be repaired: exit 2, the problems listed, nothing written.
   const CliRun klein = run("repair " + testing::data_path("bad/torus_klein_nonorientable") + " -o " + path("k.obj"));
   EXPECT_EQ(klein.code, 2);
