@@ -16,7 +16,8 @@ struct QuadMesh {
   /// #V: the vertex's parameter point φ in the chart of `source_face` (a Gaussian integer for grid vertices).
   Eigen::VectorXcd uv;
   Eigen::VectorXi source_face;           ///< #V: input triangle containing the vertex
-  /// #V: 1 for integer grid points, 0 for points where an iso-line meets the boundary (clipped polygons).
+  /// #V: 1 for integer grid points, 0 for points on the boundary (where an iso-line meets it, or added on it when
+  /// the clipped polygons are made quads, quadrangulate.h).
   Eigen::VectorXi on_grid;
 
   int num_vertices() const { return static_cast<int>(V.rows()); }  ///< \pre none
