@@ -297,6 +297,14 @@ struct PolygonStar {
   }
 };
 
+// Removes the faces flagged in `removed` (one flag per face), keeping the others in order.
+void drop_faces(QuadMesh& q, const std::vector<char>& removed) {
+  std::vector<std::vector<int>> kept;
+  for (int f = 0; f < q.num_faces(); ++f)
+    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
+  q.faces = std::move(kept);
+}
+
 // Whether quad F, with vertex `from` renamed `to` and `to` placed at `at`, is not folded over: its Newell normal
 // keeps its side and at most one corner turns against it (a reflex corner, which smoothing can straighten; two make
 // a bow-tie). Faces that are not quads after the renaming pass.
@@ -359,11 +367,7 @@ int collapse_boundary_triangles(QuadMesh& q) {
       break;
     }
   }
-  if (collapsed == 0) return 0;
-  std::vector<std::vector<int>> kept;
-  for (int f = 0; f < q.num_faces(); ++f)
-    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
-  q.faces = std::move(kept);
+  drop_faces(q, removed);
   return collapsed;
 }
 
@@ -555,11 +559,7 @@ int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
       break;
     }
   }
-  if (collapsed == 0) return 0;
-  std::vector<std::vector<int>> kept;
-  for (int f = 0; f < q.num_faces(); ++f)
-    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
-  q.faces = std::move(kept);
+  drop_faces(q, removed);
   return collapsed;
 }
 
