@@ -524,15 +524,16 @@ class Extractor {
     for (int round = 0, k = 1; opt_.quadrangulate_boundary && round < 4 && k > 0; ++round)
       rep_.boundary_collapsed_triangles += k = collapse_boundary_triangles(qm);
     const QuadrangulateReport qr = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
+    rep_.boundary_split_polygons = qr.boundary_split_polygons, rep_.boundary_merged_polygons = qr.boundary_merged_pairs;
     if (opt_.quadrangulate_boundary && qm.num_quads() < qm.num_faces()) {
       const BoundaryMidpoint midpoint = boundary_midpoints(mesh_, g_);
-      rep_.boundary_split_polygons += split_odd_boundary_polygons(qm, midpoint);
+      rep_.boundary_added_vertices = split_odd_boundary_polygons(qm, midpoint);  // one vertex per polygon
+      rep_.boundary_split_polygons += rep_.boundary_added_vertices;
       for (int round = 0, k = 1; round < 4 && k > 0; ++round)  // one collapse around a vertex per call
         rep_.boundary_collapsed_triangles += k = collapse_boundary_sides(qm, midpoint);
     }
-    rep_.split_polygons = qr.split_polygons + qr.boundary_split_polygons;
-    rep_.merged_polygons = qr.merged_pairs + qr.boundary_merged_pairs;
-    rep_.boundary_split_polygons = qr.boundary_split_polygons, rep_.boundary_merged_polygons = qr.boundary_merged_pairs;
+    rep_.split_polygons = qr.split_polygons + rep_.boundary_split_polygons;
+    rep_.merged_polygons = qr.merged_pairs + rep_.boundary_merged_polygons;
   }
   ExtractionResult assemble() {
     std::vector<char> visited(slots_.size(), 0);

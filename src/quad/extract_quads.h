@@ -55,6 +55,7 @@ struct ExtractionReport {
   int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
   int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting
   int boundary_collapsed_triangles = 0;  ///< triangles cut off by iso-lines meeting the boundary, collapsed
+  int boundary_added_vertices = 0;       ///< vertices put on the boundary to make an odd polygon even (then split)
   int boundary_split_polygons = 0;       ///< of those, polygons with sides on the boundary (clipped by it) split
   int boundary_merged_polygons = 0;      ///< of those, pairs with sides on the boundary merged
   int filled_holes = 0;          ///< small holes of cut-out folds closed by one polygon (away from the boundary)

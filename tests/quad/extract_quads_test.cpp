@@ -204,7 +204,7 @@ TEST(ExtractQuads, RotatedSquareGivesClippedPolygons) {
 // the map's area still tiled. Over these squares each of the three boundary operations is used. One triangle is
 // left (scale 5.3, θ 0.6: at a corner of the square, where a vertex on the new side would have a flat corner).
 TEST(ExtractQuads, RotatedSquareBoundaryCellsBecomeQuads) {
-  int collapsed = 0, split = 0, merged = 0, left = 0, clipped = 0;
+  int collapsed = 0, split = 0, merged = 0, left = 0, clipped = 0, added = 0;
   for (const double scale : {5.3, 7.3, 9.7})
     for (const double theta : {0.1, 0.25, 0.4, 0.6})
       for (const Complex offset : {Complex(0.21, 0.13), Complex(0.5, 0.77)}) {
@@ -218,7 +218,13 @@ TEST(ExtractQuads, RotatedSquareBoundaryCellsBecomeQuads) {
         left += res.report.non_quads;
         ExtractOptions off;
         off.quadrangulate_boundary = false;
-        clipped += extract_quads(mesh, param, off).report.non_quads;
+        const ExtractionResult plain = extract_quads(mesh, param, off);
+        clipped += plain.report.non_quads;
+        // Each collapse takes one vertex away, each odd polygon made even adds one; nothing else changes them.
+        EXPECT_EQ(res.mesh.num_vertices(), plain.mesh.num_vertices() + res.report.boundary_added_vertices -
+                                               res.report.boundary_collapsed_triangles);
+        EXPECT_LE(res.report.boundary_added_vertices, res.report.boundary_split_polygons);
+        added += res.report.boundary_added_vertices;
         const testing::PolygonCheck c = testing::check_polygons(res.mesh.num_vertices(), res.mesh.faces);
         EXPECT_EQ(c.problems, 0);
         EXPECT_EQ(c.unreferenced, 0);
@@ -250,6 +256,7 @@ TEST(ExtractQuads, RotatedSquareBoundaryCellsBecomeQuads) {
   EXPECT_GT(collapsed, 0);
   EXPECT_GT(split, 0);
   EXPECT_GT(merged, 0);
+  EXPECT_GT(added, 0);
   EXPECT_LE(left, 1);
   EXPECT_GT(clipped, 100);
 }
