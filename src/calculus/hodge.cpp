@@ -108,7 +108,7 @@ ReducedSystem nonconforming_system(const Mesh& mesh, CholeskyBackend backend) {
   std::vector<int> component(static_cast<std::size_t>(ne));
   std::vector<char> dirichlet(static_cast<std::size_t>(ne), 0);
   for (int e = 0; e < ne; ++e) {
-    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    const int f = mesh.face_of_edge(e);
     component[e] = mesh.face_component()[f];
     dirichlet[e] = mesh.is_boundary_edge(e) ? 1 : 0;  // v = 0 on boundary edges
   }

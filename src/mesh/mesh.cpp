@@ -295,4 +295,17 @@ void Mesh::build_geometry() {
   }
 }
 
+std::vector<int> Mesh::boundary_edges() const {
+  std::vector<int> out;
+  for (int e = 0; e < num_edges(); ++e)
+    if (is_boundary_edge(e)) out.push_back(e);
+  return out;
+}
+
+Eigen::MatrixX2i Mesh::edge_endpoints(const std::vector<int>& edges) const {
+  Eigen::MatrixX2i out(static_cast<Eigen::Index>(edges.size()), 2);
+  for (std::size_t i = 0; i < edges.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = E_.row(edges[i]);
+  return out;
+}
+
 }  // namespace quadcover

@@ -63,6 +63,13 @@ class Mesh {
   const Eigen::MatrixX2i& EF_corner() const { return EF_corner_; }
 
   bool is_boundary_edge(int e) const { return EF_(e, 0) < 0 || EF_(e, 1) < 0; }  ///< \pre 0 <= e < #E
+  /// A face of edge e: its positive face, else (on the boundary) its negative one. \pre 0 <= e < #E
+  int face_of_edge(int e) const { return EF_(e, 0) >= 0 ? EF_(e, 0) : EF_(e, 1); }
+  /// The boundary edges, ascending. \pre none
+  std::vector<int> boundary_edges() const;
+  /// #edges by 2: the end vertices of the listed edges, in that order (segments for mesh/segment_grid.h).
+  /// \pre every listed edge is an edge of the mesh.
+  Eigen::MatrixX2i edge_endpoints(const std::vector<int>& edges) const;
   bool is_boundary_vertex(int v) const { return boundary_vertex_[v] != 0; }  ///< \pre 0 <= v < #V
   /// The corner (0..2) of face f at vertex v, or -1 if v is not a vertex of f. \pre 0 <= f < #F
   int corner_of(int f, int v) const {

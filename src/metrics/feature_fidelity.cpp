@@ -73,9 +73,7 @@ FeatureFidelity feature_fidelity(const Mesh& reference, const Eigen::MatrixX3d& 
   if (!(total > 0)) throw InputError("feature fidelity", 0, "the output mesh has no edge of positive length");
   FeatureFidelity out;
   out.h = total / static_cast<double>(E.rows());
-  std::vector<int> boundary;
-  for (int e = 0; e < reference.num_edges(); ++e)
-    if (options.features.boundaries && reference.is_boundary_edge(e)) boundary.push_back(e);
+  const std::vector<int> boundary = options.features.boundaries ? reference.boundary_edges() : std::vector<int>{};
   FeatureOptions sharp_only = options.features;
   sharp_only.boundaries = false;
   const std::vector<int> sharp = feature_constraints(reference, sharp_only).feature_edges;

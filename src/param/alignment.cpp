@@ -20,7 +20,7 @@ std::vector<CurveSlot> aligned_curve_slots(const Mesh& mesh, const FramePairs& Z
   const double tol = std::sin(tolerance_degrees * std::numbers::pi / 180);
   std::vector<CurveSlot> slots;
   for (const int e : candidates) {
-    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    const int f = mesh.face_of_edge(e);
     int k = 0;
     while (mesh.FE()(f, k) != e) ++k;
     const Complex d = mesh.edge_vector_local(f, k) / std::abs(mesh.edge_vector_local(f, k));

@@ -203,7 +203,7 @@ FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<c
     std::vector<int> pinned;
     std::vector<char> done(trivial.size(), 0);
     for (int e = 0; e < ne; ++e) {
-      const int c = mesh.face_component()[mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1)];
+      const int c = mesh.face_component()[mesh.face_of_edge(e)];
       if (mesh.is_boundary_edge(e) || (trivial[c] && !done[c] && mesh.components()[c].boundary_loops == 0)) {
         done[c] = 1;
         pinned.push_back(e);

@@ -139,7 +139,7 @@ void measure_curve_deviations(const Mesh& mesh, Parameterization& map) {
   for (Parameterization::Curve& curve : map.aligned_curves) {
     curve.max_deviation = 0;
     for (std::size_t j = 0; j < curve.edges.size(); ++j) {
-      const int e = curve.edges[j], f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+      const int e = curve.edges[j], f = mesh.face_of_edge(e);
       for (int end = 0; end < 2; ++end) {
         const Complex z = map.uv(f, mesh.corner_of(f, mesh.E()(e, end)));
         const double coordinate = curve.edge_coordinates[j] == 0 ? z.real() : z.imag();

@@ -118,7 +118,7 @@ void split_corners(const Mesh& coarse, const Mesh& fine, const std::vector<int>&
 }
 
 /// The face an aligned curve edge's coordinate refers to: EF(e,0), or the only face of a boundary edge.
-int curve_face(const Mesh& mesh, int e) { return mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1); }
+int curve_face(const Mesh& mesh, int e) { return mesh.face_of_edge(e); }
 
 /// True if the subspace holds coordinate k (0: φ⁰, 1: φ¹) of vertex p in face f: x_p moves φ^{λ mod 2} and y_p
 /// moves φ^{λ+1 mod 2} (φ = uv − i^λ (x + iy)).

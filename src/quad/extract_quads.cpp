@@ -25,12 +25,8 @@ BoundaryMidpoint boundary_midpoints(const Mesh& mesh, const GridMap& g) {
   auto grid = std::make_shared<std::optional<std::pair<SegmentGrid, std::vector<int>>>>();
   return [&mesh, &g, grid](const Eigen::Vector3d& a, const Eigen::Vector3d& b) -> std::optional<BoundaryPoint> {
     if (!*grid) {
-      std::vector<int> edges;
-      for (int e = 0; e < mesh.num_edges(); ++e)
-        if (mesh.is_boundary_edge(e)) edges.push_back(e);
-      Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
-      for (std::size_t i = 0; i < edges.size(); ++i) E.row(static_cast<Eigen::Index>(i)) = mesh.E().row(edges[i]);
-      grid->emplace(SegmentGrid(mesh.V(), E), std::move(edges));
+      std::vector<int> edges = mesh.boundary_edges();
+      grid->emplace(SegmentGrid(mesh.V(), mesh.edge_endpoints(edges)), std::move(edges));
     }
     const double side = (b - a).norm();
     int segment = -1;
@@ -39,7 +35,7 @@ BoundaryMidpoint boundary_midpoints(const Mesh& mesh, const GridMap& g) {
         (p - b).norm() < 0.25 * side)
       return std::nullopt;
     const int e = (*grid)->second[static_cast<std::size_t>(segment)];
-    const int f = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    const int f = mesh.face_of_edge(e);
     const int v0 = mesh.E()(e, 0), v1 = mesh.E()(e, 1);
     const Eigen::Vector3d p0 = mesh.V().row(v0), p1 = mesh.V().row(v1);
     const double t = std::clamp((p - p0).dot(p1 - p0) / std::max((p1 - p0).squaredNorm(), 1e-300), 0.0, 1.0);

@@ -21,6 +21,23 @@ Key edge_key(int a, int b) {
   return (static_cast<Key>(static_cast<unsigned>(a)) << 32) | static_cast<unsigned>(b);
 }
 
+// Removes the faces flagged in `removed` (one flag per face), keeping the others in order, then appends `added`.
+void replace_faces(QuadMesh& q, const std::vector<char>& removed, std::vector<std::vector<int>> added) {
+  std::vector<std::vector<int>> faces;
+  faces.reserve(q.faces.size() + added.size());
+  for (std::size_t f = 0; f < q.faces.size(); ++f)
+    if (!removed[f]) faces.push_back(std::move(q.faces[f]));
+  for (auto& F : added) faces.push_back(std::move(F));
+  q.faces = std::move(faces);
+}
+
+// Renames corner `from` of face F to `to` and removes the repeat this leaves where they were neighbours.
+void rename_corner(std::vector<int>& F, int from, int to) {
+  std::replace(F.begin(), F.end(), from, to);
+  F.erase(std::unique(F.begin(), F.end()), F.end());
+  if (F.size() > 1 && F.front() == F.back()) F.pop_back();
+}
+
 /// Components of a polygon mesh through shared edges: per face its representative, per representative the number
 /// of faces and whether some side of the component is used by one face only (open).
 struct FaceComponents {
@@ -186,13 +203,7 @@ class PolygonQuadrangulation {
 
   // Replaces the consumed faces of q by the new quads.
   QuadrangulateReport finish() {
-    if (added_.empty()) return rep_;
-    std::vector<std::vector<int>> faces;
-    faces.reserve(nf_ + added_.size());
-    for (int f = 0; f < nf_; ++f)
-      if (!consumed_[f]) faces.push_back(std::move(q_.faces[f]));
-    for (auto& Q : added_) faces.push_back(std::move(Q));
-    q_.faces = std::move(faces);
+    if (!added_.empty()) replace_faces(q_, consumed_, std::move(added_));
     return rep_;
   }
 
@@ -297,22 +308,12 @@ struct PolygonStar {
   }
 };
 
-// Removes the faces flagged in `removed` (one flag per face), keeping the others in order.
-void drop_faces(QuadMesh& q, const std::vector<char>& removed) {
-  std::vector<std::vector<int>> kept;
-  for (int f = 0; f < q.num_faces(); ++f)
-    if (!removed[f]) kept.push_back(std::move(q.faces[f]));
-  q.faces = std::move(kept);
-}
-
 // Whether quad F, with vertex `from` renamed `to` and `to` placed at `at`, is not folded over: its Newell normal
 // keeps its side and at most one corner turns against it (a reflex corner, which smoothing can straighten; two make
 // a bow-tie). Faces that are not quads after the renaming pass.
 bool unfolded_after(const QuadMesh& q, const std::vector<int>& F, int from, int to, const Eigen::Vector3d& at) {
   std::vector<int> G = F;
-  std::replace(G.begin(), G.end(), from, to);
-  G.erase(std::unique(G.begin(), G.end()), G.end());
-  if (G.size() > 1 && G.front() == G.back()) G.pop_back();
+  rename_corner(G, from, to);
   if (G.size() != 4) return true;
   const auto before = [&](int v) { return Eigen::Vector3d(q.V.row(v).transpose()); };
   const auto after = [&](int v) { return v == to ? at : before(v); };
@@ -358,16 +359,13 @@ int collapse_boundary_triangles(QuadMesh& q) {
       for (int f : star.faces[g])
         for (int v : q.faces[f]) touched[v] = 1;
       for (int f : star.faces[g])
-        if (f != t) std::replace(q.faces[f].begin(), q.faces[f].end(), g, c);
-      auto& P = q.faces[p];
-      P.erase(std::unique(P.begin(), P.end()), P.end());
-      if (P.front() == P.back()) P.pop_back();
+        if (f != t) rename_corner(q.faces[f], g, c);  // P loses a corner, the others take c for g
       removed[t] = 1;
       ++collapsed;
       break;
     }
   }
-  drop_faces(q, removed);
+  replace_faces(q, removed, {});
   return collapsed;
 }
 
@@ -424,12 +422,7 @@ class OddBoundarySplit {
   }
 
   int finish() {
-    if (added_.empty()) return 0;
-    std::vector<std::vector<int>> faces;
-    for (int f = 0; f < static_cast<int>(consumed_.size()); ++f)
-      if (!consumed_[f]) faces.push_back(std::move(q_.faces[f]));
-    for (auto& Q : added_) faces.push_back(std::move(Q));
-    q_.faces = std::move(faces);
+    if (!added_.empty()) replace_faces(q_, consumed_, std::move(added_));
     return made_;
   }
 
@@ -549,7 +542,7 @@ int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
         for (int f : star.faces[v])
           for (int w : q.faces[f]) touched[w] = 1;
       for (int f : star.faces[x])
-        if (f != t) std::replace(q.faces[f].begin(), q.faces[f].end(), x, c);
+        if (f != t) rename_corner(q.faces[f], x, c);
       q.V.row(c) = mid->position.transpose();
       q.uv[c] = mid->uv;
       q.source_face[c] = mid->face;
@@ -559,7 +552,7 @@ int collapse_boundary_sides(QuadMesh& q, const BoundaryMidpoint& midpoint) {
       break;
     }
   }
-  drop_faces(q, removed);
+  replace_faces(q, removed, {});
   return collapsed;
 }
 

@@ -140,13 +140,10 @@ struct BoundaryPolylines {
   std::vector<int> edges;
   SegmentGrid grid;
   std::vector<char> corner;  // per input vertex
-  static Eigen::MatrixX2i segments(const Mesh& mesh, const std::vector<int>& edges) {
-    Eigen::MatrixX2i E(static_cast<Eigen::Index>(edges.size()), 2);
-    for (std::size_t s = 0; s < edges.size(); ++s) E.row(static_cast<Eigen::Index>(s)) = mesh.E().row(edges[s]);
-    return E;
-  }
   BoundaryPolylines(const Mesh& mesh, std::vector<int> boundary_edges)
-      : edges(std::move(boundary_edges)), grid(mesh.V(), segments(mesh, edges)), corner(feature_corners(mesh, edges)) {}
+      : edges(std::move(boundary_edges)),
+        grid(mesh.V(), mesh.edge_endpoints(edges)),
+        corner(feature_corners(mesh, edges)) {}
   // Whether a vertex may go from boundary edge s to t in one move: the same edge, or the next one through a vertex
   // that is not a corner.
   bool may_pass(const Mesh& mesh, int s, int t) const {
@@ -224,7 +221,7 @@ struct SmoothingRound {
 
   int feature_face(int s) const {
     const int e = feature_edges[static_cast<std::size_t>(s)];
-    return mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+    return mesh.face_of_edge(e);
   }
   // On a feature the normal is the mean of the two sides' (a corner of a quad on either side turns around it).
   Eigen::Vector3d surface_normal(int v) const {
@@ -264,7 +261,7 @@ struct SmoothingRound {
         if (s < 0 || !boundary.may_pass(mesh, boundary_segment[v], s)) return;
         const int e = boundary.edges[static_cast<std::size_t>(s)];
         q.V.row(v) = c.transpose();
-        q.source_face[v] = mesh.EF()(e, 0) >= 0 ? mesh.EF()(e, 0) : mesh.EF()(e, 1);
+        q.source_face[v] = mesh.face_of_edge(e);
         boundary_segment[v] = s;
         return;
       }
@@ -374,15 +371,10 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
   }
   // Sharp feature curves of the input: vertices on or near them slide along them, their corners stay.
   const std::vector<int> feature_edges = feature_constraints(mesh).feature_edges;
-  Eigen::MatrixX2i feature_segments(static_cast<Eigen::Index>(feature_edges.size()), 2);
-  for (std::size_t s = 0; s < feature_edges.size(); ++s) feature_segments.row(s) = mesh.E().row(feature_edges[s]);
-  const SegmentGrid feature_grid(mesh.V(), feature_segments);
+  const SegmentGrid feature_grid(mesh.V(), mesh.edge_endpoints(feature_edges));
   std::vector<int> feature_segment(nv, -1);
   snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);
-  std::vector<int> boundary_edges;
-  for (int e = 0; options.slide_boundary && e < mesh.num_edges(); ++e)
-    if (mesh.is_boundary_edge(e)) boundary_edges.push_back(e);
-  const BoundaryPolylines boundary(mesh, std::move(boundary_edges));
+  const BoundaryPolylines boundary(mesh, options.slide_boundary ? mesh.boundary_edges() : std::vector<int>{});
   std::vector<int> boundary_segment(nv, -1);
   slide_on_boundary(q, mesh, boundary, corners, h, fixed, boundary_segment);
   for (int v = 0; v < nv; ++v) {

@@ -268,13 +268,7 @@ TEST_P(SmoothShipped, StaysOnTheSurfaceAndEvensOutTheQuads) {
   const QuadSmoothingReport rh = smooth_quads(held, mesh, P, no_slide);
   EXPECT_EQ(rh.boundary_vertices, 0);
   EXPECT_EQ(r.boundary_vertices > 0, mesh.num_boundary_loops() > 0);
-  std::vector<int> boundary_edges;
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    if (mesh.is_boundary_edge(e)) boundary_edges.push_back(e);
-  Eigen::MatrixX2i E(static_cast<Eigen::Index>(boundary_edges.size()), 2);
-  for (std::size_t i = 0; i < boundary_edges.size(); ++i)
-    E.row(static_cast<Eigen::Index>(i)) = mesh.E().row(boundary_edges[i]);
-  const SegmentGrid boundary(mesh.V(), E);
+  const SegmentGrid boundary(mesh.V(), mesh.edge_endpoints(mesh.boundary_edges()));
   for (int v = 0; v < q.num_vertices(); ++v) {
     int face = -1;
     EXPECT_LT(std::sqrt(tree.squared_distance(q.V.row(v).transpose(), &face)), 1e-9 * diagonal) << "vertex " << v;
