@@ -405,6 +405,44 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
 #endif
 }
 
+std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& A, int min_size) {
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  const int n = static_cast<int>(A.rows());
+  if (n < min_size || A.cols() != n) return {};
+  Eigen::SparseMatrix<Complex> pattern = A.triangularView<Eigen::Lower>();
+  pattern.makeCompressed();
+  cholmod_common c;
+  cholmod_start(&c);
+  c.print = 0;
+  // METIS, then the elimination tree postordered: every subtree's columns adjacent in L, so the paths the updates
+  // walk stay in few cache lines.
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_METIS;
+  c.postorder = 1;
+  c.supernodal = CHOLMOD_SIMPLICIAL;
+  cholmod_sparse S{};
+  S.nrow = S.ncol = static_cast<size_t>(n);
+  S.nzmax = static_cast<size_t>(pattern.nonZeros());
+  S.p = pattern.outerIndexPtr();
+  S.i = pattern.innerIndexPtr();
+  S.stype = -1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = CHOLMOD_PATTERN;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = S.packed = 1;
+  cholmod_factor* L = cholmod_analyze(&S, &c);
+  std::vector<int> perm;
+  if (L && c.status == CHOLMOD_OK) perm.assign(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + n);
+  if (L) cholmod_free_factor(&L, &c);
+  cholmod_finish(&c);
+  return perm;
+#else
+  (void)A;
+  (void)min_size;
+  return {};
+#endif
+}
+
 template class SparseCholesky<double>;
 template class SparseCholesky<Complex>;
 

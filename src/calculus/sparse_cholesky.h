@@ -84,6 +84,14 @@ struct ColumnFactor {
 /// \pre perm is a permutation of [0, A.rows()) (a size mismatch returns false). Does not throw.
 bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A, std::span<const int> perm, ColumnFactor& out);
 
+/// A nested-dissection fill-reducing ordering of A's pattern (perm[new] = old): METIS through CHOLMOD. Its factor
+/// has about as many entries as AMD's on meshes, but its elimination tree is lower and bushier, so the paths that
+/// path-local Cholesky updates walk (optimize/updatable_cholesky.h) hold 1.3-2.4× fewer entries of L
+/// (BENCHMARKS.md, "Nested dissection for the E_D updates").
+/// \return the permutation, or empty when quadcover was built without CHOLMOD, A has fewer than `min_size` rows or
+/// the ordering fails. \pre A is square with a symmetric pattern (full storage). Deterministic (METIS's fixed seed).
+std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& A, int min_size);
+
 extern template class SparseCholesky<double>;
 extern template class SparseCholesky<Complex>;
 

@@ -27,6 +27,21 @@ std::pair<std::vector<SparseEntry>, std::vector<SparseEntry>> deng_split(const S
 }
 
 namespace {
+// Below this size AMD's paths are short enough that METIS's ordering time would not pay back.
+constexpr int kNestedDissectionMinSize = 1000;
+
+/// P A Pᵀ in full storage for pinv (pinv[old] = new).
+Eigen::SparseMatrix<Complex> permuted_full(const Eigen::SparseMatrix<Complex>& A, const std::vector<int>& pinv) {
+  std::vector<Eigen::Triplet<Complex>> t;
+  t.reserve(static_cast<std::size_t>(A.nonZeros()));
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, j); it; ++it)
+      t.emplace_back(pinv[it.row()], pinv[j], it.value());
+  Eigen::SparseMatrix<Complex> out(A.rows(), A.cols());
+  out.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
 // Σ c_j² / nnz(L) above which the supernodal route is faster (bunny_20k 51 and armadillo_86k 61: CXSparse 1.5-2×
 // faster; a 100k-face torus 223: CHOLMOD 2.5× faster).
 constexpr double kSupernodalFlopsPerEntry = 128;
@@ -62,11 +77,25 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
   view.i = A.innerIndexPtr();
   view.x = A.valuePtr();
   view.nz = -1;
-  impl_->S = cs_ci_schol(1, &view);  // AMD ordering of A + Aᵀ
+  // Nested dissection (METIS) where CHOLMOD is compiled in: the etree paths every update walks are shorter than
+  // with AMD (calculus/sparse_cholesky.h). CXSparse then analyses P A Pᵀ in its natural order.
+  perm_ = nested_dissection_ordering(A, kNestedDissectionMinSize);
+  Eigen::SparseMatrix<Complex> permuted;
+  if (!perm_.empty()) {
+    pinv_.resize(n);
+    for (int i = 0; i < n; ++i) pinv_[perm_[i]] = i;
+    permuted = permuted_full(A, pinv_);
+    view.p = permuted.outerIndexPtr();
+    view.i = permuted.innerIndexPtr();
+    view.x = permuted.valuePtr();
+  }
+  impl_->S = cs_ci_schol(perm_.empty() ? 1 : 0, &view);  // AMD ordering of A + Aᵀ, or the given one
   if (!impl_->S) throw NumericalError("cholesky", "symbolic analysis failed (n = " + std::to_string(n) + ")");
-  pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
-  perm_.resize(n);
-  for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
+  if (perm_.empty()) {
+    pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
+    perm_.resize(n);
+    for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
+  }
   // The numbers: CXSparse's up-looking factorization costs Σ_j c_j² (c_j = column counts of L); when that is large
   // per entry of L (big fronts, e.g. long thin meshes), CHOLMOD's supernodal one (BLAS-3) on the same permutation
   // and exact pattern pays for its conversions (BENCHMARKS.md, "Stage profile"). Both compute the unique Cholesky

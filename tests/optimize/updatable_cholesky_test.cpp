@@ -8,6 +8,7 @@
 #include <cs.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "calculus/sparse_cholesky.h"
@@ -237,6 +238,53 @@ TEST_P(OnMeshes, PathLocalUpdatesOnTheSupernodalFactorMatchFreshFactorization) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, OnMeshes, ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "lilium_disk"));
+
+// Mean over the columns j of Σ nnz(L_i) over the etree path from j to the root: the work of an update starting at j.
+double mean_path_work(const std::vector<int>& parent, const std::vector<int>& column_count) {
+  const int n = static_cast<int>(parent.size());
+  std::vector<double> to_root(static_cast<std::size_t>(n));
+  double sum = 0;
+  for (int j = n - 1; j >= 0; --j) {  // parents come after their children
+    to_root[j] = column_count[j] + (parent[j] >= 0 ? to_root[parent[j]] : 0.0);
+    sum += to_root[j];
+  }
+  return sum / n;
+}
+
+// The ordering the updates use (nested dissection where CHOLMOD is compiled in) against CXSparse's AMD on the same
+// matrix: the paths the updates walk are shorter, and the factor is still exact (the tests above run on it too).
+TEST(UpdatableCholesky, NestedDissectionShortensTheUpdatePaths) {
+  if (!SparseCholesky<double>::cholmod_available()) GTEST_SKIP() << "the build without CHOLMOD orders by AMD";
+  const Mesh mesh = testing::load_test_mesh("bunny_3k");
+  std::mt19937 rng(3);
+  const Eigen::SparseMatrix<Complex> A = SyntheticCover(mesh, rng).matrix();
+  const std::vector<int> perm = nested_dissection_ordering(A, 1000);
+  ASSERT_EQ(perm.size(), static_cast<std::size_t>(A.rows()));
+  std::vector<int> sorted = perm;
+  std::sort(sorted.begin(), sorted.end());
+  for (int i = 0; i < A.rows(); ++i) ASSERT_EQ(sorted[i], i);
+  EXPECT_TRUE(nested_dissection_ordering(A, static_cast<int>(A.rows()) + 1).empty());  // below the size limit
+  const UpdatableCholesky F(A);
+  EXPECT_EQ(F.perm(), perm);
+  std::vector<int> counts(static_cast<std::size_t>(F.size()));
+  for (int j = 0; j < F.size(); ++j) counts[j] = F.col_ptr()[j + 1] - F.col_ptr()[j];
+  const double nested = mean_path_work(F.etree(), counts);
+  Eigen::SparseMatrix<Complex> B = A;
+  B.makeCompressed();
+  cs_ci view{static_cast<int>(B.nonZeros()),
+             static_cast<int>(B.rows()),
+             static_cast<int>(B.cols()),
+             B.outerIndexPtr(),
+             B.innerIndexPtr(),
+             B.valuePtr(),
+             -1};
+  cs_cis* S = cs_ci_schol(1, &view);  // AMD
+  ASSERT_NE(S, nullptr);
+  std::vector<int> amd_parent(S->parent, S->parent + F.size()), amd_counts(static_cast<std::size_t>(F.size()));
+  for (int j = 0; j < F.size(); ++j) amd_counts[j] = static_cast<int>(S->cp[j + 1] - S->cp[j]);
+  cs_ci_sfree(S);
+  EXPECT_LT(nested, 0.8 * mean_path_work(amd_parent, amd_counts));
+}
 
 // A change that makes the matrix indefinite must be detected, not silently produce NaNs.
 TEST(FactorTrial, DetectsLossOfPositiveDefiniteness) {
