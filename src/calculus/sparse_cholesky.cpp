@@ -60,6 +60,14 @@ constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
 // calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP). Called on the
 // thread that factors, before each CHOLMOD factorization (the OpenMP setting belongs to the calling thread; solves
 // come after a factorization).
+// METIS keeps its random state in globals of GKlib (seeded at the start of each ordering): two orderings at once on
+// two threads disturb each other and come out different from run to run. Every CHOLMOD analysis that may call
+// METIS (ours always, CHOLMOD's default choice when AMD fills too much) holds this lock.
+std::mutex& metis_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 void single_threaded_libraries() {
   using SetThreads = void (*)(int);
   static std::once_flag once;
@@ -98,7 +106,10 @@ class CholmodBackend {
   void analyze(const Matrix& lower, const std::string& stage) {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
-    factor_ = cholmod_analyze(&A, &common_);
+    {
+      const std::lock_guard<std::mutex> lock(metis_mutex());
+      factor_ = cholmod_analyze(&A, &common_);
+    }
     if (!factor_ || common_.status < CHOLMOD_OK)
       throw NumericalError(stage, "CHOLMOD symbolic analysis failed (status " + std::to_string(common_.status) + ")");
   }
@@ -430,7 +441,11 @@ std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& 
   S.xtype = CHOLMOD_PATTERN;
   S.dtype = CHOLMOD_DOUBLE;
   S.sorted = S.packed = 1;
-  cholmod_factor* L = cholmod_analyze(&S, &c);
+  cholmod_factor* L = nullptr;
+  {
+    const std::lock_guard<std::mutex> lock(metis_mutex());
+    L = cholmod_analyze(&S, &c);
+  }
   std::vector<int> perm;
   if (L && c.status == CHOLMOD_OK) perm.assign(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + n);
   if (L) cholmod_free_factor(&L, &c);

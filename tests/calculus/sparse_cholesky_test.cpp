@@ -252,6 +252,24 @@ TEST(SparseCholesky, CholmodRunsItsOpenMpRegionsOnTheCallingThread) {
   EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
 }
 
+// METIS keeps its random state in globals: orderings computed on two threads at once (batch jobs, the parallel
+// set-up of Algorithm 6.1) must still be the ones a single thread computes, or the outputs depend on timing.
+TEST(SparseCholesky, NestedDissectionIsTheSameOnConcurrentThreads) {
+  if (!SparseCholesky<double>::cholmod_available()) GTEST_SKIP() << "the build without CHOLMOD orders by AMD";
+  const Eigen::SparseMatrix<Complex> A = hpd_matrix(cached_mesh("bunny_3k"));
+  const Eigen::SparseMatrix<Complex> B = hpd_matrix(cached_mesh("torus_5k"));
+  const std::vector<int> alone_a = nested_dissection_ordering(A, 1), alone_b = nested_dissection_ordering(B, 1);
+  ASSERT_EQ(alone_a.size(), static_cast<std::size_t>(A.rows()));
+  std::vector<int> differ(2, 0);
+  std::thread t([&] {
+    for (int k = 0; k < 20; ++k) differ[0] += nested_dissection_ordering(A, 1) != alone_a;
+  });
+  for (int k = 0; k < 20; ++k) differ[1] += nested_dissection_ordering(B, 1) != alone_b;
+  t.join();
+  EXPECT_EQ(differ[0], 0);
+  EXPECT_EQ(differ[1], 0);
+}
+
 TEST(SparseCholesky, EmptyMatrixAndBackendAvailability) {
   SparseCholesky<double> chol;
   chol.compute(Eigen::SparseMatrix<double>(0, 0));
