@@ -10,6 +10,7 @@
 #include "common/errors.h"
 #include "mesh/segment_grid.h"
 #include "quad/collapse_degenerate.h"
+#include "quad/doublets.h"
 #include "quad/integer_grid_map.h"
 #include "quad/quadrangulate.h"
 #include "quad/repair_folds.h"
@@ -519,6 +520,7 @@ class Extractor {
     }
     for (int round = 0, k = 1; opt_.quadrangulate_boundary && round < 4 && k > 0; ++round)
       rep_.boundary_collapsed_triangles += k = collapse_boundary_triangles(qm);
+    rep_.removed_doublets = remove_doublets(qm);
     const QuadrangulateReport qr = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
     rep_.boundary_split_polygons = qr.boundary_split_polygons, rep_.boundary_merged_polygons = qr.boundary_merged_pairs;
     if (opt_.quadrangulate_boundary && qm.num_quads() < qm.num_faces()) {
@@ -528,8 +530,15 @@ class Extractor {
       for (int round = 0, k = 1; round < 4 && k > 0; ++round)  // one collapse around a vertex per call
         rep_.boundary_collapsed_triangles += k = collapse_boundary_sides(qm, midpoint);
     }
-    rep_.split_polygons = qr.split_polygons + rep_.boundary_split_polygons;
-    rep_.merged_polygons = qr.merged_pairs + rep_.boundary_merged_polygons;
+    int late_splits = 0, late_merges = 0;
+    if (const int late = remove_doublets(qm); late > 0) {  // the boundary steps can leave a vertex of valence 2
+      rep_.removed_doublets += late;
+      const QuadrangulateReport again = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
+      late_splits = again.split_polygons + again.boundary_split_polygons;
+      late_merges = again.merged_pairs + again.boundary_merged_pairs;
+    }
+    rep_.split_polygons = qr.split_polygons + rep_.boundary_split_polygons + late_splits;
+    rep_.merged_polygons = qr.merged_pairs + rep_.boundary_merged_polygons + late_merges;
   }
   ExtractionResult assemble() {
     std::vector<char> visited(slots_.size(), 0);

@@ -51,6 +51,7 @@ struct ExtractionReport {
   int dropped_faces = 0;         ///< faces not emitted: a bounding segment failed, or an edge twice (near folds)
   int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
   int removed_spikes = 0;        ///< face loops x → v → x shortened (v an output vertex of valence 1, dropped)
+  int removed_doublets = 0;      ///< interior vertices of valence 2 removed, their two faces merged (doublets.h)
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them
   int split_polygons = 0;        ///< interior polygons split into quads by diagonals (quadrangulate.h)
   int merged_polygons = 0;       ///< pairs of adjacent odd polygons merged before splitting

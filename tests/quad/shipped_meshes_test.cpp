@@ -7,6 +7,7 @@
 #include "field/compute_frame_field.h"
 #include "mesh/surface_counts.h"
 #include "param/parameterize.h"
+#include "quad/doublets.h"
 #include "quad/extract_quads.h"
 #include "quad/polygon_check.h"
 #include "support/test_meshes.h"
@@ -56,7 +57,7 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
   // A closed all-quad output of a closed input is the same surface with one quad per unit of parameter area.
   if (mesh.num_boundary_loops() == 0 && t.closed() && r.non_quads == 0) {
     EXPECT_EQ(t.euler_characteristic, mesh.euler_characteristic());
-    if (r.split_polygons + r.merged_polygons + r.flipped_triangles + r.degenerate_triangles == 0) {
+    if (r.split_polygons + r.merged_polygons + r.flipped_triangles + r.degenerate_triangles + r.removed_doublets == 0) {
       EXPECT_NEAR(r.quads, r.active_parameter_area, 1e-6 * area);
     }
   }
@@ -67,7 +68,7 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
   const auto at_boundary = std::count_if(res.mesh.faces.begin(), res.mesh.faces.end(), [&](const auto& f) {
     return std::any_of(f.begin(), f.end(), [&](int v) { return on_boundary[v] != 0; });
   });
-  const int repaired = r.non_quads + r.split_polygons + r.merged_polygons;
+  const int repaired = r.non_quads + r.split_polygons + r.merged_polygons + r.removed_doublets;
   EXPECT_NEAR(r.quads, r.active_parameter_area, 4.0 * repaired + static_cast<double>(at_boundary) + 1e-6 * area)
       << "non-quads " << r.non_quads << ", split " << r.split_polygons << ", merged " << r.merged_polygons
       << ", cut out: " << r.flipped_triangles << " flipped, " << r.degenerate_triangles << " degenerate";
@@ -82,6 +83,9 @@ TEST_P(ShippedMeshes, ExtractionIsManifoldAndCountsMatchArea) {
     EXPECT_EQ(r.non_quads, 0);
   }
   EXPECT_GT(r.quads, 0.5 * area);
+  // Doublets (quad/doublets.h) were removed last: none is left that could go.
+  QuadMesh again = res.mesh;
+  EXPECT_EQ(remove_doublets(again), 0);
 }
 INSTANTIATE_TEST_SUITE_P(Meshes, ShippedMeshes,
                          ::testing::Values("bunny_3k", "torus_5k", "eight_genus2", "3holes_genus3", "fertility_genus4",
