@@ -68,6 +68,25 @@ std::mutex& metis_mutex() {
   return m;
 }
 
+/// CHOLMOD's view of the lower triangle `m` (Hermitian: the upper is its conjugate transpose) as `xtype`.
+template <class Scalar>
+cholmod_sparse lower_triangle_view(const Eigen::SparseMatrix<Scalar>& m, int xtype) {
+  cholmod_sparse A{};
+  A.nrow = static_cast<size_t>(m.rows());
+  A.ncol = static_cast<size_t>(m.cols());
+  A.nzmax = static_cast<size_t>(m.nonZeros());
+  A.p = const_cast<int*>(m.outerIndexPtr());
+  A.i = const_cast<int*>(m.innerIndexPtr());
+  A.x = xtype == CHOLMOD_PATTERN ? nullptr : const_cast<Scalar*>(m.valuePtr());
+  A.stype = -1;
+  A.itype = CHOLMOD_INT;
+  A.xtype = xtype;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+  return A;
+}
+
 void single_threaded_libraries() {
   using SetThreads = void (*)(int);
   static std::once_flag once;
@@ -149,22 +168,7 @@ class CholmodBackend {
   static int xtype() { return kIsComplex<Scalar> ? CHOLMOD_COMPLEX : CHOLMOD_REAL; }  // interleaved re/im
 
   // Non-owning views of Eigen storage (column-major, int indices, compressed).
-  static cholmod_sparse view(const Matrix& m) {
-    cholmod_sparse A{};
-    A.nrow = static_cast<size_t>(m.rows());
-    A.ncol = static_cast<size_t>(m.cols());
-    A.nzmax = static_cast<size_t>(m.nonZeros());
-    A.p = const_cast<int*>(m.outerIndexPtr());
-    A.i = const_cast<int*>(m.innerIndexPtr());
-    A.x = const_cast<Scalar*>(m.valuePtr());
-    A.stype = -1;  // lower triangle stored; upper = conjugate transpose
-    A.itype = CHOLMOD_INT;
-    A.xtype = xtype();
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
-    return A;
-  }
+  static cholmod_sparse view(const Matrix& m) { return lower_triangle_view(m, xtype()); }
   static cholmod_dense view(Dense& m) {
     cholmod_dense B{};
     B.nrow = static_cast<size_t>(m.rows());
@@ -368,17 +372,7 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
   c.zrelax[0] = 0.2;
   c.zrelax[1] = 0.025;
   c.zrelax[2] = 0.0125;
-  cholmod_sparse S{};
-  S.nrow = S.ncol = static_cast<size_t>(n);
-  S.nzmax = static_cast<size_t>(lower.nonZeros());
-  S.p = lower.outerIndexPtr();
-  S.i = lower.innerIndexPtr();
-  S.x = lower.valuePtr();
-  S.stype = -1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_COMPLEX;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = S.packed = 1;
+  cholmod_sparse S = lower_triangle_view(lower, CHOLMOD_COMPLEX);
   std::vector<int> user(perm.begin(), perm.end());
   cholmod_factor*& L = st->L;
   L = cholmod_analyze_p(&S, user.data(), nullptr, 0, &c);
@@ -431,16 +425,7 @@ std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& 
   c.method[0].ordering = CHOLMOD_METIS;
   c.postorder = 1;
   c.supernodal = CHOLMOD_SIMPLICIAL;
-  cholmod_sparse S{};
-  S.nrow = S.ncol = static_cast<size_t>(n);
-  S.nzmax = static_cast<size_t>(pattern.nonZeros());
-  S.p = pattern.outerIndexPtr();
-  S.i = pattern.innerIndexPtr();
-  S.stype = -1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_PATTERN;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = S.packed = 1;
+  cholmod_sparse S = lower_triangle_view(pattern, CHOLMOD_PATTERN);
   cholmod_factor* L = nullptr;
   {
     const std::lock_guard<std::mutex> lock(metis_mutex());
