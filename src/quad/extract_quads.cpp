@@ -520,7 +520,6 @@ class Extractor {
     }
     for (int round = 0, k = 1; opt_.quadrangulate_boundary && round < 4 && k > 0; ++round)
       rep_.boundary_collapsed_triangles += k = collapse_boundary_triangles(qm);
-    rep_.removed_doublets = remove_doublets(qm);
     const QuadrangulateReport qr = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
     rep_.boundary_split_polygons = qr.boundary_split_polygons, rep_.boundary_merged_polygons = qr.boundary_merged_pairs;
     if (opt_.quadrangulate_boundary && qm.num_quads() < qm.num_faces()) {
@@ -531,8 +530,9 @@ class Extractor {
         rep_.boundary_collapsed_triangles += k = collapse_boundary_sides(qm, midpoint);
     }
     int late_splits = 0, late_merges = 0;
-    if (const int late = remove_doublets(qm); late > 0) {  // the boundary steps can leave a vertex of valence 2
-      rep_.removed_doublets += late;
+    // Doublets last: a polygon the steps above make quads is never merged into one they cannot.
+    if (const int late = remove_doublets(qm); late > 0) {
+      rep_.removed_doublets = late;
       const QuadrangulateReport again = quadrangulate_polygons(qm, 8, opt_.quadrangulate_boundary);
       late_splits = again.split_polygons + again.boundary_split_polygons;
       late_merges = again.merged_pairs + again.boundary_merged_pairs;
