@@ -51,15 +51,6 @@ template <class Scalar>
 constexpr bool kIsComplex = !std::is_same_v<Scalar, double>;
 
 #ifdef QUADCOVER_HAVE_CHOLMOD
-// CHOLMOD's supernodal factorization calls the system BLAS. When that is a threaded OpenBLAS (Debian's
-// libopenblas0-pthread, scripts/setup.sh), its own threads would compete with our TBB loops for the cores and
-// make results depend on the machine: keep BLAS single-threaded. Debian's CHOLMOD also opens OpenMP regions of a
-// fixed 4 threads (CHOLMOD_OMP_NUM_THREADS, which OMP_NUM_THREADS does not change) in every supernodal
-// factorization: on 2 cores and beside our TBB threads they spent a quarter of a camelhead_boundary remesh waiting
-// on each other (BENCHMARKS.md, "OpenMP threads of CHOLMOD"). max-active-levels 0 runs every OpenMP region on the
-// calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP). Called on the
-// thread that factors, before each CHOLMOD factorization (the OpenMP setting belongs to the calling thread; solves
-// come after a factorization).
 // METIS keeps its random state in globals of GKlib (seeded at the start of each ordering): two orderings at once on
 // two threads disturb each other and come out different from run to run. Every CHOLMOD analysis that may call
 // METIS (ours always, CHOLMOD's default choice when AMD fills too much) holds this lock.
@@ -87,6 +78,15 @@ cholmod_sparse lower_triangle_view(const Eigen::SparseMatrix<Scalar>& m, int xty
   return A;
 }
 
+// CHOLMOD's supernodal factorization calls the system BLAS. When that is a threaded OpenBLAS (Debian's
+// libopenblas0-pthread, scripts/setup.sh), its own threads would compete with our TBB loops for the cores and
+// make results depend on the machine: keep BLAS single-threaded. Debian's CHOLMOD also opens OpenMP regions of a
+// fixed 4 threads (CHOLMOD_OMP_NUM_THREADS, which OMP_NUM_THREADS does not change) in every supernodal
+// factorization: on 2 cores and beside our TBB threads they spent a quarter of a camelhead_boundary remesh waiting
+// on each other (BENCHMARKS.md, "OpenMP threads of CHOLMOD"). max-active-levels 0 runs every OpenMP region on the
+// calling thread. Both are found at run time (no-ops for another BLAS or a CHOLMOD without OpenMP). Called on the
+// thread that factors, before each CHOLMOD factorization (the OpenMP setting belongs to the calling thread; solves
+// come after a factorization).
 void single_threaded_libraries() {
   using SetThreads = void (*)(int);
   static std::once_flag once;
