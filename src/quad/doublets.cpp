@@ -1,11 +1,12 @@
 // Doublet removal (see doublets.h).
 #include "quad/doublets.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 #include <optional>
 #include <vector>
+
+#include "mesh/triangle_tree.h"
 
 namespace quadcover {
 
@@ -68,26 +69,6 @@ std::optional<std::vector<int>> merged_polygon(const std::vector<int>& A, const 
   return poly;
 }
 
-/// Distance from point x to triangle (a, b, c).
-double point_triangle_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                               const Eigen::Vector3d& c) {
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double area2 = n.squaredNorm();
-  if (area2 > 0) {  // the projection inside: the distance to the plane
-    const Eigen::Vector3d p = x - n * (n.dot(x - a) / area2);
-    const double u = (b - p).cross(c - p).dot(n), v = (c - p).cross(a - p).dot(n), w = (a - p).cross(b - p).dot(n);
-    if (u >= 0 && v >= 0 && w >= 0) return (x - p).norm();
-  }
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& [s, t] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
-    const Eigen::Vector3d d = *t - *s;
-    const double len2 = d.squaredNorm();
-    const double l = len2 > 0 ? std::clamp(d.dot(x - *s) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (x - (*s + l * d)).norm());
-  }
-  return best;
-}
-
 /// Whether every removed vertex lies within max_offset × (the polygon's mean side) of the polygon (fanned from its
 /// centroid): the merged face still covers the surface the removed vertices held (not a tip cut off).
 bool covers_removed(const QuadMesh& q, const std::vector<int>& poly, const std::vector<int>& removed,
@@ -103,42 +84,25 @@ bool covers_removed(const QuadMesh& q, const std::vector<int>& poly, const std::
     const Eigen::Vector3d x = q.V.row(r).transpose();
     double d = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i)
-      d = std::min(
-          d, point_triangle_distance(x, centre, q.V.row(poly[i]).transpose(), q.V.row(poly[(i + 1) % n]).transpose()));
+      d = std::min(d, (x - closest_point_on_triangle(x, centre, q.V.row(poly[i]).transpose(),
+                                                     q.V.row(poly[(i + 1) % n]).transpose()))
+                          .norm());
     if (d > max_offset * side) return false;
   }
   return true;
-}
-
-/// Every edge at v has two faces (v is no vertex of the mesh's boundary).
-bool interior(const QuadMesh& q, const VertexFaces& around, int v) {
-  std::vector<std::pair<int, int>> edges;  // (other end, uses)
-  for (int f : around.of[v]) {
-    const std::vector<int>& face = q.faces[f];
-    const std::size_t n = face.size();
-    for (std::size_t i = 0; i < n; ++i)
-      if (face[i] == v)
-        for (const int w : {face[(i + 1) % n], face[(i + n - 1) % n]}) {
-          auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == w; });
-          if (it == edges.end())
-            edges.emplace_back(w, 1);
-          else
-            ++it->second;
-        }
-  }
-  return !edges.empty() && std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
 }
 
 }  // namespace
 
 int remove_doublets(QuadMesh& q, double max_offset) {
   VertexFaces around(q);
+  const std::vector<char> on_boundary = quad_boundary_vertices(q);  // merging inside never changes the boundary
   int removed_vertices = 0;
   std::vector<int> removed;
   for (bool changed = true; changed;) {
     changed = false;
     for (int v = 0; v < q.num_vertices(); ++v) {
-      if (around.of[v].size() != 2 || !interior(q, around, v)) continue;
+      if (around.of[v].size() != 2 || on_boundary[v]) continue;
       const int f = std::min(around.of[v][0], around.of[v][1]), g = std::max(around.of[v][0], around.of[v][1]);
       const std::optional<std::vector<int>> poly = merged_polygon(q.faces[f], q.faces[g], v, around, removed);
       const bool adds_non_quad = q.faces[f].size() == 4 && q.faces[g].size() == 4 && poly && poly->size() != 4;

@@ -6,25 +6,15 @@
 
 #include <set>
 
+#include "quad/cube_quads.h"
 #include "quad/extract_quads.h"
 #include "quad/polygon_check.h"
-#include "quad/quad_test_maps.h"
 
 namespace quadcover {
 namespace {
 
-QuadMesh cube_with_doublets_base() {
-  const auto [mesh, param] = testing::cube_map(3, 5);
-  QuadMesh q = extract_quads(mesh, param).mesh;
-  EXPECT_EQ(q.num_faces(), 150);
-  return q;
-}
-
-std::multiset<std::set<int>> corner_sets(const QuadMesh& q) {
-  std::multiset<std::set<int>> s;
-  for (const auto& f : q.faces) s.insert(std::set<int>(f.begin(), f.end()));
-  return s;
-}
+using testing::cube_quads;
+using testing::face_sets;
 
 // A new vertex at the centre of face f (its per-vertex data copied from the face's first corner).
 int add_centre(QuadMesh& q, int f) {
@@ -50,8 +40,8 @@ void expect_closed_sphere(const QuadMesh& q) {
 
 // Quad (a, b, c, d) split at a new vertex v into (a, b, c, v) and (c, d, a, v): v has valence 2.
 TEST(Doublets, TwoQuadsAroundAValence2VertexBecomeTheQuadAgain) {
-  QuadMesh q = cube_with_doublets_base();
-  const auto original = corner_sets(q);
+  QuadMesh q = cube_quads();
+  const auto original = face_sets(q);
   for (const int f : {7, 80}) {
     const std::vector<int> Q = q.faces[f];
     const int v = add_centre(q, f);
@@ -61,7 +51,7 @@ TEST(Doublets, TwoQuadsAroundAValence2VertexBecomeTheQuadAgain) {
   expect_closed_sphere(q);
   ASSERT_EQ(q.num_faces(), 152);
   EXPECT_EQ(remove_doublets(q), 2);
-  EXPECT_EQ(corner_sets(q), original);
+  EXPECT_EQ(face_sets(q), original);
   EXPECT_EQ(q.num_quads(), 150);
   expect_closed_sphere(q);
   EXPECT_EQ(remove_doublets(q), 0);  // nothing left to do
@@ -70,7 +60,7 @@ TEST(Doublets, TwoQuadsAroundAValence2VertexBecomeTheQuadAgain) {
 // Where the doublet's vertex stands far off the union (the tip of a horn, which two faces folded round it hold),
 // merging would cut the tip off: that doublet stays, a flat one goes.
 TEST(Doublets, AVertexCarryingATipStays) {
-  QuadMesh q = cube_with_doublets_base();
+  QuadMesh q = cube_quads();
   std::vector<int> centres;
   for (const int f : {7, 80}) {
     const std::vector<int> Q = q.faces[f];
@@ -94,8 +84,8 @@ TEST(Doublets, AVertexCarryingATipStays) {
 // A hexagon (a, b, c, d, v2, v1) and a quad flap (a, v1, v2, d) sharing the chain a–v1–v2–d: both chain vertices
 // go and the hexagon becomes the quad it was cut from (as extraction leaves it beside a wrongly wound branch point).
 TEST(Doublets, AChainOfValence2VerticesGoesWithIt) {
-  QuadMesh q = cube_with_doublets_base();
-  const auto original = corner_sets(q);
+  QuadMesh q = cube_quads();
+  const auto original = face_sets(q);
   const int f = 42;
   const std::vector<int> Q = q.faces[f];
   const int v1 = add_centre(q, f), v2 = add_centre(q, f);
@@ -103,18 +93,18 @@ TEST(Doublets, AChainOfValence2VerticesGoesWithIt) {
   q.faces.push_back({Q[0], v1, v2, Q[3]});
   expect_closed_sphere(q);
   EXPECT_EQ(remove_doublets(q), 2);
-  EXPECT_EQ(corner_sets(q), original);
+  EXPECT_EQ(face_sets(q), original);
   expect_closed_sphere(q);
 }
 
 // Vertices of valence 2 on the boundary are corners of the patch, not doublets; and a doublet whose union would be
 // no quad is kept rather than turning two quads into another polygon.
 TEST(Doublets, BoundaryCornersAndUnmergeablePairsStay) {
-  QuadMesh q = cube_with_doublets_base();
+  QuadMesh q = cube_quads();
   q.faces.erase(q.faces.begin() + 10);  // a hole: its four corners keep three faces each
-  const auto open = corner_sets(q);
+  const auto open = face_sets(q);
   EXPECT_EQ(remove_doublets(q), 0);
-  EXPECT_EQ(corner_sets(q), open);
+  EXPECT_EQ(face_sets(q), open);
   // Two faces (a, b, v) and (b, a, v)... a triangle pair around v would merge into two corners: kept.
   QuadMesh t;
   t.V = Eigen::MatrixX3d::Zero(3, 3);

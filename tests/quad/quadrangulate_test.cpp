@@ -8,25 +8,15 @@
 #include <optional>
 #include <set>
 
+#include "quad/cube_quads.h"
 #include "quad/extract_quads.h"
 #include "quad/polygon_check.h"
-#include "quad/quad_test_maps.h"
 
 namespace quadcover {
 namespace {
 
-QuadMesh cube_quads() {
-  const auto [mesh, param] = testing::cube_map(3, 5);
-  QuadMesh q = extract_quads(mesh, param).mesh;
-  EXPECT_EQ(q.num_faces(), 150);
-  return q;
-}
-
-std::multiset<std::set<int>> face_sets(const QuadMesh& q) {
-  std::multiset<std::set<int>> s;
-  for (const auto& f : q.faces) s.insert(std::set<int>(f.begin(), f.end()));
-  return s;
-}
+using testing::cube_quads;
+using testing::face_sets;
 
 // Merges face f with the face across its side i (removes that edge); returns the index of the merged polygon.
 int merge_across(QuadMesh& q, int f, int i) {
