@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -122,12 +123,19 @@ class CholmodBackend {
   CholmodBackend(const CholmodBackend&) = delete;
   CholmodBackend& operator=(const CholmodBackend&) = delete;
 
-  void analyze(const Matrix& lower, const std::string& stage) {
+  /// CHOLMOD's choice of ordering, or `ordering` (perm[new] = old, checked by the caller) when not empty.
+  void analyze(const Matrix& lower, const std::string& stage, std::span<const int> ordering) {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
-    {
+    if (ordering.empty()) {
+      common_.nmethods = 0;  // AMD, and METIS too where AMD fills much
       const std::lock_guard<std::mutex> lock(metis_mutex());
       factor_ = cholmod_analyze(&A, &common_);
+    } else {
+      common_.nmethods = 1;
+      common_.method[0].ordering = CHOLMOD_GIVEN;
+      std::vector<int> perm(ordering.begin(), ordering.end());
+      factor_ = cholmod_analyze_p(&A, perm.data(), nullptr, 0, &common_);
     }
     if (!factor_ || common_.status < CHOLMOD_OK)
       throw NumericalError(stage, "CHOLMOD symbolic analysis failed (status " + std::to_string(common_.status) + ")");
@@ -239,13 +247,31 @@ CholeskyBackend SparseCholesky<Scalar>::backend() const {
   return impl_->backend;
 }
 
+namespace {
+
+/// True iff `perm` holds each of 0 .. n-1 once.
+bool is_permutation_of(std::span<const int> perm, Eigen::Index n) {
+  if (static_cast<Eigen::Index>(perm.size()) != n) return false;
+  std::vector<char> seen(perm.size(), 0);
+  for (const int k : perm) {
+    if (k < 0 || k >= n || seen[k]) return false;
+    seen[k] = 1;
+  }
+  return true;
+}
+
+}  // namespace
+
 template <class Scalar>
-void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage) {
+void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage, std::span<const int> ordering) {
   Impl& im = *impl_;
   im.stage = stage ? stage : "cholesky";
   if (A.rows() != A.cols())
     throw NumericalError(im.stage,
                          "matrix is " + std::to_string(A.rows()) + " by " + std::to_string(A.cols()) + ", not square");
+  if (!ordering.empty() && !is_permutation_of(ordering, A.rows()))
+    throw NumericalError(
+        im.stage, "the given ordering is not a permutation of the matrix's " + std::to_string(A.rows()) + " rows");
   im.n = -1;
   Matrix lower = A.template triangularView<Eigen::Lower>();
   lower.makeCompressed();
@@ -254,7 +280,7 @@ void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage) {
 #ifdef QUADCOVER_HAVE_CHOLMOD
     if (im.backend == CholeskyBackend::Cholmod) {
       im.cholmod.emplace();
-      im.cholmod->analyze(lower, im.stage);
+      im.cholmod->analyze(lower, im.stage, ordering);
       im.cholmod->factorize(lower, im.stage);
     }
 #endif
@@ -288,7 +314,7 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
 }
 
 template <class Scalar>
-void SparseCholesky<Scalar>::factorize(const Matrix& A, const char* stage) {
+void SparseCholesky<Scalar>::factorize(const Matrix& A, const char* stage, std::span<const int> ordering) {
   if (impl_->n >= 0 && A.rows() == impl_->n && A.cols() == impl_->n) {
     try {
       refactorize(A);
@@ -296,7 +322,7 @@ void SparseCholesky<Scalar>::factorize(const Matrix& A, const char* stage) {
     } catch (const NumericalError&) {  // another pattern (or not definite: compute() says so with its stage)
     }
   }
-  compute(A, stage);
+  compute(A, stage, ordering);
 }
 
 template <class Scalar>
@@ -410,12 +436,46 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
 #endif
 }
 
+#ifdef QUADCOVER_HAVE_CHOLMOD
+namespace {
+
+/// A lower-triangle pattern's fingerprint: size, entries, and a 64-bit hash of its column starts and rows.
+struct PatternKey {
+  long n = 0, nonzeros = 0;
+  std::uint64_t hash = 0;
+  bool operator==(const PatternKey&) const = default;
+};
+
+PatternKey pattern_key(const Eigen::SparseMatrix<Complex>& lower) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  const auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 0x100000001b3ULL + (h >> 29); };
+  for (Eigen::Index j = 0; j <= lower.cols(); ++j) mix(static_cast<std::uint64_t>(lower.outerIndexPtr()[j]));
+  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) mix(static_cast<std::uint64_t>(lower.innerIndexPtr()[k]));
+  return {static_cast<long>(lower.rows()), static_cast<long>(lower.nonZeros()), h};
+}
+
+/// The nested-dissection orderings of the last kKept patterns, newest last (used under metis_mutex). A hash
+/// collision could only hand over another valid permutation of the same size: more fill, never a wrong factor.
+std::vector<std::pair<PatternKey, std::vector<int>>>& kept_orderings() {
+  static std::vector<std::pair<PatternKey, std::vector<int>>> kept;
+  return kept;
+}
+constexpr std::size_t kKept = 4;
+
+}  // namespace
+#endif
+
 std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& A, int min_size) {
 #ifdef QUADCOVER_HAVE_CHOLMOD
   const int n = static_cast<int>(A.rows());
   if (n < min_size || A.cols() != n) return {};
   Eigen::SparseMatrix<Complex> pattern = A.triangularView<Eigen::Lower>();
   pattern.makeCompressed();
+  const PatternKey key = pattern_key(pattern);
+  const std::lock_guard<std::mutex> lock(metis_mutex());
+  auto& kept = kept_orderings();
+  for (const auto& [k, perm] : kept)
+    if (k == key) return perm;
   cholmod_common c;
   cholmod_start(&c);
   c.print = 0;
@@ -426,15 +486,15 @@ std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& 
   c.postorder = 1;
   c.supernodal = CHOLMOD_SIMPLICIAL;
   cholmod_sparse S = lower_triangle_view(pattern, CHOLMOD_PATTERN);
-  cholmod_factor* L = nullptr;
-  {
-    const std::lock_guard<std::mutex> lock(metis_mutex());
-    L = cholmod_analyze(&S, &c);
-  }
+  cholmod_factor* L = cholmod_analyze(&S, &c);
   std::vector<int> perm;
   if (L && c.status == CHOLMOD_OK) perm.assign(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + n);
   if (L) cholmod_free_factor(&L, &c);
   cholmod_finish(&c);
+  if (!perm.empty()) {
+    if (kept.size() == kKept) kept.erase(kept.begin());
+    kept.emplace_back(key, perm);
+  }
   return perm;
 #else
   (void)A;

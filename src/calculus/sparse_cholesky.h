@@ -40,16 +40,19 @@ class SparseCholesky {
   CholeskyBackend backend() const;
 
   /// Symbolic analysis + numeric factorization of the symmetric/Hermitian positive definite A (full storage;
-  /// only the lower triangle is read). A may be 0 by 0.
-  /// \throw NumericalError naming `stage` if A is not positive definite (or not square).
-  void compute(const Matrix& A, const char* stage = "cholesky");
+  /// only the lower triangle is read). A may be 0 by 0. `ordering` (perm[new] = old), when not empty, is the
+  /// fill-reducing order the CHOLMOD backend uses instead of choosing one (AMD, then METIS where AMD fills much);
+  /// the Eigen backend always uses its AMD.
+  /// \throw NumericalError naming `stage` if A is not positive definite (or not square), or if `ordering` is not
+  /// empty and not a permutation of A's rows.
+  void compute(const Matrix& A, const char* stage = "cholesky", std::span<const int> ordering = {});
   /// Numeric refactorization reusing the symbolic analysis of compute(); A must have the same sparsity pattern.
   /// \throw NumericalError if A is not positive definite, has another pattern, or compute() was never called.
   void refactorize(const Matrix& A);
   /// compute() the first time, refactorize() on later calls while A keeps the analyzed pattern (a fresh analysis
   /// when the number of stored entries changes): for sequences of matrices with one pattern and new values.
-  /// \throw NumericalError as compute().
-  void factorize(const Matrix& A, const char* stage = "cholesky");
+  /// `ordering` as in compute(), used when it analyses. \throw NumericalError as compute().
+  void factorize(const Matrix& A, const char* stage = "cholesky", std::span<const int> ordering = {});
   /// x with A x = b.  b: rows() entries.
   /// \throw NumericalError if nothing was factored, b has the wrong size, or CHOLMOD fails.
   Vector solve(const Vector& b) const;
@@ -90,6 +93,8 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A, std::span<co
 /// (BENCHMARKS.md, "Nested dissection for the E_D updates").
 /// \return the permutation, or empty when quadcover was built without CHOLMOD, A has fewer than `min_size` rows or
 /// the ordering fails. \pre A is square with a symmetric pattern (full storage). Deterministic (METIS's fixed seed).
+/// The orderings of the last few patterns are kept: a job that solves on one mesh again and again (cone merges,
+/// remakes) orders its pattern once.
 std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& A, int min_size);
 
 extern template class SparseCholesky<double>;

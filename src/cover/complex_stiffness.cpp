@@ -115,10 +115,12 @@ Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, cons
     const double A = mesh.face_areas()[f], w = face_weights.size() ? face_weights[f] : 1.0;
     for (int a = 0; a < 3; ++a) {
       const int p = mesh.F()(f, a);
-      if (vl.branch[p]) continue;
       for (int b = 0; b < 3; ++b) {
         const int q = mesh.F()(f, b);
-        if (vl.branch[q]) continue;
+        if (vl.branch[p] || vl.branch[q]) {
+          trip.emplace_back(p, q, Complex(0));  // stored: one pattern for every matching
+          continue;
+        }
         // ∫_f ⟨∇φ_p, ∇φ_q⟩ = ⟨e_p, e_q⟩ / (4 A_f), e_p the edge opposite p (∇φ_p = J e_p / 2A).
         const double K =
             w * std::real(std::conj(mesh.edge_vector_local(f, a)) * mesh.edge_vector_local(f, b)) / (4 * A);

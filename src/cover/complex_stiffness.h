@@ -38,7 +38,8 @@ Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, c
 Eigen::SparseMatrix<Complex> complex_nonconforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching);
 
 /// 𝔏̄: #V by #V Hermitian, (p,q) = i^l 𝔏_pq with ṽ_p^l ~ ṽ_q^0; rows and columns of branch points are zero
-/// except for a unit diagonal (so the matrix stays invertible; the value there is pinned to 0).
+/// except for a unit diagonal (so the matrix stays invertible; the value there is pinned to 0). Its sparsity
+/// pattern is that of 𝔏 for every matching (the zeros of branch points are stored explicitly).
 /// `face_weights` (#F, optional): face f contributes w_f ∫_f ⟨∇φ_p, ∇φ_q⟩ (the weighted Dirichlet energy).
 /// \throw InputError if matching does not have #E entries or face_weights is neither empty nor #F.
 Eigen::SparseMatrix<Complex> complex_conforming_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching,

@@ -442,7 +442,17 @@ void ConstrainedSolve::factorize(const Eigen::SparseMatrix<Complex>& L) {
     }
   Eigen::SparseMatrix<double> M(free_count_, free_count_);
   M.setFromTriplets(trip.begin(), trip.end());
-  chol_.factorize(M, "aligned harmonic correction");  // later calls with the same pattern only refactorize
+  // The first analysis orders the vertices of 𝔏̄ by nested dissection (its pattern is the mesh's for every
+  // matching: one ordering per mesh for the whole job), each vertex's free x and y side by side. CHOLMOD's own
+  // choice on the real graph of 2·#V took 2-3× longer with METIS's time (BENCHMARKS.md, "Ordering the aligned
+  // correction"). Later calls with the same pattern only refactorize.
+  constexpr int kOrderedSize = 1000;
+  std::vector<int> ordering;
+  if (chol_.rows() == 0)
+    for (const int p : nested_dissection_ordering(L, kOrderedSize))
+      for (const int idx : {p, nv + p})
+        if (free_id_[idx] >= 0) ordering.push_back(free_id_[idx]);
+  chol_.factorize(M, "aligned harmonic correction", ordering);
 }
 
 Eigen::MatrixXcd ConstrainedSolve::solve(const Eigen::SparseMatrix<Complex>& L, const Eigen::MatrixXcd& B,

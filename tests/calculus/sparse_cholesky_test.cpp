@@ -3,11 +3,13 @@
 // indefinite matrices. The matrices come from a real mesh (bunny_3k).
 #include "calculus/sparse_cholesky.h"
 
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
-#include <dlfcn.h>
-
 #include <Eigen/SparseLU>
+#include <algorithm>
+#include <span>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -252,22 +254,79 @@ TEST(SparseCholesky, CholmodRunsItsOpenMpRegionsOnTheCallingThread) {
   EXPECT_LT((A * chol.solve(b) - b).norm(), 1e-12 * b.norm());
 }
 
+// A with one more pair of entries (0, k), (k, 0): another pattern of the same size.
+Eigen::SparseMatrix<Complex> with_entry_to(const Eigen::SparseMatrix<Complex>& A, int k) {
+  Eigen::SparseMatrix<Complex> B = A;
+  B.coeffRef(0, k) += Complex(1e-3, 0);
+  B.coeffRef(k, 0) += Complex(1e-3, 0);
+  B.makeCompressed();
+  return B;
+}
+
 // METIS keeps its random state in globals: orderings computed on two threads at once (batch jobs, the parallel
-// set-up of Algorithm 6.1) must still be the ones a single thread computes, or the outputs depend on timing.
+// set-up of Algorithm 6.1) must still be the ones a single thread computes, or the outputs depend on timing. Each
+// thread cycles through three patterns, six in all: more than the orderings kept, so every call orders anew.
 TEST(SparseCholesky, NestedDissectionIsTheSameOnConcurrentThreads) {
   if (!SparseCholesky<double>::cholmod_available()) GTEST_SKIP() << "the build without CHOLMOD orders by AMD";
-  const Eigen::SparseMatrix<Complex> A = hpd_matrix(cached_mesh("bunny_3k"));
-  const Eigen::SparseMatrix<Complex> B = hpd_matrix(cached_mesh("torus_5k"));
-  const std::vector<int> alone_a = nested_dissection_ordering(A, 1), alone_b = nested_dissection_ordering(B, 1);
-  ASSERT_EQ(alone_a.size(), static_cast<std::size_t>(A.rows()));
+  std::vector<Eigen::SparseMatrix<Complex>> mats;
+  for (const char* name : {"bunny_3k", "torus_5k"}) {
+    const Eigen::SparseMatrix<Complex> A = hpd_matrix(cached_mesh(name));
+    for (int k : {0, 1, 2}) mats.push_back(with_entry_to(A, static_cast<int>(A.rows()) / (k + 2)));
+  }
+  std::vector<std::vector<int>> alone;
+  for (const auto& A : mats) alone.push_back(nested_dissection_ordering(A, 1));
+  ASSERT_EQ(alone[0].size(), static_cast<std::size_t>(mats[0].rows()));
+  ASSERT_NE(alone[0], alone[1]);  // the patterns differ, and so do their orderings
   std::vector<int> differ(2, 0);
-  std::thread t([&] {
-    for (int k = 0; k < 20; ++k) differ[0] += nested_dissection_ordering(A, 1) != alone_a;
-  });
-  for (int k = 0; k < 20; ++k) differ[1] += nested_dissection_ordering(B, 1) != alone_b;
+  const auto cycle = [&](int first, int& count) {
+    for (int k = 0; k < 21; ++k) count += nested_dissection_ordering(mats[first + k % 3], 1) != alone[first + k % 3];
+  };
+  std::thread t([&] { cycle(0, differ[0]); });
+  cycle(3, differ[1]);
   t.join();
   EXPECT_EQ(differ[0], 0);
   EXPECT_EQ(differ[1], 0);
+}
+
+// A job orders one pattern again and again (each remake of the map on the same mesh): the ordering of a pattern
+// seen before is the one computed then, whatever the values.
+TEST(SparseCholesky, NestedDissectionOfAKnownPatternIsTheKeptOne) {
+  if (!SparseCholesky<double>::cholmod_available()) GTEST_SKIP() << "the build without CHOLMOD orders by AMD";
+  const Eigen::SparseMatrix<Complex> A = hpd_matrix(cached_mesh("bunny_3k"));
+  const std::vector<int> first = nested_dissection_ordering(A, 1);
+  const Eigen::SparseMatrix<Complex> scaled = Complex(0, 2) * A;
+  EXPECT_EQ(nested_dissection_ordering(scaled, 1), first);
+  const std::vector<int> other = nested_dissection_ordering(with_entry_to(A, 7), 1);
+  EXPECT_TRUE(std::is_permutation(other.begin(), other.end(), first.begin()));
+  EXPECT_TRUE(nested_dissection_ordering(A, static_cast<int>(A.rows()) + 1).empty());  // below min_size
+}
+
+// compute() with a given ordering: the same solution, the factor of that order (another L⁻¹Pb of the same norm),
+// and a clear error for a list that is not a permutation.
+TEST(SparseCholesky, GivenOrderingIsUsedAndChecked) {
+  const Eigen::SparseMatrix<Complex> H = hpd_matrix(cached_mesh("bunny_3k"));
+  const int n = static_cast<int>(H.rows());
+  const Eigen::VectorXcd b = complex_rhs(n), reference = lu_solve(H, b);
+  std::vector<int> reversed(n);
+  for (int k = 0; k < n; ++k) reversed[k] = n - 1 - k;
+  for (const CholeskyBackend backend : backends()) {
+    SparseCholesky<Complex> chosen(backend), given(backend);
+    chosen.compute(H);
+    given.compute(H, "given", reversed);
+    EXPECT_LT((given.solve(b) - reference).norm(), 1e-10 * reference.norm());
+    const Eigen::VectorXcd y_chosen = chosen.forward_solve(b), y_given = given.forward_solve(b);
+    EXPECT_NEAR(y_given.squaredNorm(), y_chosen.squaredNorm(), 1e-10 * y_chosen.squaredNorm());
+    if (backend == CholeskyBackend::Cholmod) EXPECT_GT((y_given - y_chosen).norm(), 1e-3 * y_chosen.norm());
+    std::vector<int> twice = reversed;
+    twice[1] = twice[0];
+    try {
+      given.compute(H, "given", twice);
+      ADD_FAILURE() << "a repeated index was accepted";
+    } catch (const NumericalError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a permutation"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(given.compute(H, "given", std::span<const int>(reversed).first(n - 1)), NumericalError);
+  }
 }
 
 TEST(SparseCholesky, EmptyMatrixAndBackendAvailability) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <random>
 #include <set>
 
@@ -193,6 +194,29 @@ TEST_P(OnRealMeshes, GradientsOfCoveringFunctionsAreCurlFree) {
   const Complex quad = u.dot(L * u);
   EXPECT_NEAR(quad.real(), energy, 1e-9 * energy);
   EXPECT_NEAR(quad.imag(), 0.0, 1e-9 * energy);
+}
+
+// 𝔏̄ has the pattern of 𝔏 whatever the matching (so one symbolic analysis or ordering serves every field on the
+// mesh), while the rows and columns of branch points hold only their unit diagonal.
+TEST_P(OnRealMeshes, ConformingPatternIsTheMeshesForEveryMatching) {
+  const Mesh mesh = load_test_mesh(GetParam());
+  const Eigen::VectorXi zero = Eigen::VectorXi::Zero(mesh.num_edges());
+  const FrameField field = testing::random_cross_field(mesh, 3);
+  const VertexLayers vl = vertex_layers(mesh, field.matching);
+  ASSERT_GT(vl.branch.sum(), 0);
+  const Eigen::SparseMatrix<Complex> plain = complex_conforming_stiffness(mesh, zero);
+  const Eigen::SparseMatrix<Complex> L = complex_conforming_stiffness(mesh, field.matching);
+  ASSERT_EQ(L.nonZeros(), plain.nonZeros());
+  EXPECT_TRUE(std::equal(L.outerIndexPtr(), L.outerIndexPtr() + L.outerSize() + 1, plain.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros(), plain.innerIndexPtr()));
+  int branch_entries = 0;
+  for (int col = 0; col < L.outerSize(); ++col)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(L, col); it; ++it)
+      if (vl.branch[it.row()] || vl.branch[it.col()]) {
+        EXPECT_EQ(it.value(), it.row() == it.col() ? Complex(1) : Complex(0));
+        ++branch_entries;
+      }
+  EXPECT_GT(branch_entries, 2 * vl.branch.sum());  // their neighbours' entries are stored too
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, OnRealMeshes,
