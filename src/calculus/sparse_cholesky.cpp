@@ -103,6 +103,61 @@ void single_threaded_libraries() {
 #endif
 
 #ifdef QUADCOVER_HAVE_CHOLMOD
+/// How an ordering was made: METIS's nested dissection (nested_dissection_ordering) or CHOLMOD's own choice.
+enum class OrderingKind { NestedDissection, CholmodChoice };
+
+/// A lower-triangle pattern's fingerprint: size, entries, and a 64-bit hash of its column starts and rows.
+struct PatternKey {
+  OrderingKind kind{};
+  long n = 0, nonzeros = 0;
+  std::uint64_t hash = 0;
+  bool operator==(const PatternKey&) const = default;
+};
+
+template <class Scalar>
+PatternKey pattern_key(OrderingKind kind, const Eigen::SparseMatrix<Scalar>& lower) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  const auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 0x100000001b3ULL + (h >> 29); };
+  for (Eigen::Index j = 0; j <= lower.cols(); ++j) mix(static_cast<std::uint64_t>(lower.outerIndexPtr()[j]));
+  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) mix(static_cast<std::uint64_t>(lower.innerIndexPtr()[k]));
+  return {kind, static_cast<long>(lower.rows()), static_cast<long>(lower.nonZeros()), h};
+}
+
+/// The orderings of the last few large patterns, newest last: a job factors matrices of one pattern again and again
+/// (every remake of the map on the same mesh), and orders each pattern once. An ordering is a function of the
+/// pattern, so a kept one gives the same factor as a new one. A hash collision could only hand over another valid
+/// permutation of the same size: more fill, never a wrong factor.
+class KeptOrderings {
+ public:
+  std::vector<int> find(const PatternKey& key) const {  ///< empty if not kept
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [k, perm] : kept_)
+      if (k == key) return perm;
+    return {};
+  }
+  void keep(const PatternKey& key, std::vector<int> perm) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (kept_.size() == kKept) kept_.erase(kept_.begin());
+    kept_.emplace_back(key, std::move(perm));
+  }
+
+ private:
+  static constexpr std::size_t kKept = 6;
+  mutable std::mutex mutex_;
+  std::vector<std::pair<PatternKey, std::vector<int>>> kept_;
+};
+
+/// One store per kind: the refined meshes of the fold refinement bring new patterns that would push out the
+/// nested dissection of the mesh the remakes come back to.
+KeptOrderings& kept_orderings(OrderingKind kind) {
+  static KeptOrderings nested_dissection, cholmod_choice;
+  return kind == OrderingKind::NestedDissection ? nested_dissection : cholmod_choice;
+}
+
+/// Matrices with fewer rows are analysed anew each time (the untangling's many small regions would only push the
+/// large patterns out).
+constexpr Eigen::Index kKeptChoiceRows = 10000;
+
 // CHOLMOD state: one cholmod_common per factorization (CHOLMOD keeps workspace and status in it, so solves are
 // serialized with a mutex), the factor L, and a copy of the lower triangle it was computed from.
 template <class Scalar>
@@ -123,22 +178,31 @@ class CholmodBackend {
   CholmodBackend(const CholmodBackend&) = delete;
   CholmodBackend& operator=(const CholmodBackend&) = delete;
 
-  /// CHOLMOD's choice of ordering, or `ordering` (perm[new] = old, checked by the caller) when not empty.
+  /// CHOLMOD's choice of ordering (kept for large patterns), or `ordering` (perm[new] = old, checked by the
+  /// caller) when not empty.
   void analyze(const Matrix& lower, const std::string& stage, std::span<const int> ordering) {
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view(lower);
-    if (ordering.empty()) {
+    const bool keep = ordering.empty() && lower.rows() >= kKeptChoiceRows;
+    const PatternKey key = keep ? pattern_key(OrderingKind::CholmodChoice, lower) : PatternKey{};
+    std::vector<int> perm =
+        keep ? kept_orderings(key.kind).find(key) : std::vector<int>(ordering.begin(), ordering.end());
+    const bool choose = perm.empty();
+    if (choose) {
       common_.nmethods = 0;  // AMD, and METIS too where AMD fills much
       const std::lock_guard<std::mutex> lock(metis_mutex());
       factor_ = cholmod_analyze(&A, &common_);
     } else {
       common_.nmethods = 1;
       common_.method[0].ordering = CHOLMOD_GIVEN;
-      std::vector<int> perm(ordering.begin(), ordering.end());
       factor_ = cholmod_analyze_p(&A, perm.data(), nullptr, 0, &common_);
     }
     if (!factor_ || common_.status < CHOLMOD_OK)
       throw NumericalError(stage, "CHOLMOD symbolic analysis failed (status " + std::to_string(common_.status) + ")");
+    if (keep && choose) {
+      const int* chosen = static_cast<const int*>(factor_->Perm);
+      kept_orderings(key.kind).keep(key, std::vector<int>(chosen, chosen + lower.rows()));
+    }
   }
 
   void factorize(const Matrix& lower, const std::string& stage) {
@@ -436,46 +500,15 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
 #endif
 }
 
-#ifdef QUADCOVER_HAVE_CHOLMOD
-namespace {
-
-/// A lower-triangle pattern's fingerprint: size, entries, and a 64-bit hash of its column starts and rows.
-struct PatternKey {
-  long n = 0, nonzeros = 0;
-  std::uint64_t hash = 0;
-  bool operator==(const PatternKey&) const = default;
-};
-
-PatternKey pattern_key(const Eigen::SparseMatrix<Complex>& lower) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
-  const auto mix = [&h](std::uint64_t v) { h = (h ^ v) * 0x100000001b3ULL + (h >> 29); };
-  for (Eigen::Index j = 0; j <= lower.cols(); ++j) mix(static_cast<std::uint64_t>(lower.outerIndexPtr()[j]));
-  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) mix(static_cast<std::uint64_t>(lower.innerIndexPtr()[k]));
-  return {static_cast<long>(lower.rows()), static_cast<long>(lower.nonZeros()), h};
-}
-
-/// The nested-dissection orderings of the last kKept patterns, newest last (used under metis_mutex). A hash
-/// collision could only hand over another valid permutation of the same size: more fill, never a wrong factor.
-std::vector<std::pair<PatternKey, std::vector<int>>>& kept_orderings() {
-  static std::vector<std::pair<PatternKey, std::vector<int>>> kept;
-  return kept;
-}
-constexpr std::size_t kKept = 4;
-
-}  // namespace
-#endif
-
 std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& A, int min_size) {
 #ifdef QUADCOVER_HAVE_CHOLMOD
   const int n = static_cast<int>(A.rows());
   if (n < min_size || A.cols() != n) return {};
   Eigen::SparseMatrix<Complex> pattern = A.triangularView<Eigen::Lower>();
   pattern.makeCompressed();
-  const PatternKey key = pattern_key(pattern);
+  const PatternKey key = pattern_key(OrderingKind::NestedDissection, pattern);
   const std::lock_guard<std::mutex> lock(metis_mutex());
-  auto& kept = kept_orderings();
-  for (const auto& [k, perm] : kept)
-    if (k == key) return perm;
+  if (std::vector<int> kept = kept_orderings(key.kind).find(key); !kept.empty()) return kept;
   cholmod_common c;
   cholmod_start(&c);
   c.print = 0;
@@ -491,10 +524,7 @@ std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& 
   if (L && c.status == CHOLMOD_OK) perm.assign(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + n);
   if (L) cholmod_free_factor(&L, &c);
   cholmod_finish(&c);
-  if (!perm.empty()) {
-    if (kept.size() == kKept) kept.erase(kept.begin());
-    kept.emplace_back(key, perm);
-  }
+  if (!perm.empty()) kept_orderings(key.kind).keep(key, perm);
   return perm;
 #else
   (void)A;

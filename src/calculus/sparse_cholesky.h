@@ -42,7 +42,8 @@ class SparseCholesky {
   /// Symbolic analysis + numeric factorization of the symmetric/Hermitian positive definite A (full storage;
   /// only the lower triangle is read). A may be 0 by 0. `ordering` (perm[new] = old), when not empty, is the
   /// fill-reducing order the CHOLMOD backend uses instead of choosing one (AMD, then METIS where AMD fills much);
-  /// the Eigen backend always uses its AMD.
+  /// the Eigen backend always uses its AMD. CHOLMOD's choice for a pattern of 10⁴ rows or more is kept for the
+  /// process (the last few patterns): the same factor, without ordering the pattern again.
   /// \throw NumericalError naming `stage` if A is not positive definite (or not square), or if `ordering` is not
   /// empty and not a permutation of A's rows.
   void compute(const Matrix& A, const char* stage = "cholesky", std::span<const int> ordering = {});
