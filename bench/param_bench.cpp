@@ -4,6 +4,7 @@
 // Mesh: the first non-flag argument, else $QUADCOVER_BENCH_MESH, else tests/data/bunny_20k_holes.obj.
 //   bench_param [--benchmark_flags...] [mesh]        e.g. bench_param /work/shared/meshes/armadillo_86k.obj
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "bench_mesh_path.h"
+#include "cover/complex_stiffness.h"
 #include "field/compute_frame_field.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
@@ -73,6 +75,22 @@ void BM_Parameterize(benchmark::State& state) {
   state.counters["flipped"] = flipped_triangles(bench_mesh(), P.uv).flipped;
 }
 
+// One check of a map on the whole mesh, as the untangling does after every Newton step and the relaxation after
+// every round: per-corner values of a vertex function (layered_values) and the non-positive triangles of the
+// result, on range(0) threads (the same run measures 1 and 2).
+void BM_MapCheck(benchmark::State& state) {
+  const Mesh& mesh = bench_mesh();
+  const VertexLayers layers = vertex_layers(mesh, bench_field().matching);
+  Eigen::VectorXcd u(mesh.num_vertices());
+  for (int p = 0; p < mesh.num_vertices(); ++p) u[p] = Complex(mesh.V()(p, 0), mesh.V()(p, 1));
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(state.range(0)));
+  int non_positive = 0;
+  for (auto _ : state) non_positive = flipped_triangles(mesh, layered_values(mesh, layers, u)).non_positive;
+  state.counters["faces"] = mesh.num_faces();
+  state.counters["non_positive"] = non_positive;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -93,6 +111,11 @@ int main(int argc, char** argv) {
       ->ArgName("relaxation")
       ->Arg(RelaxationOptions{}.iterations)
       ->Arg(0)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("MapCheck", BM_MapCheck)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
       ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

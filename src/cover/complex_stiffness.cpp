@@ -1,6 +1,9 @@
 // Complex Hermitian stiffness matrices of the covering (thesis 3.2.3, (3.8)) and the complex curl* (3.3).
 #include "cover/complex_stiffness.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <vector>
 
 #include "common/errors.h"
@@ -154,11 +157,14 @@ Eigen::VectorXcd complex_curl_star(const Mesh& mesh, const FrameField& field) {
 
 Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u) {
   Eigen::MatrixX3cd c(mesh.num_faces(), 3);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      const int p = mesh.F()(f, a);
-      c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
-    }
+  // Face by face on both cores (every map check of the untangling and relaxation runs this on the whole mesh).
+  tbb::parallel_for(tbb::blocked_range<int>(0, mesh.num_faces(), 4096), [&](const tbb::blocked_range<int>& faces) {
+    for (int f = faces.begin(); f < faces.end(); ++f)
+      for (int a = 0; a < 3; ++a) {
+        const int p = mesh.F()(f, a);
+        c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
+      }
+  });
   return c;
 }
 
