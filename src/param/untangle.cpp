@@ -17,6 +17,7 @@
 #include "common/errors.h"
 #include "common/seconds_since.h"
 #include "mesh/vertex_rings.h"
+#include "param/region_folds.h"
 #include "param/seams.h"
 
 namespace quadcover {
@@ -494,9 +495,8 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
     for (int p = 0; p < nv && !everything; ++p)
       if (!in[p]) region_fixed[p] = region_fixed[nv + p] = 1;
     ++result.regions;
-    untangle_region(
-        maps, region_fixed, [&](const Eigen::VectorXd& Y) { return static_cast<int>(left(Y).size()); }, options,
-        progress, X, result);
+    const RegionFolds region_folds(mesh, layers, base, stuck, region_fixed, X);
+    untangle_region(maps, region_fixed, region_folds, options, progress, X, result);
     const std::size_t given = folds.size();
     folds = left(X);
     grow = !everything && (rings == std::max(options.rings, 1) || folds.size() < given);
