@@ -9,12 +9,13 @@
 
 namespace quadcover {
 
-/// How many faces that `stuck` leaves counted flipped_triangles (param/seams.h) finds non-positive on the map
-/// base − layered_values(x + iy) of Y = (x, y), for the Y that differ from the X given at construction only in the
-/// components `region_fixed` leaves free. Only the faces with such a corner are measured again. The others keep
-/// their areas; their test |A_uv| ≤ τ·A_3D·Σ|A_uv|/ΣA_3D (the sum moves with the region, a little) looks only at
+/// The number of faces, of those `stuck` does not flag, that flipped_triangles (param/seams.h) finds non-positive
+/// on the map base − layered_values(x + iy) of Y = (x, y), for the Y that differ from the X given at construction
+/// only in the components `region_fixed` leaves free. Only the faces with such a corner are measured again. The others
+/// keep their areas; their test |A_uv| ≤ τ·A_3D·Σ|A_uv|/ΣA_3D (the sum moves with the region, a little) looks only at
 /// those whose |A_uv|/A_3D lies within a factor 2 of the threshold at construction, and at all of them only if the
-/// threshold leaves that band. The count agrees with the whole-map one up to the rounding of that sum's order.
+/// threshold leaves that band. The count agrees with the whole-map one up to rounding (the order of that sum, and
+/// |A_uv|/A_3D against the threshold where the whole-map test multiplies).
 class RegionFolds {
  public:
   /// \pre layers and base fit mesh; stuck #F flags; region_fixed and X 2·#V entries (x_p at p, y_p at #V + p).
