@@ -162,7 +162,7 @@ Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, c
     for (int f = faces.begin(); f < faces.end(); ++f)
       for (int a = 0; a < 3; ++a) {
         const int p = mesh.F()(f, a);
-        c(f, a) = layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u[p];
+        c(f, a) = layered_value(layers, f, a, p, u[p]);
       }
   });
   return c;

@@ -27,6 +27,11 @@ struct VertexLayers {
 };
 /// \throw InputError if matching does not have #E entries.
 VertexLayers vertex_layers(const Mesh& mesh, const Eigen::VectorXi& matching);
+/// The value i^λ u_p of a vertex function at corner (f, a) of p, with u_p given (0 at a branch point). \pre layers fit
+/// the mesh, f and a a corner of p.
+inline Complex layered_value(const VertexLayers& layers, int f, int a, int p, Complex u_p) {
+  return layers.branch[p] ? Complex(0) : ipow(layers.layer(f, a)) * u_p;
+}
 /// Per-corner values i^λ u_p of a vertex function u (0 at branch points): the covering function ũ of u on M.
 /// \pre layers fit mesh, u has #V entries.
 Eigen::MatrixX3cd layered_values(const Mesh& mesh, const VertexLayers& layers, const Eigen::VectorXcd& u);

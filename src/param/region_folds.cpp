@@ -48,10 +48,9 @@ double RegionFolds::signed_area(int f, const Eigen::VectorXd& Y) const {
   Complex c[3];
   for (int a = 0; a < 3; ++a) {
     const int p = mesh_->F()(f, a);
-    const Complex layered = layers_->branch[p] ? Complex(0) : ipow(layers_->layer(f, a)) * Complex(Y[p], Y[nv + p]);
-    c[a] = (*base_)(f, a) - layered;
+    c[a] = (*base_)(f, a) - layered_value(*layers_, f, a, p, Complex(Y[p], Y[nv + p]));
   }
-  return 0.5 * std::imag(std::conj(c[1] - c[0]) * (c[2] - c[0]));
+  return signed_uv_area(c[0], c[1], c[2]);
 }
 
 double RegionFolds::total_uv(const Eigen::VectorXd& Y) const {

@@ -35,9 +35,13 @@ struct FlipReport {
 
 inline constexpr double flip_tolerance = 1e-8;
 
-/// The signed parameter area ½ Im(conj(uv1 − uv0)(uv2 − uv0)) of face f. \pre f < #uv rows.
+/// The signed parameter area ½ Im(conj(uv1 − uv0)(uv2 − uv0)) of the triangle with corners uv0, uv1, uv2. \pre none
+inline double signed_uv_area(Complex uv0, Complex uv1, Complex uv2) {
+  return 0.5 * std::imag(std::conj(uv1 - uv0) * (uv2 - uv0));
+}
+/// The signed parameter area of face f. \pre f < #uv rows.
 inline double signed_uv_area(const Eigen::MatrixX3cd& uv, Eigen::Index f) {
-  return 0.5 * std::imag(std::conj(uv(f, 1) - uv(f, 0)) * (uv(f, 2) - uv(f, 0)));
+  return signed_uv_area(uv(f, 0), uv(f, 1), uv(f, 2));
 }
 
 /// Signed parameter areas ½ Im(conj(uv1 - uv0)(uv2 - uv0)) of all faces, judged against the 3D areas of `mesh`.
