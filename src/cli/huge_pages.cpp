@@ -12,7 +12,7 @@ namespace quadcover::cli {
 namespace {
 
 /// Whether the kernel backs memory that asks for it (madvise MADV_HUGEPAGE) with huge pages, and only that.
-bool huge_pages_on_request() {
+[[maybe_unused]] bool huge_pages_on_request() {
   std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string modes;
   std::getline(in, modes);

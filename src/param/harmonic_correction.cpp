@@ -55,11 +55,12 @@ Eigen::VectorXcd HarmonicCorrection::rhs(const FramePairs& Sigma) const {
   return rhs(Sigma, all);
 }
 
-Eigen::MatrixXcd HarmonicCorrection::solve(const Eigen::MatrixXcd& B) const {
-  Eigen::MatrixXcd Bp = B;
-  for (int p : kernel_pins_) Bp.row(p).setZero();
-  return chol_.solve(Bp);
+Eigen::MatrixXcd HarmonicCorrection::solve(Eigen::MatrixXcd B) const {
+  for (int p : kernel_pins_) B.row(p).setZero();
+  return chol_.solve(B);
 }
+
+void HarmonicCorrection::release_factor() { chol_ = SparseCholesky<Complex>(chol_.backend()); }
 
 Eigen::MatrixX3cd HarmonicCorrection::corner_values(const Eigen::VectorXcd& u) const {
   return layered_values(*mesh_, layers_, u);

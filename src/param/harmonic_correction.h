@@ -32,7 +32,10 @@ class HarmonicCorrection {
                        const std::vector<Complex>& Y) const;
   /// u with 𝔏̄ u = b (rows of the kernel pins replaced by u_p = 0), all columns at once.
   /// \pre B has #V rows. \throw NumericalError if the solve fails.
-  Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B) const;
+  Eigen::MatrixXcd solve(Eigen::MatrixXcd B) const;
+  /// Frees the factor of 𝔏̄, for a caller that solves with its own constraints from here on (param/alignment.h);
+  /// solve() and harmonic_part() throw NumericalError afterwards. \pre none
+  void release_factor();
   /// Per-corner values i^λ u_p of a vertex function (0 at branch points). \pre u has #V entries.
   Eigen::MatrixX3cd corner_values(const Eigen::VectorXcd& u) const;
   /// H̃ = Σ − ∇u for the u solved from Σ. \pre Sigma is #F by 2. \throw NumericalError if the solve fails.

@@ -83,7 +83,7 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   r.variable_of_path.assign(static_cast<std::size_t>(cc.num_paths()), -1);
   if (options.rounding.strategy == RoundingStrategy::Direct) return r;
   const std::function<bool()> stop = [&progress] { return progress.skip_improvements(); };
-  r.pm = period_matrix(mesh, cc, correction, 32, stop);
+  r.pm = period_matrix(mesh, cc, correction, 0, stop);
   P.diagnostics.rounding.stopped_early = progress.skip_improvements();
   const int m = static_cast<int>(r.pm.paths.size());
   if (m == 0) return r;
@@ -498,6 +498,8 @@ void solve_steps(SolvedMap::State& s) {
   s.Sigma = corner_gradient(mesh, sigma);
   const Eigen::VectorXcd b = correction.rhs(s.Sigma);
   const Eigen::VectorXcd u_free = correction.solve(b).col(0);
+  // With curves, every later solve is the aligned one: the factor of 𝔏̄ goes before that one is made.
+  if (!slots.empty()) s.harmonic->release_factor();
   s.known = known_free + sigma;
   // Boundary and feature curves on integer iso-lines: one real component of u fixed at every curve vertex.
   if (!slots.empty())

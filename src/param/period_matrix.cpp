@@ -54,8 +54,15 @@ struct SparseRhs {
 
 }  // namespace
 
+int period_block_columns(int num_vertices) {
+  constexpr double kBlockBytes = 8 << 20;
+  const double fit = kBlockBytes / (static_cast<double>(sizeof(Complex)) * std::max(num_vertices, 1));
+  return static_cast<int>(std::clamp(fit, 4.0, 32.0));
+}
+
 PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
                            int block_size, const std::function<bool()>& stop) {
+  if (block_size <= 0) block_size = period_block_columns(mesh.num_vertices());
   PeriodMatrix pm;
   for (int j = 0; j < cut.num_paths(); ++j)
     if (cut.dependent_path[cut.path_component[j]] != j) pm.paths.push_back(j);
@@ -88,7 +95,7 @@ PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const Harmonic
     Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(nv, a1 - a0);
     for (int a = a0; a < a1; ++a)
       for (std::size_t k = 0; k < rhs[a].vertex.size(); ++k) B(rhs[a].vertex[k], a - a0) = rhs[a].value[k];
-    const Eigen::MatrixXcd U = correction.solve(B);
+    const Eigen::MatrixXcd U = correction.solve(std::move(B));
     // P_ab = ⟨H_a, Σ_b⟩ with H_a = Σ_a − ∇u_a and ⟨∇u_a, Σ_b⟩ = Re(u_aᴴ b_b) (b_b is ⟨∇φ_p, Σ_b⟩ per vertex, the
     // gauge factors i^λ cancel): no dense field per path, only the sparse supports. The Im rows use
     // i·H_a = (−H¹, H⁰) and b(iΣ) = i·b(Σ).

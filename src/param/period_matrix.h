@@ -31,10 +31,15 @@ struct SparseJumpField {
 /// \pre cut = build_cover_cut(mesh, …); 0 <= path < cut.num_paths().
 SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path);
 
+/// Right-hand sides per block of period_matrix() on a mesh of `num_vertices`: 32, fewer on large meshes so that one
+/// dense #V block of them stays within 8 MB (a solve holds a few such blocks besides the factor), at least 4.
+/// \pre num_vertices >= 0
+int period_block_columns(int num_vertices);
+
 /// P for the free paths of `cut`; `correction` must have been built for the same cut. Solves in blocks of
-/// `block_size` right-hand sides; `stop` (if set) is asked between blocks, and a stopped computation returns an
-/// empty `paths` (no matrix). \throw NumericalError if a solve fails.
+/// `block_size` right-hand sides (0: period_block_columns); `stop` (if set) is asked between blocks, and a stopped
+/// computation returns an empty `paths` (no matrix). \throw NumericalError if a solve fails.
 PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const HarmonicCorrection& correction,
-                           int block_size = 32, const std::function<bool()>& stop = {});
+                           int block_size = 0, const std::function<bool()>& stop = {});
 
 }  // namespace quadcover

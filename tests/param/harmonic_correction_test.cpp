@@ -9,6 +9,7 @@
 
 #include <random>
 
+#include "common/errors.h"
 #include "cover/field_helpers.h"
 #include "field/compute_frame_field.h"
 #include "support/test_meshes.h"
@@ -150,6 +151,26 @@ TEST(HarmonicCorrection, SolveMeetsTheEquationsAndRhsIsAdditiveOverFaces) {
     const Eigen::VectorXcd sum = hc.rhs(Sigma, even) + hc.rhs(odd, X, Y);
     EXPECT_LT((sum - b).cwiseAbs().maxCoeff(), 1e-12 * (1 + b.cwiseAbs().maxCoeff()));
   }
+}
+
+TEST(HarmonicCorrection, ReleasedFactorRefusesToSolveAndKeepsTheRest) {
+  const Mesh mesh = testing::load_test_mesh("eight_genus2");
+  const FrameField field = compute_frame_field(mesh);
+  const CoverCut cc = build_cover_cut(mesh, field.matching);
+  HarmonicCorrection hc(mesh, cc, trivial_holonomy(mesh, cc));
+  std::mt19937 rng(5);
+  const FramePairs Sigma = random_field(mesh.num_faces(), rng);
+  const Eigen::VectorXcd b = hc.rhs(Sigma);
+  const Eigen::VectorXcd u = hc.solve(b).col(0);
+  const Eigen::MatrixX3cd corners = hc.corner_values(u);
+  const Eigen::SparseMatrix<Complex> L = hc.stiffness();
+  hc.release_factor();
+  EXPECT_THROW(hc.solve(b), NumericalError);
+  EXPECT_THROW(hc.harmonic_part(Sigma), NumericalError);
+  // What does not need the factor is unchanged.
+  EXPECT_EQ((hc.rhs(Sigma) - b).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((hc.corner_values(u) - corners).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(Eigen::MatrixXcd(hc.stiffness() - L).cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(HarmonicCorrection, PinRowsAndFrameNorm) {

@@ -52,6 +52,28 @@ TEST(PeriodMatrix, EqualsGramMatrixOfHarmonicFields) {
   }
 }
 
+// The default blocks: 32 right-hand sides on small meshes, then as many as fit 8 MB of dense #V columns, never
+// fewer than 4; the matrix is the same whatever the block size.
+TEST(PeriodMatrix, BlocksFitTheirMemoryAndGiveTheSameMatrix) {
+  EXPECT_EQ(period_block_columns(0), 32);
+  EXPECT_EQ(period_block_columns(10000), 32);
+  for (int nv : {20000, 135000, 500000, 10000000}) {
+    const int k = period_block_columns(nv);
+    EXPECT_GE(k, 4) << nv;
+    EXPECT_LE(k, 32) << nv;
+    if (k > 4) EXPECT_LE(16.0 * k * nv, 8 << 20) << nv;
+    if (k < 32) EXPECT_GT(16.0 * (k + 1) * nv, 8 << 20) << nv;
+  }
+  EXPECT_EQ(period_block_columns(10000000), 4);
+  const Mesh mesh = load_test_mesh("eight_genus2");
+  const FrameField field = compute_frame_field(mesh);
+  const CoverCut cc = build_cover_cut(mesh, field.matching);
+  const HarmonicCorrection hc(mesh, cc, std::vector<char>(static_cast<std::size_t>(mesh.num_components()), 0));
+  const PeriodMatrix by_default = period_matrix(mesh, cc, hc), by_three = period_matrix(mesh, cc, hc, 3);
+  ASSERT_GT(by_default.paths.size(), 3u);
+  EXPECT_LT((by_default.P - by_three.P).cwiseAbs().maxCoeff(), 1e-12 * by_default.P.cwiseAbs().maxCoeff());
+}
+
 // E_H of the final map equals xᵀPx of the rounded periods (unit lattice: no even-branch fix-up after rounding, no
 // curve alignment), and search rounding never does worse than direct rounding.
 TEST(PeriodMatrix, PredictsHarmonicEnergyOfTheMap) {
