@@ -72,13 +72,14 @@ OptimizeResult optimize_field(const Mesh& mesh, const FrameFieldResult& field, c
   long evaluations = out.reduction.evaluations;
   const bool out_of_time = limit > 0 && elapsed() >= limit;
   if (options.mode == OptimizeMode::Full && !progress.cancelled() && !out_of_time) {
-    // 6.4: measure E_H once after curl reduction, Δ_EH = E_H / (2 h_sym), then balance without creation.
-    const Parameterization p = parameterize(mesh, energy.field(), options.param, progress);
-    out.energy_harmonic_estimate = p.energy_harmonic;
-    out.h_sym = p.h_sym;
+    // 6.4: measure E_H once after curl reduction, Δ_EH = E_H / (2 h_sym), then balance without creation. E_H is
+    // fixed by steps 1-5: the map is not finished.
+    const SolvedMap p(mesh, energy.field(), options.param, progress);
+    out.energy_harmonic_estimate = p.energy_harmonic();
+    out.h_sym = p.h_sym();
     // E_H is measured in grid units (the field scaled by p.scale); Δ_ED is in the optimizer's units of the unscaled
     // field, so Δ_EH is brought to those: energies scale with the square of the field.
-    out.delta_eh = p.h_sym > 0 ? p.energy_harmonic / (2.0 * p.h_sym) / (p.scale * p.scale) : 0;
+    out.delta_eh = p.h_sym() > 0 ? p.energy_harmonic() / (2.0 * p.h_sym()) / (p.scale() * p.scale()) : 0;
     if (out.delta_eh > 0) {
       ro.allow_creation = false;
       ro.delta_eh = out.delta_eh;

@@ -526,6 +526,8 @@ SolvedMap& SolvedMap::operator=(SolvedMap&&) noexcept = default;
 
 double SolvedMap::energy_curl() const { return state_->P.energy_curl; }
 double SolvedMap::energy_harmonic() const { return state_->P.energy_harmonic; }
+int SolvedMap::h_sym() const { return state_->P.h_sym; }
+double SolvedMap::scale() const { return state_->P.scale; }
 
 Parameterization SolvedMap::finish() && {
   if (!state_) throw InputError("", 0, "SolvedMap::finish: the map was finished already");

@@ -69,6 +69,10 @@ class SolvedMap {
   double energy_curl() const;
   /// E_H of the map, as in the finished Parameterization. \pre not finished
   double energy_harmonic() const;
+  /// h_sym of the cut and the field's scale (grid units per unit of the unscaled field), as in the finished
+  /// Parameterization. \pre not finished
+  int h_sym() const;
+  double scale() const;  ///< \pre not finished
   /// The rest of parameterize(); the object is spent. \throw InputError if called twice, NumericalError if a
   /// factorization fails.
   Parameterization finish() &&;
