@@ -220,6 +220,9 @@ TEST(Parameterize, SolvedMapFinishesToTheSameMap) {
     SolvedMap solved(mesh, field);
     EXPECT_EQ(solved.energy_curl(), whole.energy_curl);
     EXPECT_EQ(solved.energy_harmonic(), whole.energy_harmonic);
+    EXPECT_EQ(solved.h_sym(), whole.h_sym);
+    EXPECT_GT(whole.h_sym, 0);
+    EXPECT_EQ(solved.scale(), whole.scale);
     SolvedMap moved = std::move(solved);
     const Parameterization parts = std::move(moved).finish();
     EXPECT_EQ(parts.uv, whole.uv);
