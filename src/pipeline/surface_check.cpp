@@ -133,8 +133,10 @@ std::string places_sentence(const std::vector<SurfacePlace>& places) {
   for (std::size_t i = 0; i < std::min(kShown, places.size()); ++i) {
     const SurfacePlace& p = places[i];
     std::snprintf(at, sizeof at, " at (%.6g, %.6g, %.6g)", p.at.x(), p.at.y(), p.at.z());
-    line += (i ? "; " : "") + p.kind + (p.face > 0 ? " " + std::to_string(p.face) : std::string()) + " (" +
-            std::to_string(p.size) + (p.face > 0 ? " sides)" : " edges)") + at;
+    if (i) line += "; ";
+    line += p.kind;
+    if (p.face > 0) line.append(" ").append(std::to_string(p.face));
+    line.append(" (").append(std::to_string(p.size)).append(p.face > 0 ? " sides)" : " edges)").append(at);
   }
   if (places.size() > kShown)
     line += "; and " + std::to_string(places.size() - kShown) + " more in the report's surface_check.places";

@@ -103,7 +103,9 @@ TEST(ConeDiskLayout, ADiskWhoseRimSweepsTheConeAngleIsLaidOutAgainWithTheConesWi
     const Eigen::MatrixX3cd uv = m.base - layered_values(g.mesh, m.layers, u);
     const Eigen::VectorXi wound = map_quarter_index(g.mesh, uv);
     for (int v = 1; v < nv; ++v)
-      if (!g.mesh.is_boundary_vertex(v)) EXPECT_EQ(wound[v], 0) << v;  // every other interior vertex at 2π
+      if (!g.mesh.is_boundary_vertex(v)) {
+        EXPECT_EQ(wound[v], 0) << v;
+      }                                                                // every other interior vertex at 2π
     for (int f = 0; f < g.mesh.num_faces(); ++f) {                     // symmetric: the layout is an embedding
       const Complex e1 = uv(f, 1) - uv(f, 0), e2 = uv(f, 2) - uv(f, 0);
       EXPECT_GT(std::imag(std::conj(e1) * e2), 0) << f;
@@ -149,7 +151,9 @@ TEST(ConeDiskLayout, RewindRingsLaysOutTheDiskOfAWronglyWoundBranchPointFirst) {
   EXPECT_TRUE(out.moved.empty());  // nothing to hold: the disk's rim did not move
   const Eigen::VectorXi wound = map_quarter_index(g.mesh, m.base - layered_values(g.mesh, m.layers, u));
   for (int v = 0; v < nv; ++v)
-    if (!g.mesh.is_boundary_vertex(v)) EXPECT_EQ(wound[v], target[v]) << v;
+    if (!g.mesh.is_boundary_vertex(v)) {
+      EXPECT_EQ(wound[v], target[v]) << v;
+    }
 }
 
 }  // namespace

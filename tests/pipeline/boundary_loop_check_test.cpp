@@ -35,7 +35,9 @@ int non_quads(const QuadMesh& q) { return q.num_faces() - q.num_quads(); }
 void expect_loop_matches_mesh(const Mesh& mesh, const std::vector<BoundaryLoopCheck>& checks, std::size_t k) {
   const BoundaryLoopCheck& c = checks[k];
   EXPECT_EQ(c.loop, static_cast<int>(k) + 1);
-  if (k > 0) EXPECT_LT(checks[k - 1].first_vertex, c.first_vertex);
+  if (k > 0) {
+    EXPECT_LT(checks[k - 1].first_vertex, c.first_vertex);
+  }
   int found = 0;
   for (std::size_t l = 0; l < mesh.boundary_loops().size(); ++l) {
     const std::vector<int>& vertices = mesh.boundary_loops()[l];

@@ -234,7 +234,9 @@ TEST(ExtractQuads, RotatedSquareBoundaryCellsBecomeQuads) {
         for (int v = 0; v < res.mesh.num_vertices(); ++v) {
           const Eigen::Vector3d p = res.mesh.V.row(v);
           const double to_side = std::min({p.x(), 1 - p.x(), p.y(), 1 - p.y()});
-          if (on_boundary[v]) EXPECT_NEAR(to_side, 0, 1e-12) << "vertex " << v;
+          if (on_boundary[v]) {
+            EXPECT_NEAR(to_side, 0, 1e-12) << "vertex " << v;
+          }
           // φ of every vertex is the map at its position
           const Complex expected = scale * std::polar(1.0, theta) * Complex(p.x(), p.y()) + offset;
           EXPECT_NEAR(std::abs(res.mesh.uv[v] - expected), 0, 1e-9) << "vertex " << v;
@@ -244,7 +246,9 @@ TEST(ExtractQuads, RotatedSquareBoundaryCellsBecomeQuads) {
           const double a = uv_area(res.mesh, f);
           EXPECT_GT(a, 0);
           const bool inner = std::none_of(f.begin(), f.end(), [&](int v) { return on_boundary[v]; });
-          if (inner) EXPECT_NEAR(a, 1, 1e-9);
+          if (inner) {
+            EXPECT_NEAR(a, 1, 1e-9);
+          }
           total += a;
         }
         EXPECT_LE(total, scale * scale + 1e-6);

@@ -279,7 +279,9 @@ TEST_P(SmoothShipped, StaysOnTheSurfaceAndEvensOutTheQuads) {
       EXPECT_EQ(held.V.row(v), extracted.V.row(v)) << "fixed vertex " << v << " moved";
       EXPECT_EQ(held.uv[v], extracted.uv[v]);
     }
-    if (in_polygon[v]) EXPECT_EQ(q.V.row(v), extracted.V.row(v)) << "polygon corner " << v << " moved";
+    if (in_polygon[v]) {
+      EXPECT_EQ(q.V.row(v), extracted.V.row(v)) << "polygon corner " << v << " moved";
+    }
   }
   EXPECT_LT(r.max_displacement, 3.0);
 }
