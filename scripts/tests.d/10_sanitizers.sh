@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (leak checking on): configures
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (leak checking on; UBSan without its null,
+# alignment and object-size checks, see CMakeLists.txt): configures
 # build-asan/ (-O1 -g1: less compile time than -O2 and fast enough to run; line tables for the reports,
 # -DQUADCOVER_SANITIZE=ON), builds the test executables of STAGES and runs their ctest labels there.
 # Any sanitizer report aborts the test that triggered it, which fails the step. Uses ccache when installed.
