@@ -67,7 +67,6 @@ int RegionFolds::operator()(const Eigen::VectorXd& Y) const {
     total_uv += std::abs(area[k]);
   }
   const double ratio = total_3d_ > 0 ? total_uv / total_3d_ : 0;
-  // flipped_triangles: non-positive iff |A| ≤ τ·A_3D·ratio or A < 0.
   const double threshold = flip_tolerance * ratio;
   const bool in_band = threshold > low_ && threshold <= high_;
   const auto at_most = [threshold](double q) { return q <= threshold; };
@@ -76,7 +75,7 @@ int RegionFolds::operator()(const Eigen::VectorXd& Y) const {
                    : static_cast<int>(std::count_if(still_q_.begin(), still_q_.end(), at_most));
   for (std::size_t k = 0; k < moving_.size(); ++k) {
     const int f = moving_[k];
-    if (counted_[f] && (std::abs(area[k]) <= flip_tolerance * mesh_->face_areas()[f] * ratio || area[k] < 0)) ++count;
+    if (counted_[f] && non_positive_uv_area(area[k], flip_tolerance * mesh_->face_areas()[f] * ratio)) ++count;
   }
   return count;
 }

@@ -171,7 +171,7 @@ bool move_centre(const Mesh& mesh, const VertexLayers& layers, const Eigen::Matr
 Complex corner_value(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                      const Eigen::VectorXcd& u, int f, int c) {
   const int p = mesh.F()(f, c);
-  return layers.branch[p] ? base(f, c) : base(f, c) - ipow(layers.layer(f, c)) * u[p];
+  return base(f, c) - layered_value(layers, f, c, p, u[p]);
 }
 
 Eigen::VectorXi map_quarter_index(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {

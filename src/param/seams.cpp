@@ -66,12 +66,8 @@ FlipReport flipped_triangles(const Eigen::VectorXd& face_areas, const Eigen::Mat
   const double ratio = total_3d > 0 ? total_uv / total_3d : 0;
   for (Eigen::Index f = 0; f < nf; ++f) {
     const double ref = tolerance * face_areas[f] * ratio;
-    if (std::abs(area[f]) <= ref)
-      ++r.collapsed;
-    else if (area[f] < 0)
-      ++r.flipped;
-    else
-      continue;
+    if (!non_positive_uv_area(area[f], ref)) continue;
+    ++(collapsed_uv_area(area[f], ref) ? r.collapsed : r.flipped);
     r.flipped_faces.push_back(static_cast<int>(f));
   }
   r.non_positive = r.flipped + r.collapsed;

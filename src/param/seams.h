@@ -2,6 +2,7 @@
 // Measuring a parameterization from its per-corner coordinates alone: the transition z ↦ i^k z + c across every
 // interior edge (seamless iff c ∈ Z[i]), and the triangles that flip or collapse in parameter space.
 #include <Eigen/Core>
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -34,6 +35,13 @@ struct FlipReport {
 };
 
 inline constexpr double flip_tolerance = 1e-8;
+
+/// flipped_triangles' test of one face: non-positive iff its parameter area is below zero or within `reference`
+/// (τ·A_3D·Σ|A_uv|/ΣA_3D) of it; collapsed in the second case, flipped in the first. \pre reference >= 0
+inline bool collapsed_uv_area(double area, double reference) { return std::abs(area) <= reference; }
+inline bool non_positive_uv_area(double area, double reference) {  ///< \pre reference >= 0
+  return collapsed_uv_area(area, reference) || area < 0;
+}
 
 /// The signed parameter area ½ Im(conj(uv1 − uv0)(uv2 − uv0)) of the triangle with corners uv0, uv1, uv2. \pre none
 inline double signed_uv_area(Complex uv0, Complex uv1, Complex uv2) {

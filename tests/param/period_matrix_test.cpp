@@ -61,8 +61,8 @@ TEST(PeriodMatrix, BlocksFitTheirMemoryAndGiveTheSameMatrix) {
     const int k = period_block_columns(nv);
     EXPECT_GE(k, 4) << nv;
     EXPECT_LE(k, 32) << nv;
-    if (k > 4) EXPECT_LE(16.0 * k * nv, 8 << 20) << nv;
-    if (k < 32) EXPECT_GT(16.0 * (k + 1) * nv, 8 << 20) << nv;
+    if (k > 4) { EXPECT_LE(16.0 * k * nv, 8 << 20) << nv; }
+    if (k < 32) { EXPECT_GT(16.0 * (k + 1) * nv, 8 << 20) << nv; }
   }
   EXPECT_EQ(period_block_columns(10000000), 4);
   const Mesh mesh = load_test_mesh("eight_genus2");
