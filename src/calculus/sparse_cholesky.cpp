@@ -441,20 +441,18 @@ struct CholmodFactorStorage {
 }  // namespace
 #endif
 
-bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::span<const int> perm, ColumnFactor& out) {
+bool factor_in_given_order(const Eigen::SparseMatrix<Complex>& C, ColumnFactor& out) {
   out = ColumnFactor{};
 #ifdef QUADCOVER_HAVE_CHOLMOD
-  const int n = static_cast<int>(A_full.rows());
-  if (A_full.cols() != n || static_cast<int>(perm.size()) != n) return false;
+  const int n = static_cast<int>(C.rows());
+  if (C.cols() != n || !C.isCompressed()) return false;
   single_threaded_libraries();
-  Eigen::SparseMatrix<Complex> lower = A_full.triangularView<Eigen::Lower>();
-  lower.makeCompressed();
   auto st = std::make_shared<CholmodFactorStorage>();
   cholmod_common& c = st->c;
   c.print = 0;
   c.supernodal = CHOLMOD_SUPERNODAL;
-  c.nmethods = 1;  // the given permutation only, not postordered: the factor of exactly P A Pᵀ
-  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.nmethods = 1;  // C's own order, not postordered: the factor of exactly C
+  c.method[0].ordering = CHOLMOD_NATURAL;
   c.postorder = 0;
   // The supernodal factor is only a step to the simplicial one, so its padding (explicit zeros merged into
   // supernodes) only costs memory, at the conversion's peak beside the simplicial copy: merge less than CHOLMOD's
@@ -462,14 +460,16 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
   c.zrelax[0] = 0.2;
   c.zrelax[1] = 0.025;
   c.zrelax[2] = 0.0125;
-  cholmod_sparse S = lower_triangle_view(lower, CHOLMOD_COMPLEX);
-  std::vector<int> user(perm.begin(), perm.end());
+  // The upper triangle read in place (stype 1): in its natural order CHOLMOD factors it without a permuted copy.
+  cholmod_sparse S = lower_triangle_view(C, CHOLMOD_COMPLEX);
+  S.stype = 1;
   cholmod_factor*& L = st->L;
-  L = cholmod_analyze_p(&S, user.data(), nullptr, 0, &c);
+  L = cholmod_analyze(&S, &c);
   bool ok = L && c.status == CHOLMOD_OK && cholmod_factorize(&S, L, &c) && L->minor == L->n && c.status == CHOLMOD_OK;
   // Simplicial LLᴴ with packed, monotonic columns, then the supernodal padding pruned (exact symbolic pattern).
   ok = ok && cholmod_change_factor(CHOLMOD_COMPLEX, 1, 0, 1, 1, L, &c) && cholmod_resymbol(&S, nullptr, 0, 1, L, &c);
-  ok = ok && std::equal(perm.begin(), perm.end(), static_cast<const int*>(L->Perm));
+  const int* kept = static_cast<const int*>(L->Perm);
+  for (int j = 0; ok && j < n; ++j) ok = kept[j] == j;
   if (!ok) return false;
   int* Lp = static_cast<int*>(L->p);
   int* Li = static_cast<int*>(L->i);
@@ -494,8 +494,7 @@ bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A_full, std::sp
   out.storage = std::move(st);
   return true;
 #else
-  (void)A_full;
-  (void)perm;
+  (void)C;
   return false;
 #endif
 }

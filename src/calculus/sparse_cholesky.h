@@ -81,12 +81,12 @@ struct ColumnFactor {
   long nonzeros() const { return p ? p[n] : 0; }  ///< \pre none
 };
 
-/// The Cholesky factor L of P A Pᵀ = L Lᴴ for the given fill-reducing permutation (perm[new] = old) with the exact
-/// symbolic pattern of P A Pᵀ (no supernodal padding): CHOLMOD's supernodal factorization (BLAS-3) converted to
-/// simplicial form. A is Hermitian positive definite in full storage (the lower triangle is read).
-/// \return false if quadcover was built without CHOLMOD or A is not positive definite (`out` is then empty).
-/// \pre perm is a permutation of [0, A.rows()) (a size mismatch returns false). Does not throw.
-bool factor_with_permutation(const Eigen::SparseMatrix<Complex>& A, std::span<const int> perm, ColumnFactor& out);
+/// The Cholesky factor L of C = L Lᴴ in C's own order (C is already P A Pᵀ for a fill-reducing permutation P), with
+/// the exact symbolic pattern of C (no supernodal padding): CHOLMOD's supernodal factorization (BLAS-3) converted to
+/// simplicial form. C is Hermitian positive definite; only its upper triangle is read (upper or full storage).
+/// \return false if quadcover was built without CHOLMOD or C is not positive definite (`out` is then empty).
+/// \pre C is square (else false). Does not throw.
+bool factor_in_given_order(const Eigen::SparseMatrix<Complex>& C, ColumnFactor& out);
 
 /// A nested-dissection fill-reducing ordering of A's pattern (perm[new] = old): METIS through CHOLMOD. Its factor
 /// has about as many entries as AMD's on meshes, but its elimination tree is lower and bushier, so the paths that

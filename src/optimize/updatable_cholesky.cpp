@@ -30,13 +30,21 @@ namespace {
 // Below this size AMD's paths are short enough that METIS's ordering time would not pay back.
 constexpr int kNestedDissectionMinSize = 1000;
 
-/// P A Pᵀ in full storage for pinv (pinv[old] = new).
-Eigen::SparseMatrix<Complex> permuted_full(const Eigen::SparseMatrix<Complex>& A, const std::vector<int>& pinv) {
+/// The upper triangle of P A Pᵀ for pinv (pinv[old] = new; empty: P = I), from the upper triangle of A (upper or full
+/// storage): all that CXSparse's and CHOLMOD's Cholesky factorizations read of a Hermitian matrix.
+Eigen::SparseMatrix<Complex> permuted_upper(const Eigen::SparseMatrix<Complex>& A, const std::vector<int>& pinv) {
+  const auto to = [&](int i) { return pinv.empty() ? i : pinv[static_cast<std::size_t>(i)]; };
   std::vector<Eigen::Triplet<Complex>> t;
-  t.reserve(static_cast<std::size_t>(A.nonZeros()));
+  t.reserve(static_cast<std::size_t>(A.nonZeros() + A.rows()) / 2);
   for (int j = 0; j < A.outerSize(); ++j)
-    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, j); it; ++it)
-      t.emplace_back(pinv[it.row()], pinv[j], it.value());
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(A, j); it; ++it) {
+      const int r = static_cast<int>(it.row());
+      if (r > j) continue;
+      if (to(r) <= to(j))
+        t.emplace_back(to(r), to(j), it.value());
+      else
+        t.emplace_back(to(j), to(r), std::conj(it.value()));
+    }
   Eigen::SparseMatrix<Complex> out(A.rows(), A.cols());
   out.setFromTriplets(t.begin(), t.end());
   return out;
@@ -50,7 +58,7 @@ constexpr double kSupernodalFlopsPerEntry = 128;
 struct UpdatableCholesky::Impl {
   cs_cis* S = nullptr;
   cs_cin* N = nullptr;  // CXSparse's factor (fallback), or null when `own` holds it
-  ColumnFactor own;     // the factor from factor_with_permutation() (CHOLMOD's arrays)
+  ColumnFactor own;     // the factor from factor_in_given_order() (CHOLMOD's arrays)
   cs_ci view{};         // CXSparse's view of `own`
   ~Impl() {
     cs_ci_nfree(N);
@@ -69,29 +77,25 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
   if (A.rows() != A.cols()) throw NumericalError("cholesky", "matrix is not square");
   A.makeCompressed();
   const int n = static_cast<int>(A.rows());
-  // Non-owning CSC view of Eigen's storage (same layout: int indices, std::complex<double> values).
-  cs_ci view{};
-  view.nzmax = static_cast<int>(A.nonZeros());
-  view.m = view.n = n;
-  view.p = A.outerIndexPtr();
-  view.i = A.innerIndexPtr();
-  view.x = A.valuePtr();
-  view.nz = -1;
   // Nested dissection (METIS) where CHOLMOD is compiled in: the etree paths every update walks are shorter than
-  // with AMD (calculus/sparse_cholesky.h). CXSparse then analyses P A Pᵀ in its natural order.
+  // with AMD (calculus/sparse_cholesky.h). CXSparse then analyses P A Pᵀ in its natural order. Both factorizations
+  // read only the upper triangle: A is freed once it is kept (half of it, permuted), before the factor is made.
   perm_ = nested_dissection_ordering(A, kNestedDissectionMinSize);
-  Eigen::SparseMatrix<Complex> permuted;
-  if (!perm_.empty()) {
+  const bool given = !perm_.empty();
+  if (given) {
     pinv_.resize(n);
     for (int i = 0; i < n; ++i) pinv_[perm_[i]] = i;
-    permuted = permuted_full(A, pinv_);
-    view.p = permuted.outerIndexPtr();
-    view.i = permuted.innerIndexPtr();
-    view.x = permuted.valuePtr();
+  } else {  // AMD on the pattern of A + Aᵀ
+    cs_ci full{static_cast<int>(A.nonZeros()), n, n, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), -1};
+    impl_->S = cs_ci_schol(1, &full);
   }
-  impl_->S = cs_ci_schol(perm_.empty() ? 1 : 0, &view);  // AMD ordering of A + Aᵀ, or the given one
+  Eigen::SparseMatrix<Complex> upper = permuted_upper(A, pinv_);  // P A Pᵀ, or A until CXSparse applies AMD's P
+  A = Eigen::SparseMatrix<Complex>();
+  cs_ci view{
+      static_cast<int>(upper.nonZeros()), n, n, upper.outerIndexPtr(), upper.innerIndexPtr(), upper.valuePtr(), -1};
+  if (given) impl_->S = cs_ci_schol(0, &view);
   if (!impl_->S) throw NumericalError("cholesky", "symbolic analysis failed (n = " + std::to_string(n) + ")");
-  if (perm_.empty()) {
+  if (!given) {
     pinv_.assign(impl_->S->pinv, impl_->S->pinv + n);
     perm_.resize(n);
     for (int i = 0; i < n; ++i) perm_[pinv_[i]] = i;
@@ -105,7 +109,8 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
   const bool supernodal = route == Route::Supernodal ||
                           (route == Route::Automatic && flops >= kSupernodalFlopsPerEntry * std::max(1, impl_->S->cp[n]));
   ColumnFactor& cf = impl_->own;
-  if (supernodal && factor_with_permutation(A, perm_, cf) && std::equal(cf.p, cf.p + n + 1, impl_->S->cp)) {
+  if (supernodal && factor_in_given_order(given ? upper : permuted_upper(upper, pinv_), cf) &&
+      std::equal(cf.p, cf.p + n + 1, impl_->S->cp)) {
     impl_->view = cs_ci{static_cast<int>(cf.nonzeros()), n, n, cf.p, cf.i, cf.x, -1};
   } else {
     cf = ColumnFactor{};

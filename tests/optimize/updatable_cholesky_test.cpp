@@ -183,8 +183,9 @@ TEST_P(OnMeshes, CxsparseUpdownsMatchFreshFactorization) {
   expect_matches_fresh(F, cover, b);
 }
 
-// The factor UpdatableCholesky starts from (CHOLMOD supernodal on CXSparse's AMD permutation, padding pruned) has
-// exactly CXSparse's pattern (column pointers and rows) and its values up to round-off.
+// The factor UpdatableCholesky starts from (CHOLMOD supernodal of the matrix permuted by CXSparse's AMD, padding
+// pruned) has exactly CXSparse's pattern (column pointers and rows) and its values up to round-off, read from the
+// upper triangle alone.
 TEST_P(OnMeshes, SupernodalFactorHasTheUpLookingPatternAndValues) {
   const Mesh mesh = testing::load_test_mesh(GetParam());
   std::mt19937 rng(11);
@@ -196,19 +197,29 @@ TEST_P(OnMeshes, SupernodalFactorHasTheUpLookingPatternAndValues) {
   cs_cis* S = cs_ci_schol(1, &view);
   cs_cin* N = cs_ci_chol(&view, S);
   ASSERT_TRUE(S && N);
-  std::vector<int> perm(n);
-  for (int i = 0; i < n; ++i) perm[S->pinv[i]] = i;
+  Eigen::PermutationMatrix<Eigen::Dynamic> P(n);
+  for (int i = 0; i < n; ++i) P.indices()[i] = S->pinv[i];  // P A Pᵀ, full storage: only the upper triangle counts
+  Eigen::SparseMatrix<Complex> C(n, n);
+  C = A.twistedBy(P);
+  C.makeCompressed();
   ColumnFactor cf;
   if (!SparseCholesky<Complex>::cholmod_available()) {
-    EXPECT_FALSE(factor_with_permutation(A, perm, cf));
+    EXPECT_FALSE(factor_in_given_order(C, cf));
   } else {
-    ASSERT_TRUE(factor_with_permutation(A, perm, cf));
+    ASSERT_TRUE(factor_in_given_order(C, cf));
     const cs_ci* L = N->L;
     ASSERT_EQ(std::vector<int>(cf.p, cf.p + n + 1), std::vector<int>(L->p, L->p + n + 1));
     ASSERT_EQ(std::vector<int>(cf.i, cf.i + cf.nonzeros()), std::vector<int>(L->i, L->i + L->p[n]));
     double diff = 0, norm = 0;
     for (int q = 0; q < L->p[n]; ++q) diff += std::norm(cf.x[q] - L->x[q]), norm += std::norm(L->x[q]);
     EXPECT_LT(std::sqrt(diff), 1e-12 * std::sqrt(norm));
+    // The lower triangle is not read: the upper one alone gives the same numbers.
+    Eigen::SparseMatrix<Complex> upper = C.triangularView<Eigen::Upper>();
+    upper.makeCompressed();
+    ColumnFactor from_upper;
+    ASSERT_TRUE(factor_in_given_order(upper, from_upper));
+    ASSERT_EQ(from_upper.nonzeros(), cf.nonzeros());
+    EXPECT_TRUE(std::equal(cf.x, cf.x + cf.nonzeros(), from_upper.x));
   }
   cs_ci_nfree(N);
   cs_ci_sfree(S);
