@@ -1,7 +1,7 @@
 // The disk around a wrongly wound branch point laid out again in its cone chart (see cone_disk_layout.h).
 #include "param/cone_disk_layout.h"
 
-#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -226,27 +226,37 @@ Complex from_unit_disk(const Rim& rim, Complex v) {
 }
 
 /// Tutte's layout of D's interior: every interior vertex at the mean of its neighbours, the boundary vertices at w
-/// (a map from vertex to position, completed).
+/// (a map from vertex to position, completed; empty if the system, the graph Laplacian of D's interior, cannot be
+/// factored).
 std::unordered_map<int, Complex> barycentric_layout(const Mesh& mesh, const Disk& d,
                                                     std::unordered_map<int, Complex> w) {
   std::unordered_map<int, int> index;  // interior vertex → unknown
   for (int v : d.interior) index.emplace(v, static_cast<int>(index.size()));
   const int n = static_cast<int>(index.size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixX2d b = Eigen::MatrixX2d::Zero(n, 2);
-  for (const auto& [v, i] : index)
+  for (int v : d.interior) {
+    const int i = index.at(v);
     for (const auto& fc : mesh.fan(v)) {  // each neighbour once: the corner after v in its fan faces
       const int q = mesh.F()(fc.face, (fc.corner + 1) % 3);
-      A(i, i) += 1;
+      entries.emplace_back(i, i, 1.0);
       if (const auto j = index.find(q); j != index.end()) {
-        A(i, j->second) -= 1;
+        entries.emplace_back(i, j->second, -1.0);
       } else {
         const Complex wq = w.at(q);
         b(i, 0) += wq.real(), b(i, 1) += wq.imag();
       }
     }
-  const Eigen::MatrixX2d x = A.partialPivLu().solve(b);
-  for (const auto& [v, i] : index) w[v] = Complex(x(i, 0), x(i, 1));
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+  if (ldlt.info() != Eigen::Success) return {};
+  const Eigen::MatrixX2d x = ldlt.solve(b);
+  for (int v : d.interior) {
+    const int i = index.at(v);
+    w[v] = Complex(x(i, 0), x(i, 1));
+  }
   return w;
 }
 
@@ -283,7 +293,7 @@ bool lay_out_flattened(const Mesh& mesh, const Disk& d, int p, const Rim& rim, C
   for (std::size_t j = 0; j + 1 < rim.arg.size(); ++j)
     w.emplace(rim.vertex[j], std::polar(1.0, 2 * kPi * static_cast<double>(j) / n));
   w = barycentric_layout(mesh, d, std::move(w));
-  if (!centre_on_cone(mesh, d, p, w)) return false;
+  if (w.empty() || !centre_on_cone(mesh, d, p, w)) return false;
   for (int v : d.interior) w[v] = from_unit_disk(rim, w[v]);
   for (std::size_t k = 0; k < cp.vertex.size(); ++k)
     if (!cp.known[k]) cp.w[k] = w.at(cp.vertex[k]);
@@ -333,7 +343,9 @@ std::vector<int> lay_out_cone_disk(const Mesh& mesh, const VertexLayers& layers,
   const Complex L = corner_value(mesh, layers, base, u, f0.face, f0.corner);
   for (int rings = 2; rings <= kMaxConeDiskRings; ++rings) {
     Disk d;
-    if (!make_disk(mesh, layers, fixed, p, rings, d)) continue;
+    const bool made = make_disk(mesh, layers, fixed, p, rings, d);
+    if (d.faces.size() > kMaxConeDiskFaces) break;
+    if (!made) continue;
     const Charts ch = develop_disk(mesh, layers, base, u, d, p);
     if (std::count(ch.reached.begin(), ch.reached.end(), 0) > 0) continue;
     Copies cp = disk_copies(mesh, d);

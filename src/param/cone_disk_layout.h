@@ -9,8 +9,10 @@
 // D is laid out by Tutte's barycentric layout with ∂D's vertices evenly on the unit circle (p lands near the centre),
 // moved so that p is at 0 by a warp that keeps the rim, and carried onto the flattened disk by the radial
 // homeomorphism that sends the circle onto ∂D; z = L + w^{Θ_p/2π} then winds Θ_p around p and 2π around every other
-// interior vertex. The untangler repairs what the piecewise-linear layout leaves folded.
+// interior vertex. The untangler repairs what the piecewise-linear layout leaves folded, and once every triangle is
+// positive the disk is polished inside the injective set (param/untangle.h polish_map): the layout stretches it.
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "cover/complex_stiffness.h"
@@ -18,10 +20,13 @@
 
 namespace quadcover {
 
-inline constexpr int kMaxConeDiskRings = 6;
+inline constexpr int kMaxConeDiskRings = 24;
+inline constexpr std::size_t kMaxConeDiskFaces = 4000;
 
 /// Lays out again the smallest disk D of k ≤ kMaxConeDiskRings rings around the branch point p (faces with a vertex
-/// within k − 1 rings) whose boundary sweeps theta around φ(p) (see above), φ = base − layered_values(u). D must be
+/// within k − 1 rings; at most kMaxConeDiskFaces faces) whose boundary sweeps theta around φ(p) (see above),
+/// φ = base − layered_values(u). Near a wrongly wound cone the map is stretched: on a dense mesh the boundary sweeps
+/// theta only 7-8 rings out (igea_270k). D must be
 /// a topological disk of interior vertices, with no branch point but p and no held component (`fixed`, 2·#V) inside.
 /// \return the vertices moved (D's interior but p, ascending; u changed there), or empty (u unchanged) if no k gives
 /// such a disk or the layout does not wind theta around p.

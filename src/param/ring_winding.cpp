@@ -195,7 +195,9 @@ Eigen::VectorXcd rewind_rings(const Mesh& mesh, const VertexLayers& layers, cons
     if (!layers.branch[p] || mesh.is_boundary_vertex(p) || mesh.fan(p).size() < 3) continue;
     const double theta = angle_of_quarter_index(target[p]);
     if (theta <= 0 || quarter_index_of_angle(fan_angle(mesh, layers, base, u, p)) == target[p]) continue;
-    if (lay_out_cone_disk(mesh, layers, base, fixed, theta, p, u).empty()) continue;
+    const std::vector<int> inside = lay_out_cone_disk(mesh, layers, base, fixed, theta, p, u);
+    if (inside.empty()) continue;
+    out.disk_interiors.insert(out.disk_interiors.end(), inside.begin(), inside.end());
     out.disks.push_back(p);
     out.rewound.push_back(p);
   }
@@ -274,6 +276,10 @@ RewindPass rewind_pass(const RewindInputs& in, const std::vector<char>& fixed, c
     r_free.seconds += r.seconds;
     r = std::move(r_free);
   }
+  // The laid-out disks are stretched where their Tutte layout met the rim: polished inside the injective set.
+  if (r.non_positive_after == 0 && !pass.rings.disks.empty())
+    pass.u = polish_map(in.mesh, in.layers, in.base, in.Z, fixed, pass.u, pass.rings.disk_interiors, in.options,
+                        in.progress, r);
   pass.wrong = in.wrong(pass.u);
   return pass;
 }

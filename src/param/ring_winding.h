@@ -43,6 +43,7 @@ struct RingRewinding {
   /// Branch points whose disk was laid out again (param/cone_disk_layout.h; ascending): also in `rewound`, their
   /// disks' vertices not in `moved` (the layout keeps the disk's boundary: nothing beyond it needs holding).
   std::vector<int> disks;
+  std::vector<int> disk_interiors;  ///< the vertices the disks' layouts moved (p excluded; in disk order)
 };
 
 /// Lays out again, for every interior vertex p with map_quarter_index(φ) ≠ target[p], the ring of p in
@@ -61,7 +62,8 @@ inline constexpr int kRewindPasses = 3;
 /// wrong winding: rewind_rings on the result and untangle_map again, first with the moved vertices held (left free,
 /// the untangling would wind the rings back to where they were), then with them free if folds are left; kept if the
 /// pair (non-positive triangles, wrong windings) falls in lexicographic order, the order of pipeline/validity_retries.h
-/// (a flip traded for a regular vertex at 4π next to the cone is progress). With options.release_curve_corners and
+/// (a flip traded for a regular vertex at 4π next to the cone is progress); a pass that laid out cone disks and
+/// leaves no non-positive triangle polishes their interiors (polish_map). With options.release_curve_corners and
 /// release_near_wrong_windings, a pass that is not kept is tried once more with the `releasable` components within
 /// 2 rings of the wrongly wound vertices free, kept for fewer wrong windings at no more non-positive triangles (those
 /// vertices join released_vertices; later passes keep them free). The record is the last kept pass's, with

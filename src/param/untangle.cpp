@@ -518,4 +518,24 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
   return u;
 }
 
+Eigen::VectorXcd polish_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                            const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
+                            const std::vector<int>& region, const UntangleOptions& options, ProgressSink& progress,
+                            ParamDiagnostics::Untangling& result) {
+  const int nv = mesh.num_vertices();
+  if (static_cast<int>(fixed.size()) != 2 * nv || u0.size() != nv)
+    throw InputError("", 0, "polish_map: the fixed components or u0 do not match the mesh");
+  Eigen::VectorXd X(2 * nv);
+  X << u0.real(), u0.imag();
+  if (region.empty() || flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive > 0) return u0;
+  std::vector<char> region_fixed(static_cast<std::size_t>(2 * nv), 1);
+  for (int p : region) region_fixed[p] = fixed[p], region_fixed[nv + p] = fixed[nv + p];
+  untangle_region(
+      face_maps(mesh, layers, base, Z), region_fixed, [](const Eigen::VectorXd&) { return 0; }, options, progress, X,
+      result);
+  Eigen::VectorXcd u(nv);
+  for (int p = 0; p < nv; ++p) u[p] = Complex(X[p], X[nv + p]);
+  return u;
+}
+
 }  // namespace quadcover

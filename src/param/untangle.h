@@ -79,6 +79,16 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
                               const UntangleOptions& options, ProgressSink& progress,
                               ParamDiagnostics::Untangling& result, const std::vector<char>& releasable = {});
 
+/// The injective polish alone (F_0 with the line search capped before the first inversion, at most
+/// options.polish_iterations Newton steps) of the components of the `region` vertices that `fixed` leaves free, on a
+/// map with no non-positive triangle: it never passes a degenerate triangle, so no winding changes. Returns u0 if the
+/// map has a non-positive triangle (adds the steps to result.polish_iterations). \pre as untangle_map; region
+/// vertices in [0, #V). \throw NumericalError if a factorization fails.
+Eigen::VectorXcd polish_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                            const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
+                            const std::vector<int>& region, const UntangleOptions& options, ProgressSink& progress,
+                            ParamDiagnostics::Untangling& result);
+
 /// What options.release_curve_corners does before an untangling, alone: for every face the components in `fixed`
 /// hold at det ≡ 0 with φ = base, frees the `releasable` components of its first corner whose release unsticks it.
 /// Returns the released vertices (ascending); `fixed` is updated. \pre sizes as for untangle_map.

@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
+#include "common/progress.h"
 #include "param/ring_winding.h"
+#include "param/seams.h"
+#include "param/untangle.h"
 
 namespace quadcover {
 namespace {
@@ -88,7 +92,8 @@ WoundCone make_wound_cone(int n, int rings) {
 }
 
 TEST(ConeDiskLayout, ADiskWhoseRimSweepsTheConeAngleIsLaidOutAgainWithTheConesWinding) {
-  for (const auto& [n, rings] : {std::pair{8, 3}, std::pair{12, 4}, std::pair{7, 5}}) {
+  // The last: a rim 12 rings out, where a coarse map of a dense mesh puts it (igea_270k: 7-8 rings).
+  for (const auto& [n, rings] : {std::pair{8, 3}, std::pair{12, 4}, std::pair{7, 5}, std::pair{8, 12}}) {
     SCOPED_TRACE(n);
     const WoundCone w = make_wound_cone(n, rings);
     const PolarGrid& g = w.grid;
@@ -154,6 +159,76 @@ TEST(ConeDiskLayout, RewindRingsLaysOutTheDiskOfAWronglyWoundBranchPointFirst) {
     if (!g.mesh.is_boundary_vertex(v)) {
       EXPECT_EQ(wound[v], target[v]) << v;
     }
+}
+
+TEST(ConeDiskLayout, NoDiskOfMoreThanTheFaceCap) {
+  const int n = 200, rings = 12;  // the rim's disk has n + 2n(rings − 1) = 4600 faces
+  ASSERT_GT(static_cast<std::size_t>(n + 2 * n * (rings - 1)), kMaxConeDiskFaces);
+  const WoundCone w = make_wound_cone(n, rings);
+  Eigen::VectorXcd u = Eigen::VectorXcd::Zero(w.nv());
+  EXPECT_TRUE(lay_out_cone_disk(w.grid.mesh, w.map.layers, w.map.base, w.fixed, 5 * kPi / 2, 0, u).empty());
+  EXPECT_EQ(u, Eigen::VectorXcd::Zero(w.nv()));
+  const WoundCone small = make_wound_cone(20, rings);  // 460 faces: laid out
+  u = Eigen::VectorXcd::Zero(small.nv());
+  EXPECT_FALSE(
+      lay_out_cone_disk(small.grid.mesh, small.map.layers, small.map.base, small.fixed, 5 * kPi / 2, 0, u).empty());
+}
+
+/// F_0 = Σ_t A_t f_0(J_t) (param/untangle.h) recomputed from the map: J maps the face's 3D triangle, in any
+/// orthonormal frame of its plane, onto its parameter triangle (the reference Z is the identity).
+double barrier_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+  double E = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d p0 = mesh.V().row(mesh.F()(f, 0)), p1 = mesh.V().row(mesh.F()(f, 1)),
+                          p2 = mesh.V().row(mesh.F()(f, 2));
+    const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0, x = e1.normalized(), y = (e2 - e2.dot(x) * x).normalized();
+    Eigen::Matrix2d S, P;  // columns: the edges in the plane and in the map
+    S << e1.dot(x), e2.dot(x), e1.dot(y), e2.dot(y);
+    const Complex d1 = uv(f, 1) - uv(f, 0), d2 = uv(f, 2) - uv(f, 0);
+    P << d1.real(), d2.real(), d1.imag(), d2.imag();
+    E += 0.5 * std::abs(S.determinant()) * untangle_density(P * S.inverse(), 0, 1.0);
+  }
+  return E;
+}
+
+TEST(ConeDiskLayout, PolishLowersTheBarrierInsideTheDiskAndKeepsItsWinding) {
+  const WoundCone w = make_wound_cone(9, 5);
+  const Mesh& mesh = w.grid.mesh;
+  const ConeMap& m = w.map;
+  const int nf = mesh.num_faces();
+  FramePairs Z(nf, 2);
+  Z.col(0).setConstant(Complex(1, 0));
+  Z.col(1).setConstant(Complex(0, 1));
+  const Eigen::VectorXcd wound = Eigen::VectorXcd::Zero(w.nv());
+  ASSERT_GT(flipped_triangles(mesh, m.base - layered_values(mesh, m.layers, wound)).non_positive, 0);
+  ParamDiagnostics::Untangling r;
+  const std::vector<int> everything = [&] {
+    std::vector<int> all(static_cast<std::size_t>(w.nv()));
+    for (int v = 0; v < w.nv(); ++v) all[static_cast<std::size_t>(v)] = v;
+    return all;
+  }();
+  // A folded map is not polished: the barrier is infinite there.
+  EXPECT_EQ(polish_map(mesh, m.layers, m.base, Z, w.fixed, wound, everything, {}, null_progress(), r), wound);
+  Eigen::VectorXcd laid = wound;
+  const std::vector<int> disk = lay_out_cone_disk(mesh, m.layers, m.base, w.fixed, 5 * kPi / 2, 0, laid);
+  ASSERT_FALSE(disk.empty());
+  const Eigen::MatrixX3cd before = m.base - layered_values(mesh, m.layers, laid);
+  ASSERT_EQ(flipped_triangles(mesh, before).non_positive, 0);
+  const Eigen::VectorXcd polished = polish_map(mesh, m.layers, m.base, Z, w.fixed, laid, disk, {}, null_progress(), r);
+  const Eigen::MatrixX3cd after = m.base - layered_values(mesh, m.layers, polished);
+  EXPECT_GT(r.polish_iterations, 0);
+  EXPECT_LT(barrier_energy(mesh, after), barrier_energy(mesh, before));
+  EXPECT_EQ(flipped_triangles(mesh, after).non_positive, 0);
+  EXPECT_NEAR(fan_angle(mesh, m.layers, m.base, polished, 0), 5 * kPi / 2, 1e-9);
+  const Eigen::VectorXi q = map_quarter_index(mesh, after);
+  for (int v = 1; v < w.nv(); ++v) EXPECT_EQ(q[v], 0) << v;
+  std::vector<char> in_disk(static_cast<std::size_t>(w.nv()), 0);
+  for (int v : disk) in_disk[static_cast<std::size_t>(v)] = 1;
+  for (int v = 0; v < w.nv(); ++v) {  // the rim and the cone stay
+    if (!in_disk[static_cast<std::size_t>(v)]) {
+      EXPECT_EQ(polished[v], laid[v]) << v;
+    }
+  }
 }
 
 }  // namespace
