@@ -60,9 +60,10 @@ std::mutex& metis_mutex() {
   return m;
 }
 
-/// CHOLMOD's view of the lower triangle `m` (Hermitian: the upper is its conjugate transpose) as `xtype`.
+/// CHOLMOD's view of the Hermitian `m` as `xtype`, of which CHOLMOD reads the lower triangle (stype −1) or the upper
+/// one (stype 1; the other is its conjugate transpose).
 template <class Scalar>
-cholmod_sparse lower_triangle_view(const Eigen::SparseMatrix<Scalar>& m, int xtype) {
+cholmod_sparse triangle_view(const Eigen::SparseMatrix<Scalar>& m, int xtype, int stype = -1) {
   cholmod_sparse A{};
   A.nrow = static_cast<size_t>(m.rows());
   A.ncol = static_cast<size_t>(m.cols());
@@ -70,7 +71,7 @@ cholmod_sparse lower_triangle_view(const Eigen::SparseMatrix<Scalar>& m, int xty
   A.p = const_cast<int*>(m.outerIndexPtr());
   A.i = const_cast<int*>(m.innerIndexPtr());
   A.x = xtype == CHOLMOD_PATTERN ? nullptr : const_cast<Scalar*>(m.valuePtr());
-  A.stype = -1;
+  A.stype = stype;
   A.itype = CHOLMOD_INT;
   A.xtype = xtype;
   A.dtype = CHOLMOD_DOUBLE;
@@ -240,7 +241,7 @@ class CholmodBackend {
   static int xtype() { return kIsComplex<Scalar> ? CHOLMOD_COMPLEX : CHOLMOD_REAL; }  // interleaved re/im
 
   // Non-owning views of Eigen storage (column-major, int indices, compressed).
-  static cholmod_sparse view(const Matrix& m) { return lower_triangle_view(m, xtype()); }
+  static cholmod_sparse view(const Matrix& m) { return triangle_view(m, xtype()); }
   static cholmod_dense view(Dense& m) {
     cholmod_dense B{};
     B.nrow = static_cast<size_t>(m.rows());
@@ -460,9 +461,8 @@ bool factor_in_given_order(const Eigen::SparseMatrix<Complex>& C, ColumnFactor& 
   c.zrelax[0] = 0.2;
   c.zrelax[1] = 0.025;
   c.zrelax[2] = 0.0125;
-  // The upper triangle read in place (stype 1): in its natural order CHOLMOD factors it without a permuted copy.
-  cholmod_sparse S = lower_triangle_view(C, CHOLMOD_COMPLEX);
-  S.stype = 1;
+  // The upper triangle read in place: in its natural order CHOLMOD factors it without a permuted copy.
+  cholmod_sparse S = triangle_view(C, CHOLMOD_COMPLEX, 1);
   cholmod_factor*& L = st->L;
   L = cholmod_analyze(&S, &c);
   bool ok = L && c.status == CHOLMOD_OK && cholmod_factorize(&S, L, &c) && L->minor == L->n && c.status == CHOLMOD_OK;
@@ -517,7 +517,7 @@ std::vector<int> nested_dissection_ordering(const Eigen::SparseMatrix<Complex>& 
   c.method[0].ordering = CHOLMOD_METIS;
   c.postorder = 1;
   c.supernodal = CHOLMOD_SIMPLICIAL;
-  cholmod_sparse S = lower_triangle_view(pattern, CHOLMOD_PATTERN);
+  cholmod_sparse S = triangle_view(pattern, CHOLMOD_PATTERN);
   cholmod_factor* L = cholmod_analyze(&S, &c);
   std::vector<int> perm;
   if (L && c.status == CHOLMOD_OK) perm.assign(static_cast<const int*>(L->Perm), static_cast<const int*>(L->Perm) + n);

@@ -85,7 +85,7 @@ struct ColumnFactor {
 /// the exact symbolic pattern of C (no supernodal padding): CHOLMOD's supernodal factorization (BLAS-3) converted to
 /// simplicial form. C is Hermitian positive definite; only its upper triangle is read (upper or full storage).
 /// \return false if quadcover was built without CHOLMOD or C is not positive definite (`out` is then empty).
-/// \pre C is square (else false). Does not throw.
+/// \pre C is square and compressed (else false). Does not throw.
 bool factor_in_given_order(const Eigen::SparseMatrix<Complex>& C, ColumnFactor& out);
 
 /// A nested-dissection fill-reducing ordering of A's pattern (perm[new] = old): METIS through CHOLMOD. Its factor

@@ -25,9 +25,9 @@ inline constexpr std::size_t kMaxConeDiskFaces = 4000;
 
 /// Lays out again the smallest disk D of k ≤ kMaxConeDiskRings rings around the branch point p (faces with a vertex
 /// within k − 1 rings; at most kMaxConeDiskFaces faces) whose boundary sweeps theta around φ(p) (see above),
-/// φ = base − layered_values(u). Near a wrongly wound cone the map is stretched: on a dense mesh the boundary sweeps
-/// theta only 7-8 rings out (igea_270k). D must be
-/// a topological disk of interior vertices, with no branch point but p and no held component (`fixed`, 2·#V) inside.
+/// φ = base − layered_values(u); near a wrongly wound cone the map is stretched, and on a dense mesh the boundary
+/// sweeps theta only 7-8 rings out (igea_270k). D must be a topological disk of interior vertices, with no branch
+/// point but p and no held component (`fixed`, 2·#V) inside.
 /// \return the vertices moved (D's interior but p, ascending; u changed there), or empty (u unchanged) if no k gives
 /// such a disk or the layout does not wind theta around p.
 /// \pre layers fit mesh, u #V, fixed 2·#V, p a branch point with faces, theta > 0.

@@ -81,9 +81,9 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
 
 /// The injective polish alone (F_0 with the line search capped before the first inversion, at most
 /// options.polish_iterations Newton steps) of the components of the `region` vertices that `fixed` leaves free, on a
-/// map with no non-positive triangle: it never passes a degenerate triangle, so no winding changes. Returns u0 if the
-/// map has a non-positive triangle (adds the steps to result.polish_iterations). \pre as untangle_map; region
-/// vertices in [0, #V). \throw NumericalError if a factorization fails.
+/// map with no non-positive triangle: it never passes a degenerate triangle, so no winding changes. Adds its steps to
+/// result.polish_iterations; returns u0 if the map has a non-positive triangle or the region is empty.
+/// \pre as untangle_map; region vertices in [0, #V). \throw NumericalError if a factorization fails.
 Eigen::VectorXcd polish_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
                             const FramePairs& Z, const std::vector<char>& fixed, const Eigen::VectorXcd& u0,
                             const std::vector<int>& region, const UntangleOptions& options, ProgressSink& progress,
