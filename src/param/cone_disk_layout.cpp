@@ -56,9 +56,13 @@ bool cut_disk(const Mesh& mesh, int p, Disk& d) {
   return true;
 }
 
-/// D for `rings`, or false if it is not a disk of interior mesh vertices with only p a branch point or held inside.
-bool make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<char>& fixed, int p, int rings,
-               Disk& d) {
+/// Whether make_disk gave D. Blocked (another branch point or a held vertex inside) holds for every larger k too:
+/// D only grows, and a vertex with all its faces in D stays inside.
+enum class DiskMade { Made, NotADisk, Blocked };
+
+/// D for `rings`, if it is a disk of interior mesh vertices with only p a branch point or held inside.
+DiskMade make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<char>& fixed, int p, int rings,
+                   Disk& d) {
   const int nv = mesh.num_vertices();
   d.faces = faces_within_rings(mesh, p, rings - 1);  // faces with a vertex within rings − 1 rings
   for (std::size_t k = 0; k < d.faces.size(); ++k) d.slot[d.faces[k]] = static_cast<int>(k);
@@ -67,30 +71,30 @@ bool make_disk(const Mesh& mesh, const VertexLayers& layers, const std::vector<c
     for (int c = 0; c < 3; ++c) ++vertex_faces[mesh.F()(f, c)], ++edges[mesh.FE()(f, c)];
   for (const auto& [v, n] : vertex_faces) {
     if (n != static_cast<int>(mesh.fan(v).size()) || mesh.is_boundary_vertex(v)) continue;
-    if (v != p && (layers.branch[v] || fixed[v] || fixed[nv + v])) return false;
+    if (v != p && (layers.branch[v] || fixed[v] || fixed[nv + v])) return DiskMade::Blocked;
     d.interior.push_back(v);
     d.inside.insert(v);
   }
   std::sort(d.interior.begin(), d.interior.end());
   const long chi =
       static_cast<long>(vertex_faces.size()) - static_cast<long>(edges.size()) + static_cast<long>(d.faces.size());
-  if (chi != 1 || !d.inside.count(p)) return false;
+  if (chi != 1 || !d.inside.count(p)) return DiskMade::NotADisk;
   for (int f : d.faces)  // boundary edges: one face in D; one outgoing edge per boundary vertex
     for (int c = 0; c < 3; ++c)
       if (edges[mesh.FE()(f, (c + 2) % 3)] == 1 && !d.out_edge.emplace(mesh.F()(f, c), std::pair{f, c}).second)
-        return false;
-  if (d.out_edge.empty()) return false;
+        return DiskMade::NotADisk;
+  if (d.out_edge.empty()) return DiskMade::NotADisk;
   const int v0 = std::min_element(d.out_edge.begin(), d.out_edge.end())->first;
   std::size_t steps = 0;  // the boundary is one loop
   int v = v0;
   do {
     const auto it = d.out_edge.find(v);
-    if (it == d.out_edge.end()) return false;
+    if (it == d.out_edge.end()) return DiskMade::NotADisk;
     v = mesh.F()(it->second.first, (it->second.second + 1) % 3);
     ++steps;
   } while (v != v0 && steps <= d.out_edge.size());
-  if (v != v0 || steps != d.out_edge.size()) return false;
-  return cut_disk(mesh, p, d);
+  if (v != v0 || steps != d.out_edge.size()) return DiskMade::NotADisk;
+  return cut_disk(mesh, p, d) ? DiskMade::Made : DiskMade::NotADisk;
 }
 
 /// φ_f = i^m z + t for z in the chart of p's first fan face, per face of D, by a walk that does not cross the cut.
@@ -343,9 +347,9 @@ std::vector<int> lay_out_cone_disk(const Mesh& mesh, const VertexLayers& layers,
   const Complex L = corner_value(mesh, layers, base, u, f0.face, f0.corner);
   for (int rings = 2; rings <= kMaxConeDiskRings; ++rings) {
     Disk d;
-    const bool made = make_disk(mesh, layers, fixed, p, rings, d);
-    if (d.faces.size() > kMaxConeDiskFaces) break;
-    if (!made) continue;
+    const DiskMade made = make_disk(mesh, layers, fixed, p, rings, d);
+    if (made == DiskMade::Blocked || d.faces.size() > kMaxConeDiskFaces) break;
+    if (made == DiskMade::NotADisk) continue;
     const Charts ch = develop_disk(mesh, layers, base, u, d, p);
     if (std::count(ch.reached.begin(), ch.reached.end(), 0) > 0) continue;
     Copies cp = disk_copies(mesh, d);
