@@ -9,20 +9,20 @@
 
 namespace quadcover {
 
-namespace {
-
-/// Value carried across crossing cr: φ_to from φ_from, with the transition of a cut edge.
-Complex cross(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, const FanCrossing& cr, Complex x) {
+Complex carry_across(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, const FanCrossing& cr,
+                     Complex x) {
   if (!cut.graph.cut[cr.edge]) return x;
   const int k = cut.rotation[cr.edge];
   if (mesh.EF()(cr.edge, 0) == cr.from) return ipow(k) * x + c[cr.edge];  // s -> t
   return ipow(-k) * (x - c[cr.edge]);                                     // t -> s
 }
 
-int cross_rotation(const Mesh& mesh, const CoverCut& cut, const FanCrossing& cr) {
+int crossing_rotation(const Mesh& mesh, const CoverCut& cut, const FanCrossing& cr) {
   if (!cut.graph.cut[cr.edge]) return 0;
   return mesh.EF()(cr.edge, 0) == cr.from ? cut.rotation[cr.edge] : -cut.rotation[cr.edge];
 }
+
+namespace {
 
 /// Non-source vertices on the cut, from the leaves of the shortest-path forest to the roots.
 std::vector<int> elimination_order(const Mesh& mesh, const CoverCut& cut) {
@@ -128,7 +128,7 @@ void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorX
     int ip = 0;
     while (crossings[ip].edge != pe) ++ip;
     Complex x = 0;  // value at face crossings[ip].to, carried once around
-    for (int i = 1; i < d; ++i) x = cross(mesh, cut, c, crossings[(ip + i) % d], x);
+    for (int i = 1; i < d; ++i) x = carry_across(mesh, cut, c, crossings[(ip + i) % d], x);
     // The parent crossing must bring x back to 0.
     const FanCrossing& cr = crossings[ip];
     c[pe] = mesh.EF()(pe, 0) == cr.from ? -ipow(cut.rotation[pe]) * x : x;
@@ -154,8 +154,8 @@ std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut,
   int K = 0;
   Complex D = 0;
   for (const FanCrossing& cr : fan_crossings(mesh, v)) {
-    D = cross(mesh, cut, c, cr, D);
-    K += cross_rotation(mesh, cut, cr);
+    D = carry_across(mesh, cut, c, cr, D);
+    K += crossing_rotation(mesh, cut, cr);
   }
   return {mod4(K), D};
 }
@@ -177,7 +177,7 @@ Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eig
     Complex x = x0;
     sigma(fan[0].face, fan[0].corner) = x;
     for (std::size_t i = 0; i + 1 < fan.size(); ++i) {
-      x = cross(mesh, cut, c, crossings[i], x);
+      x = carry_across(mesh, cut, c, crossings[i], x);
       sigma(fan[i + 1].face, fan[i + 1].corner) = x;
     }
   }

@@ -18,6 +18,13 @@ inline Complex frame_dot(Complex w, Complex X, Complex Y) {
   return {std::real(std::conj(w) * X), std::real(std::conj(w) * Y)};
 }
 
+/// The value x in the chart of face cr.from carried into the chart of cr.to: the transition of cr.edge when it is
+/// cut, x itself otherwise. \pre cut = build_cover_cut(mesh, …); c has #E entries; cr.edge lies between its faces.
+Complex carry_across(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, const FanCrossing& cr,
+                     Complex x);
+/// The quarter-turn power carry_across applies: ±k_e across a cut edge, 0 elsewhere. \pre as carry_across.
+int crossing_rotation(const Mesh& mesh, const CoverCut& cut, const FanCrossing& cr);
+
 /// Integrates a curl*-free frame field over the cut disk (1.12), u_q = u_p + ⟨e, Z_t⟩, with value 0 at the first
 /// corner of each disk. \return per cut-vertex (CutMesh numbering) complex values.
 /// \pre cut = build_cover_cut(mesh, …); Z is #F by 2. \throw only std::bad_alloc.
