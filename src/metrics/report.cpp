@@ -134,7 +134,11 @@ nlohmann::json rounding_to_json(const ParamOptions& options, const Parameterizat
           {"curve_conditions", r.curve_conditions},
           {"curve_conditions_met", r.curve_conditions_met},
           {"curve_lines", r.curve_lines},
-          {"curve_rounding_dropped", r.curve_rounding_dropped}};
+          {"curve_rounding_dropped", r.curve_rounding_dropped},
+          {"coincident_cone_pairs", r.coincident_cones.size()},
+          {"coincident_cone_pairs_left", r.coincident_cone_pairs_left},
+          {"separated_cone_pairs", r.separated_cones.size()},
+          {"separated_cones", r.separated_cones}};
 }
 
 nlohmann::json relaxation_to_json(const Parameterization& p) {

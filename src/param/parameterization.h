@@ -15,7 +15,8 @@ namespace quadcover {
 struct ParamDiagnostics {
   /// Rounding of the periods (6.3): the strategy that ran, the number of real variables, E_H = xᵀPx predicted by the
   /// period matrix for direct rounding and for the chosen periods (before the even-branch fix-up and the curve
-  /// alignment), the candidates the search evaluated and whether the exact solver proved optimality.
+  /// alignment; after the cone separation's steps, which include the fix-up), the candidates the search evaluated
+  /// and whether the exact solver proved optimality.
   struct Rounding {
     std::string strategy = "direct";
     int variables = 0;
@@ -30,6 +31,10 @@ struct ParamDiagnostics {
     int curve_lines = 0;  ///< lines whose integers were rounded with the periods (0: the period matrix alone)
     /// The map with the curves rounded with the periods was less valid: this one rounds with the period matrix alone.
     bool curve_rounding_dropped = false;
+    /// Branch point pairs within kWatchedRings that the rounding put on one point, how many stay there, and those
+    /// re-rounded periods set apart (ParamOptions::separate_close_cones, param/cone_separation.h).
+    std::vector<std::pair<int, int>> coincident_cones, separated_cones;
+    int coincident_cone_pairs_left = 0;
   } rounding;
   /// Closed components without branch points whose field has rotational holonomy (the gauged matching ≢ 0 around a
   /// handle). No seamless immersion exists there (a cone-free flat metric on a closed surface has trivial rotational

@@ -17,6 +17,7 @@
 #include "field/feature_alignment.h"
 #include "field/indices.h"
 #include "param/alignment.h"
+#include "param/cone_separation.h"
 #include "param/cover_cut.h"
 #include "param/curve_rounding.h"
 #include "param/disk_functions.h"
@@ -115,6 +116,40 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   P.diagnostics.rounding.stopped_early = rr.stopped_early;
   P.diagnostics.rounding.energy_rounded = r.energy(P);
   return r;
+}
+
+/// The close branch point pairs the rounding put on one point, and with `step` separate_cones
+/// (param/cone_separation.h): its steps are priced by E_H when the period matrix rounded the periods, by
+/// Σ|c_j − b_j|² otherwise.
+void separate_close_cones(const Mesh& mesh, const CoverCut& cc, const Eigen::VectorXcd& c,
+                          const PeriodRounding& rounding, const ParamOptions& options, bool step, Parameterization& P) {
+  std::vector<char> free_path(static_cast<std::size_t>(cc.num_paths()), 1);
+  for (int j = 0; j < cc.num_paths(); ++j)
+    free_path[j] = rounding.active
+                       ? rounding.variable_of_path[j] >= 0
+                       : std::find(cc.dependent_path.begin(), cc.dependent_path.end(), j) == cc.dependent_path.end();
+  Parameterization priced;  // only its periods are read
+  priced.periods = P.periods;
+  const auto energy = [&](const std::vector<Complex>& rounded) {
+    priced.rounded_periods = rounded;
+    if (rounding.active) return rounding.energy(priced);
+    double sum = 0;
+    for (std::size_t j = 0; j < rounded.size(); ++j) sum += std::norm(rounded[j] - P.periods[j]);
+    return sum;
+  };
+  const SeparationProblem problem{mesh, cc, c, P.periods, std::move(free_path), options.lattice, energy};
+  auto& diagnostics = P.diagnostics.rounding;
+  if (!step) {
+    for (const ConePair& pair : coincident_cones(problem, P.rounded_periods))
+      diagnostics.coincident_cones.emplace_back(pair.p, pair.q);
+    diagnostics.coincident_cone_pairs_left = static_cast<int>(diagnostics.coincident_cones.size());
+    return;
+  }
+  const SeparationResult r = separate_cones(problem, P.rounded_periods);
+  for (const ConePair& pair : r.coincident) diagnostics.coincident_cones.emplace_back(pair.p, pair.q);
+  diagnostics.coincident_cone_pairs_left = r.left;
+  for (const ConePair& pair : r.set_apart) diagnostics.separated_cones.emplace_back(pair.p, pair.q);
+  if (r.steps > 0 && rounding.active) diagnostics.energy_rounded = rounding.energy(P);
 }
 
 }  // namespace
@@ -324,6 +359,8 @@ Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const Ha
                                                                   : std::abs(P.rounded_periods[j] - P.periods[j]);
     });
   }
+  // Not with the curves' integers rounded with the periods: a step would break their closing conditions.
+  separate_close_cones(mesh, cc, c, rounding, options, options.separate_close_cones && !given, P);
   Eigen::VectorXcd d = Eigen::VectorXcd::Zero(mesh.num_edges());
   for (int j = 0; j < n; ++j) d[cc.path_edge[j]] = P.rounded_periods[j] - P.periods[j];
   complete_translations(mesh, cc, d);

@@ -12,6 +12,7 @@
 #include "common/progress.h"
 #include "field/feature_alignment.h"
 #include "param/alignment.h"
+#include "param/cone_separation.h"
 #include "param/density.h"
 #include "param/lattice.h"
 #include "param/parameterization.h"
@@ -31,6 +32,11 @@ struct ParamOptions {
   /// the symmetric paths is computed column by column (6.3.2) and E_H = ½ dᵀ P d is minimized by the strategy.
   /// Direct skips P (nearest lattice point, 4.2.2).
   RoundingOptions rounding;
+  /// Keep branch points within kWatchedRings of each other off one lattice point: the rounded periods get the
+  /// cheapest lattice steps that set them apart (param/cone_separation.h); not when the curves' integers are rounded
+  /// with the periods (alignment.round_with_periods). Otherwise the pairs on one point are only listed
+  /// (ParamDiagnostics::Rounding::coincident_cones).
+  bool separate_close_cones = false;
   /// Move even branch points to integer points by adjusting one period each (rotated lattice only).
   bool fix_even_branch_points = true;
   /// Sharp features (with the boundaries, the curves of the alignment below).

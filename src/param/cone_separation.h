@@ -1,0 +1,83 @@
+#pragma once
+// Branch points kept off one lattice point by re-rounding the periods (issue 14 item 3, beyond the thesis). Every
+// branch point p sits on the fixed point of the transitions composed around it, z ↦ i^K z + D (4.2): φ(p) =
+// D / (1 − i^K), and D is a Gaussian-integer combination of the rounded periods (param/disk_functions.h
+// complete_translations). Two branch points a few edges apart that the rounding (6.3) puts on one point hold every
+// triangle between them at zero area, and no untangling in the seamless subspace undoes that. Their offset
+// φ(q) − φ(p), seen along a shortest face path from p, is linear in the cut translations; changing one free period by
+// one lattice step moves it by a known amount. The cheapest such step (by E_H of 6.3) that leaves every listed pair
+// apart replaces the rounding's choice.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "param/cover_cut.h"
+#include "param/lattice.h"
+
+namespace quadcover {
+
+/// Two branch points to keep off one lattice point.
+struct ConePair {
+  int p, q;
+};
+
+/// φ(v) of a branch point v in the chart of its first fan face (fan_crossings(v).front().from): the fixed point
+/// D / (1 − i^K) of the transitions composed around it with translations T. \pre cut = build_cover_cut(mesh, …);
+/// T has #E entries; v an interior branch point.
+Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v);
+
+/// φ(q) − φ(p) in the chart of p's first fan face, reached along a shortest path of faces from there to q's first fan
+/// face: a linear function of the cut translations T (#E).
+class ConePairOffset {
+ public:
+  /// \pre cut = build_cover_cut(mesh, …); p, q are interior branch points of one component of `cut`.
+  ConePairOffset(const Mesh& mesh, const CoverCut& cut, ConePair pair);
+  /// The offset for translations T. \pre T has #E entries.
+  Complex operator()(const Eigen::VectorXcd& T) const;
+
+ private:
+  const Mesh* mesh_;
+  const CoverCut* cut_;
+  ConePair pair_;
+  std::vector<FanCrossing> path_;  ///< faces from p's first fan face to q's
+};
+
+/// The separation's inputs: the cut, the translations of ∫X̂ on the cut edges, the periods b_j and the paths that may
+/// change (the free ones of the rounding, one lattice step at a time), and E_H of a choice of rounded periods.
+struct SeparationProblem {
+  const Mesh& mesh;
+  const CoverCut& cut;
+  const Eigen::VectorXcd& continuous;  ///< #E: c_e of ∫X̂ (param/disk_functions.h cut_translations)
+  const std::vector<Complex>& periods;
+  std::vector<char> free_path;  ///< per path
+  Lattice lattice;
+  std::function<double(const std::vector<Complex>& rounded)> energy;
+};
+
+/// What the separation did: the pairs on one point before, how many are left, those it set apart, and its steps.
+struct SeparationResult {
+  std::vector<ConePair> coincident;
+  int left = 0, steps = 0;
+  std::vector<ConePair> set_apart;
+};
+
+/// The pairs of close_branch_points(kWatchedRings) that `rounded` puts on one point. \pre as separate_cones.
+std::vector<ConePair> coincident_cones(const SeparationProblem& problem, const std::vector<Complex>& rounded);
+
+/// The pairs of interior branch points of `cut` within `rings` rings of each other, p < q, in vertex order.
+/// \pre cut = build_cover_cut(mesh, …); rings >= 0.
+std::vector<ConePair> close_branch_points(const Mesh& mesh, const CoverCut& cut, int rings);
+/// Branch points this close are kept apart by separate_cones.
+inline constexpr int kWatchedRings = 4;
+
+/// Changes `rounded` (the rounded periods) so that no pair of close_branch_points(kWatchedRings) shares a point: one
+/// lattice step of one free period at a time, the step with the smallest E_H among those that lower the number of
+/// pairs on one point, while there is one. Pairs no step sets apart keep their point.
+/// \pre rounded and periods have cut.num_paths() entries.
+SeparationResult separate_cones(const SeparationProblem& problem, std::vector<Complex>& rounded);
+
+/// The cut translations of a rounding: continuous + the completed jumps rounded − periods on the paths' edges.
+/// \pre as separate_cones.
+Eigen::VectorXcd rounded_translations(const SeparationProblem& problem, const std::vector<Complex>& rounded);
+
+}  // namespace quadcover
