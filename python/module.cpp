@@ -146,6 +146,7 @@ struct JobArgs {
   int validity_retries = PipelineOptions{}.validity_retries;
   bool round_curves = ParamOptions{}.alignment.round_with_periods;
   bool merge_cones = PipelineOptions{}.merge_coincident_cones, move_cones = PipelineOptions{}.move_wound_cones;
+  bool separate_cones = PipelineOptions{}.separate_coincident_cones;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -170,6 +171,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.validity_retries = a.validity_retries;
   o.merge_coincident_cones = a.merge_cones;
   o.move_wound_cones = a.move_cones;
+  o.separate_coincident_cones = a.separate_cones;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -367,6 +369,8 @@ constexpr const char* kParameterizeDoc =
     "0 = off, see the report's validity_retries). "
     "merge_cones / move_cones: the cone merges and fake-pair moves that make the map again from a changed field "
     "while it is not valid (the CLI's --merge-cones / --move-cones). "
+    "separate_cones: when the result is not valid beside cones the rounding put on one lattice point, make the map "
+    "again with them set apart by re-rounded periods (the CLI's --separate-cones). "
     "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
     "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
     "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
@@ -383,13 +387,14 @@ constexpr const char* kRemeshDoc =
 
 JobArgs job_args(double edge_length, int quads, int faces, const std::string& lattice, const std::string& optimize,
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
-                 const std::string& field, const std::string& fill, const py::object& feature_angle,
-                 bool align_curves, int fold_refinement_rounds, int validity_retries, bool round_curves,
-                 bool merge_cones, bool move_cones) {
+                 const std::string& field, const std::string& fill, const py::object& feature_angle, bool align_curves,
+                 int fold_refinement_rounds, int validity_retries, bool round_curves, bool merge_cones, bool move_cones,
+                 bool separate_cones) {
   const double angle = feature_angle_degrees(feature_angle);
-  return JobArgs{edge_length, quads,          faces,       lattice,    optimize,   rounding,     field,
-                 fill,        max_iterations, keep_better, stiffening, relaxation, angle,        align_curves,
-                 fold_refinement_rounds, validity_retries, round_curves, merge_cones, move_cones};
+  return JobArgs{edge_length,      quads,        faces,       lattice,        optimize,
+                 rounding,         field,        fill,        max_iterations, keep_better,
+                 stiffening,       relaxation,   angle,       align_curves,   fold_refinement_rounds,
+                 validity_retries, round_curves, merge_cones, move_cones,     separate_cones};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -400,38 +405,13 @@ void def_jobs(py::module_& m) {
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones, py::object progress) {
-        return parameterize_py(V, F,
-                               job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
-                                        keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                        fold_refinement_rounds, validity_retries, round_curves, merge_cones,
-                                        move_cones),
-                               std::move(progress));
-      },
-      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
-      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
-      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
-      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
-      py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
-      py::arg("move_cones") = PipelineOptions{}.move_wound_cones, py::arg("progress") = py::none(), kParameterizeDoc);
-  m.def(
-      "remesh",
-      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
-         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
-         int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones, int smooth_quads, double smooth_rigidity,
-         bool boundary_quads, py::object progress) {
-        return remesh_py(V, F,
-                         job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
-                                  stiffening, relaxation, field, fill, feature_angle, align_curves,
-                                  fold_refinement_rounds, validity_retries, round_curves, merge_cones, move_cones),
-                         smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
+         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, py::object progress) {
+        return parameterize_py(
+            V, F,
+            job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
+                     relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
+                     round_curves, merge_cones, move_cones, separate_cones),
+            std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
       py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
@@ -444,6 +424,35 @@ void def_jobs(py::module_& m) {
       py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
+      py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones, py::arg("progress") = py::none(),
+      kParameterizeDoc);
+  m.def(
+      "remesh",
+      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
+         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
+         int stiffening, int relaxation, const std::string& field, const std::string& fill,
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int smooth_quads,
+         double smooth_rigidity, bool boundary_quads, py::object progress) {
+        return remesh_py(
+            V, F,
+            job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
+                     relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
+                     round_curves, merge_cones, move_cones, separate_cones),
+            smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
+      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
+      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
+      py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
+      py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
+      py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
       py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("progress") = py::none(),

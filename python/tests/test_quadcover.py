@@ -207,8 +207,9 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
     # makes maps injective) keeps E_H and the periods, never adds folds to the map it starts from, says what it did.
     V, F = mesh("couplingdown_genus9")
     # One density and one field for both: no validity retries (which could pick another density for one of them)
-    # and no cone merges or moves (which make the map again from a changed field when the map is not valid).
-    same = dict(optimize="none", relaxation=0, validity_retries=0, merge_cones=False, move_cones=False)
+    # and no cone merges, moves or separation (which make the map again when the map is not valid).
+    same = dict(optimize="none", relaxation=0, validity_retries=0, merge_cones=False, move_cones=False,
+                separate_cones=False)
     uv0, plain = quadcover.parameterize(V, F, **same)
     stiffened = quadcover.parameterize(V, F, stiffening=6, **same)
     uv1, stiff = stiffened
@@ -247,3 +248,15 @@ def test_parameterize_relaxation_lowers_arap_and_keeps_the_map_seamless():
         quadcover.parameterize(V, F, relaxation=-1)
     with pytest.raises(ValueError):
         quadcover.parameterize(V, F, field="wobbly")
+
+
+def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_point():
+    # cow: two close cones rounded onto one lattice point leave wrong windings unless set apart (README).
+    V, F = mesh("cow")
+    _, off = quadcover.parameterize(V, F, separate_cones=False)
+    _, on = quadcover.parameterize(V, F)
+    assert off["parameterization"]["wrong_windings"] > 0 and off["rounding"]["separated_cones"] == []
+    assert off["rounding"]["coincident_cone_pairs"] > 0
+    assert on["parameterization"]["wrong_windings"] == 0 and on["parameterization"]["non_positive_triangles"] == 0
+    assert on["rounding"]["separated_cone_pairs"] == len(on["rounding"]["separated_cones"]) > 0
+    assert "cone_separation" in on["seconds"]

@@ -23,6 +23,10 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
   add_switch(cmd, "--merge-cones", options.merge_cones,
              "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again when "
              "that leaves fewer flipped or collapsed triangles");
+  add_switch(cmd, "--separate-cones", options.separate_cones,
+             "When the result is not valid beside branch points that the rounding put on one lattice point within 4 "
+             "rings of each other, make the map again with them set apart by re-rounded periods, kept when more "
+             "valid; report rounding.coincident_cone_pairs and separated_cones");
   add_switch(cmd, "--move-cones", options.move_cones,
              "Move the branch point of each fake cone pair (the map winds one turn too few or too many around it and "
              "the opposite turn around a vertex within 3 rings) to that vertex and solve the map again, kept while "
@@ -157,6 +161,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.keep_better = cli.keep_better;
   options.merge_coincident_cones = cli.merge_cones;
   options.move_wound_cones = cli.move_cones;
+  options.separate_coincident_cones = cli.separate_cones;
   options.fold_refinement_rounds = cli.refine_folds;
   options.validity_retries = cli.validity_retries;
   options.param.relaxation.iterations = cli.relaxation;

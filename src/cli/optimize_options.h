@@ -27,6 +27,7 @@ struct OptimizeCliOptions {
   bool keep_better = true;            ///< see parameterize_best()
   bool merge_cones = true;            ///< PipelineOptions::merge_coincident_cones
   bool move_cones = true;             ///< PipelineOptions::move_wound_cones
+  bool separate_cones = true;         ///< PipelineOptions::separate_coincident_cones
   int refine_folds = 6;               ///< PipelineOptions::fold_refinement_rounds
   int validity_retries = PipelineOptions{}.validity_retries;  ///< PipelineOptions::validity_retries
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)

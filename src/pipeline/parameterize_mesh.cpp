@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <optional>
 
 #include "common/seconds_since.h"
 #include "field/compute_frame_field.h"
 #include "mesh/vertex_rings.h"
 #include "optimize/optimize_field.h"
+#include "param/seams.h"
 #include "pipeline/cone_merging.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/retry_until_valid.h"
@@ -366,6 +368,63 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   if (tried) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
 }
 
+/// The stages after the first map (job.map made from job.field): cone moves, density, fold refinement and the merges
+/// of close cones; their times into job.seconds.
+void settle_map(const Mesh& input, const FrameFieldResult& field, double lambda, ProgressSink& progress,
+                ParamJob& job) {
+  FinishingProgress finishing(progress);
+  StageMeter meter;
+  const Mesh& mesh = job.mesh(input);
+  Parameterization first_map = std::move(job.map);
+  ParamJob before_moves = job;  // without the map: merge_close_cones starts again from here
+  job.map = std::move(first_map);
+  std::vector<ConeMerge> close_merges;
+  if (!map_validity(mesh, job.map).valid()) close_merges = close_coincident_merges(mesh, job.map);
+  move_cones(mesh, field, lambda, job, finishing);
+  if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
+  job.density = hit_target_count(mesh, job, finishing, job.options.param.density.target_quads);
+  meter.restart();
+  refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
+  note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
+  if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
+  merge_close_cones(input, field, lambda, before_moves, std::move(close_merges), job, finishing);
+}
+
+/// Whether a vertex the map winds wrong or a corner of a non-positive triangle lies within kWatchedRings + 1 rings of
+/// a vertex of `pairs` (vertex numbers of `mesh` or of the mesh it refines). \pre map was made on mesh.
+bool invalid_beside(const Mesh& mesh, const Parameterization& map, const std::vector<std::pair<int, int>>& pairs) {
+  if (pairs.empty()) return false;
+  std::vector<char> invalid(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (const int v : wrong_winding_vertices(mesh, map)) invalid[v] = 1;
+  for (const int f : flipped_triangles(mesh, map.uv).flipped_faces)
+    for (int c = 0; c < 3; ++c) invalid[mesh.F()(f, c)] = 1;
+  const std::vector<char> near = grow_vertex_rings(mesh, std::move(invalid), kWatchedRings + 1);
+  return std::any_of(pairs.begin(), pairs.end(), [&](const auto& pair) {
+    return (pair.first < mesh.num_vertices() && near[pair.first]) ||
+           (pair.second < mesh.num_vertices() && near[pair.second]);
+  });
+}
+
+/// When the settled map is not valid beside branch points that the first map's rounding put on one point
+/// (invalid_beside): `first` (the job at its first map) made again with those cones set apart
+/// (ParamOptions::separate_close_cones) and settled; kept when more valid. Its time is the stage
+/// "cone_separation" (its own stages are not listed).
+void settle_with_separated_cones(const Mesh& input, const FrameFieldResult& field, double lambda,
+                                 ProgressSink& progress, ParamJob first, ParamJob& job) {
+  if (progress.skip_improvements()) return record_cut_short(job, "cone separation");
+  const auto start = std::chrono::steady_clock::now();
+  FinishingProgress finishing(progress);
+  first.options.param.separate_close_cones = true;
+  first.map = parameterize(first.mesh(input), first.field, first.options.param, finishing);
+  settle_map(input, field, lambda, progress, first);
+  if (map_validity(first.mesh(input), first.map) < map_validity(job.mesh(input), job.map)) {
+    first.seconds = std::move(job.seconds);  // the stages of the separated job are its own entry
+    first.peak_bytes = std::move(job.peak_bytes);
+    job = std::move(first);
+  }
+  job.seconds.emplace_back("cone_separation", seconds_since(start));
+}
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
   validate(options);
@@ -411,21 +470,14 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   if (job.map.diagnostics.relaxation.stopped_early) record_cut_short(job, "relaxation");
   for (const auto& [stage, s] : job.map.diagnostics.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.diagnostics.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
-  meter.restart();
-  Parameterization first_map = std::move(job.map);
-  ParamJob before_moves = job;  // without the map: merge_close_cones starts again from here
-  job.map = std::move(first_map);
-  std::vector<ConeMerge> close_merges;
-  if (!map_validity(mesh, job.map).valid()) close_merges = close_coincident_merges(mesh, job.map);
-  move_cones(mesh, field, oo.lambda, job, finishing);
-  if (job.merge_rounds + job.wound_cone_rounds > 0) lap(meter, job, "cone_merging");
-  job.density = hit_target_count(mesh, job, finishing, param.density.target_quads);
-  meter.restart();
   const std::size_t curve_splits = job.refinement.split.size();
-  refine_job_folds(mesh, job, finishing);  // `mesh` may be gone from here on
-  note_cut_short(progress, job.map.diagnostics.untangling.non_positive_after > 0, job, "fold refinement");
-  if (job.fold_refinement.rounds > 0) lap(meter, job, "fold_refinement");
-  merge_close_cones(input, field, oo.lambda, before_moves, std::move(close_merges), job, finishing);
+  std::optional<ParamJob> first;  // at the first map: settle_with_separated_cones starts again from here
+  if (options.separate_coincident_cones && !param.separate_close_cones &&
+      !job.map.diagnostics.rounding.coincident_cones.empty())
+    first = job;
+  settle_map(input, field, oo.lambda, progress, job);
+  if (first && invalid_beside(job.mesh(input), job.map, first->map.diagnostics.rounding.coincident_cones))
+    settle_with_separated_cones(input, field, oo.lambda, progress, std::move(*first), job);
   // The maps the stages after the fallback made do not know it: the options say it.
   job.map.diagnostics.rounding.curve_rounding_dropped =
       options.param.alignment.round_with_periods && !job.options.param.alignment.round_with_periods;

@@ -33,6 +33,10 @@ struct PipelineOptions {
   /// Move the branch point of each fake cone pair (a cone wound one turn off next to a vertex wound the opposite
   /// turn) to that vertex and solve the map again, kept while the map gets more valid (pipeline/cone_merging.h).
   bool move_wound_cones = true;
+  /// When the result is not valid beside branch points the rounding put on one lattice point (a few edges apart),
+  /// make the map again with those cones set apart by re-rounded periods (ParamOptions::separate_close_cones,
+  /// param/cone_separation.h), kept when more valid.
+  bool separate_coincident_cones = true;
   /// Rounds of the refinement around the triangles the untangling leaves non-positive (pipeline/fold_refinement.h;
   /// 0 = off); the map then lives on a finer triangulation (ParamJob::mesh).
   int fold_refinement_rounds = 6;

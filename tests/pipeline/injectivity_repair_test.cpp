@@ -94,6 +94,7 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
   const Mesh mesh = testing::load_test_mesh("cow");
   PipelineOptions plain;  // the fold refinement off: it would clean both maps
   plain.merge_coincident_cones = false;
+  plain.separate_coincident_cones = false;  // the case before any re-rounding
   plain.fold_refinement_rounds = 0;
   const ParamJob without = parameterize_mesh(mesh, plain);
   const Mesh& m0 = without.mesh(mesh);
@@ -106,6 +107,7 @@ TEST(ConeMerging, MergesCoincidentConesIntoOneAndLeavesFewerDegenerateTriangles)
   }
   PipelineOptions merge;
   merge.fold_refinement_rounds = 0;
+  merge.separate_coincident_cones = false;
   const ParamJob with = parameterize_mesh(mesh, merge);
   EXPECT_GT(with.merged_cone_pairs, 0);
   EXPECT_LT(with.map.diagnostics.untangling.non_positive_after, without.map.diagnostics.untangling.non_positive_after);
@@ -151,6 +153,7 @@ TEST(ConeMerging, MergesConesRoundedToOnePointTwoEdgesApart) {
   const Mesh mesh = testing::load_test_mesh("camelhead_boundary");
   PipelineOptions plain;
   plain.merge_coincident_cones = false;
+  plain.separate_coincident_cones = false;  // the case before any re-rounding
   plain.fold_refinement_rounds = 0;
   plain.validity_retries = 0;
   const ParamJob without = parameterize_mesh(mesh, plain);
@@ -198,6 +201,7 @@ struct WithoutMerges {
 WithoutMerges parameterize_without_merges(const Mesh& mesh) {
   PipelineOptions plain;
   plain.merge_coincident_cones = false;
+  plain.separate_coincident_cones = false;  // the case before any re-rounding
   plain.validity_retries = 0;
   WithoutMerges w{parameterize_mesh(mesh, plain), {}, {}};
   const Mesh& m0 = w.job.mesh(mesh);
@@ -261,6 +265,31 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
   }
   ASSERT_GT(apart, 0) << "the case this test is about no longer occurs";
   expect_merged_and_valid_at_the_defaults(mesh);
+}
+
+TEST(ConeSeparation, TheJobSetsApartTheConesItsRoundingPutOnOnePointWhenTheMapWindsWrongBesideThem) {
+  // cow: two −1/4 branch points two edges apart rounded onto one lattice point; merging them leaves wrong windings.
+  const Mesh mesh = testing::load_test_mesh("cow");
+  PipelineOptions plain;
+  plain.separate_coincident_cones = false;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  ASSERT_GT(wrongly_wound(without.mesh(mesh), without.map), 0) << "the case this test is about no longer occurs";
+  EXPECT_FALSE(without.map.diagnostics.rounding.coincident_cones.empty());
+  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);  // recounted from the corner angles
+  EXPECT_EQ(non_positive_triangles(with.map), 0);
+  EXPECT_FALSE(with.map.diagnostics.rounding.separated_cones.empty());
+  EXPECT_TRUE(with.options.param.separate_close_cones);
+  EXPECT_TRUE(std::any_of(with.seconds.begin(), with.seconds.end(),
+                          [](const auto& s) { return s.first == "cone_separation"; }));
+  // Every separated pair is a pair of the map's branch points.
+  for (const auto& [p, q] : with.map.diagnostics.rounding.separated_cones) {
+    const auto is_branch = [&](int v) {
+      return std::any_of(with.map.branch_points.begin(), with.map.branch_points.end(),
+                         [&](const BranchPoint& b) { return b.vertex == v; });
+    };
+    EXPECT_TRUE(is_branch(p) && is_branch(q)) << p << " " << q;
+  }
 }
 
 TEST(RingRewinding, TheReportNamesTheConesWhoseDiskWasLaidOutAgain) {
