@@ -260,3 +260,6 @@ def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_poi
     assert on["parameterization"]["wrong_windings"] == 0 and on["parameterization"]["non_positive_triangles"] == 0
     assert on["rounding"]["separated_cone_pairs"] == len(on["rounding"]["separated_cones"]) > 0
     assert "cone_separation" in on["seconds"]
+    assert off["untangling"]["cone_separation"]["tried"] is False
+    assert on["untangling"]["cone_separation"] == {"tried": True, "kept": True, "non_positive_triangles": 0,
+                                                   "wrong_windings": 0}

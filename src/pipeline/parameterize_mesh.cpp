@@ -417,11 +417,14 @@ void settle_with_separated_cones(const Mesh& input, const FrameFieldResult& fiel
   first.options.param.separate_close_cones = true;
   first.map = parameterize(first.mesh(input), first.field, first.options.param, finishing);
   settle_map(input, field, lambda, progress, first);
-  if (map_validity(first.mesh(input), first.map) < map_validity(job.mesh(input), job.map)) {
+  const Validity separated = map_validity(first.mesh(input), first.map);
+  const bool kept = separated < map_validity(job.mesh(input), job.map);
+  if (kept) {
     first.seconds = std::move(job.seconds);  // the stages of the separated job are its own entry
     first.peak_bytes = std::move(job.peak_bytes);
     job = std::move(first);
   }
+  job.cone_separation = {true, kept, separated};
   job.seconds.emplace_back("cone_separation", seconds_since(start));
 }
 

@@ -51,6 +51,12 @@ struct ParamJob {
   /// Branch points of fake cone pairs moved to the vertex the map winds around, and the maps solved again for that
   /// (pipeline/cone_merging.h wound_cone_moves).
   int moved_wound_cones = 0, wound_cone_rounds = 0;
+  /// The map made again with the close cones on one point set apart (PipelineOptions::separate_coincident_cones):
+  /// whether it was tried and kept, and how valid it came out (non_positive, wrong_windings).
+  struct ConeSeparation {
+    bool tried = false, kept = false;
+    Validity validity;
+  } cone_separation;
   std::vector<std::string> warnings;  ///< degraded results, in sentences (the CLI prints them on stderr)
   /// The improving stages (ProgressSink::skip_improvements) a Ctrl-C or time limit skipped or cut short, in job
   /// order; the result is complete and checked, but a full run would improve it (the CLI exits with 3 then).

@@ -282,6 +282,9 @@ TEST(ConeSeparation, TheJobSetsApartTheConesItsRoundingPutOnOnePointWhenTheMapWi
   EXPECT_TRUE(with.options.param.separate_close_cones);
   EXPECT_TRUE(std::any_of(with.seconds.begin(), with.seconds.end(),
                           [](const auto& s) { return s.first == "cone_separation"; }));
+  EXPECT_FALSE(without.cone_separation.tried);
+  EXPECT_TRUE(with.cone_separation.tried && with.cone_separation.kept);
+  EXPECT_TRUE(with.cone_separation.validity.valid());
   // Every separated pair is a pair of the map's branch points.
   for (const auto& [p, q] : with.map.diagnostics.rounding.separated_cones) {
     const auto is_branch = [&](int v) {
