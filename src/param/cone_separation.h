@@ -2,11 +2,12 @@
 // Branch points kept off one lattice point by re-rounding the periods (issue 14 item 3, beyond the thesis). Every
 // branch point p sits on the fixed point of the transitions composed around it, z ↦ i^K z + D (4.2): φ(p) =
 // D / (1 − i^K), and D is a Gaussian-integer combination of the rounded periods (param/disk_functions.h
-// complete_translations). Two branch points a few edges apart that the rounding (6.3) puts on one point hold every
-// triangle between them at zero area, and no untangling in the seamless subspace undoes that. Their offset
-// φ(q) − φ(p), seen along a shortest face path from p, is linear in the cut translations; changing one free period by
-// one lattice step moves it by a known amount. The cheapest such step (by E_H of 6.3) that leaves every listed pair
-// apart replaces the rounding's choice.
+// complete_translations). Two branch points a few edges apart that the rounding (6.3) puts on one point hold the
+// triangles between them at zero area (adjacent ones) or force a fold or a wrong winding there, and no untangling in
+// the seamless subspace undoes that. Their offset φ(q) − φ(p), seen along a shortest face path from p, is linear in
+// the cut translations; changing one free period by one lattice step moves it by a known amount. Steps are taken one
+// at a time, the cheapest by E_H (6.3) among those that lower the number of close pairs on one point and move no even
+// branch point off its integer point (param/even_branch_fix.h).
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
@@ -54,11 +55,12 @@ struct SeparationProblem {
   std::function<double(const std::vector<Complex>& rounded)> energy;
 };
 
-/// What the separation did: the pairs on one point before, how many are left, those it set apart, and its steps.
+/// What the separation did.
 struct SeparationResult {
-  std::vector<ConePair> coincident;
-  int left = 0, steps = 0;
-  std::vector<ConePair> set_apart;
+  std::vector<ConePair> coincident;  ///< the close pairs on one point before
+  int left = 0;                      ///< close pairs on one point after (a step may put another pair on one point)
+  int steps = 0;                     ///< lattice steps taken
+  std::vector<ConePair> set_apart;   ///< pairs of `coincident` on different points after
 };
 
 /// The pairs of close_branch_points(kWatchedRings) that `rounded` puts on one point. \pre as separate_cones.
@@ -72,7 +74,8 @@ inline constexpr int kWatchedRings = 4;
 
 /// Changes `rounded` (the rounded periods) so that no pair of close_branch_points(kWatchedRings) shares a point: one
 /// lattice step of one free period at a time, the step with the smallest E_H among those that lower the number of
-/// pairs on one point, while there is one. Pairs no step sets apart keep their point.
+/// pairs on one point and leave no more even branch points off the integer points, while there is one. Pairs no
+/// step sets apart keep their point.
 /// \pre rounded and periods have cut.num_paths() entries.
 SeparationResult separate_cones(const SeparationProblem& problem, std::vector<Complex>& rounded);
 
