@@ -200,10 +200,12 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["untangling"]["moved_wound_cones"] = job.moved_wound_cones;
   r["untangling"]["wound_cone_rounds"] = job.wound_cone_rounds;
   const ParamJob::ConeSeparation& separation = job.cone_separation;
-  r["untangling"]["cone_separation"] = {{"tried", separation.tried},
-                                        {"kept", separation.kept},
-                                        {"non_positive_triangles", separation.validity.non_positive},
-                                        {"wrong_windings", separation.validity.wrong_windings}};
+  nlohmann::json& separated = r["untangling"]["cone_separation"];
+  separated = {{"tried", separation.tried}, {"kept", separation.kept}};
+  if (separation.tried) {  // the counts of the map it made
+    separated["non_positive_triangles"] = separation.validity.non_positive;
+    separated["wrong_windings"] = separation.validity.wrong_windings;
+  }
   r["aligned_curves"] = curves_json(map);
   r["extraction"] = nullptr;
   r["quad_mesh"] = nullptr;
