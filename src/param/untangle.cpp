@@ -322,12 +322,20 @@ bool newton_step(Energy& energy, Pattern& P, SparseCholesky<double>& chol, doubl
   return false;
 }
 
-Eigen::MatrixX3cd map_of(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
-                         const Eigen::VectorXd& X) {
+/// The unknowns X = (Re u, Im u) of the untangler for a correction u, and back.
+Eigen::VectorXd stacked(const Eigen::VectorXcd& u) {
+  return (Eigen::VectorXd(2 * u.size()) << u.real(), u.imag()).finished();
+}
+Eigen::VectorXcd unstacked(const Eigen::VectorXd& X) {
   const Eigen::Index nv = X.size() / 2;
   Eigen::VectorXcd u(nv);
   for (Eigen::Index p = 0; p < nv; ++p) u[p] = Complex(X[p], X[nv + p]);
-  return base - layered_values(mesh, layers, u);
+  return u;
+}
+
+Eigen::MatrixX3cd map_of(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
+                         const Eigen::VectorXd& X) {
+  return base - layered_values(mesh, layers, unstacked(X));
 }
 
 /// The untangling and the polish on the faces with a component free in `region_fixed` (its pattern analysed once).
@@ -455,8 +463,7 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
       (!releasable.empty() && static_cast<int>(releasable.size()) != 2 * nv))
     throw InputError("", 0, "untangle_map: the fixed components or u0 do not match the mesh");
   result = {};
-  Eigen::VectorXd X(2 * nv);
-  X << u0.real(), u0.imag();
+  Eigen::VectorXd X = stacked(u0);
   const int before = flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive;
   result.non_positive_before = result.non_positive_after = before;
   if (!options.enabled || before == 0) return u0;
@@ -507,15 +514,13 @@ Eigen::VectorXcd untangle_map(const Mesh& mesh, const VertexLayers& layers, cons
   result.seconds = seconds_since(start);
   const Energy energy(maps, options.area_weight);
   if (after > before) {
-    result.unresolved_faces = left((Eigen::VectorXd(2 * nv) << u0.real(), u0.imag()).finished());
-    result.min_det = energy.min_det((Eigen::VectorXd(2 * nv) << u0.real(), u0.imag()).finished());
+    result.unresolved_faces = left(stacked(u0));
+    result.min_det = energy.min_det(stacked(u0));
     return u0;
   }
   result.non_positive_after = after;
   result.min_det = energy.min_det(X);
-  Eigen::VectorXcd u(nv);
-  for (int p = 0; p < nv; ++p) u[p] = Complex(X[p], X[nv + p]);
-  return u;
+  return unstacked(X);
 }
 
 Eigen::VectorXcd polish_map(const Mesh& mesh, const VertexLayers& layers, const Eigen::MatrixX3cd& base,
@@ -525,17 +530,14 @@ Eigen::VectorXcd polish_map(const Mesh& mesh, const VertexLayers& layers, const 
   const int nv = mesh.num_vertices();
   if (static_cast<int>(fixed.size()) != 2 * nv || u0.size() != nv)
     throw InputError("", 0, "polish_map: the fixed components or u0 do not match the mesh");
-  Eigen::VectorXd X(2 * nv);
-  X << u0.real(), u0.imag();
+  Eigen::VectorXd X = stacked(u0);
   if (region.empty() || flipped_triangles(mesh, map_of(mesh, layers, base, X)).non_positive > 0) return u0;
   std::vector<char> region_fixed(static_cast<std::size_t>(2 * nv), 1);
   for (int p : region) region_fixed[p] = fixed[p], region_fixed[nv + p] = fixed[nv + p];
   untangle_region(
       face_maps(mesh, layers, base, Z), region_fixed, [](const Eigen::VectorXd&) { return 0; }, options, progress, X,
       result);
-  Eigen::VectorXcd u(nv);
-  for (int p = 0; p < nv; ++p) u[p] = Complex(X[p], X[nv + p]);
-  return u;
+  return unstacked(X);
 }
 
 }  // namespace quadcover
