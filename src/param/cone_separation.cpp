@@ -59,18 +59,7 @@ std::vector<Complex> lattice_steps(Lattice lattice) {
 /// Offsets below this are one point (branch points sit on lattice points, or half-integers for unfixed even ones).
 constexpr double kSamePoint = 0.25;
 
-int count_coincident(const std::vector<Complex>& offsets) {
-  int n = 0;
-  for (const Complex& z : offsets) n += std::abs(z) < kSamePoint;
-  return n;
-}
-
 }  // namespace
-
-Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v) {
-  const auto [K, D] = transition_around(mesh, cut, T, v);
-  return K == 0 ? Complex(0) : D / (Complex(1) - ipow(K));
-}
 
 ConePairOffset::ConePairOffset(const Mesh& mesh, const CoverCut& cut, ConePair pair)
     : mesh_(&mesh), cut_(&cut), pair_(pair) {
@@ -113,25 +102,39 @@ std::vector<ConePair> close_branch_points(const Mesh& mesh, const CoverCut& cut,
 
 namespace {
 
-/// Linear functions of the rounded periods the separation watches: the close pairs' offsets, and the images of the
-/// even branch points (on integer points after param/even_branch_fix.h; a step must not move one off).
-struct Watched {
-  std::vector<ConePair> pairs;  ///< of `offset`
+/// Values of linear functions of the rounded periods the separation watches: the close pairs' offsets, and the
+/// images of the even branch points (on integer points after param/even_branch_fix.h; a step must not move one off).
+struct WatchedValues {
   std::vector<Complex> offset, even_image;
-  /// Per free path: how one unit of its period moves each offset and each even image (empty for fixed paths).
-  std::vector<std::vector<Complex>> offset_move, even_move;
 
-  int coincident() const { return count_coincident(offset); }
-  int even_off_lattice() const {
-    int n = 0;
-    for (const Complex& z : even_image) n += distance_to_gaussian_integers(z) > kSamePoint;
-    return n;
+  int coincident() const {
+    return static_cast<int>(
+        std::count_if(offset.begin(), offset.end(), [](Complex z) { return std::abs(z) < kSamePoint; }));
   }
-  /// The watched values after `step` on path j.
-  Watched stepped(int j, Complex step) const {
-    Watched w{pairs, offset, even_image, {}, {}};
-    for (std::size_t k = 0; k < offset.size(); ++k) w.offset[k] += offset_move[j][k] * step;
-    for (std::size_t k = 0; k < even_image.size(); ++k) w.even_image[k] += even_move[j][k] * step;
+  int even_off_lattice() const {
+    return static_cast<int>(std::count_if(even_image.begin(), even_image.end(),
+                                          [](Complex z) { return distance_to_gaussian_integers(z) > kSamePoint; }));
+  }
+};
+
+struct Watched {
+  std::vector<ConePair> pairs;  ///< of values.offset: close_branch_points(kWatchedRings)
+  WatchedValues values;
+  /// Per free path: the values' change for one unit of its period (empty for fixed paths).
+  std::vector<WatchedValues> move;
+
+  /// The pairs on one point.
+  std::vector<ConePair> on_one_point() const {
+    std::vector<ConePair> out;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (std::abs(values.offset[k]) < kSamePoint) out.push_back(pairs[k]);
+    return out;
+  }
+  /// The values after `step` on path j.
+  WatchedValues stepped(int j, Complex step) const {
+    WatchedValues w = values;
+    for (std::size_t k = 0; k < w.offset.size(); ++k) w.offset[k] += move[j].offset[k] * step;
+    for (std::size_t k = 0; k < w.even_image.size(); ++k) w.even_image[k] += move[j].even_image[k] * step;
     return w;
   }
 };
@@ -147,20 +150,21 @@ Watched watch(const SeparationProblem& problem, const std::vector<Complex>& roun
   std::vector<int> even;
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (cut.branch[v] && !mesh.is_boundary_vertex(v) && mod4(cut.quarter_index[v]) == 2) even.push_back(v);
-  const auto values = [&](const Eigen::VectorXcd& T, std::vector<Complex>& offsets, std::vector<Complex>& images) {
-    for (const ConePairOffset& o : offset_of) offsets.push_back(o(T));
-    for (const int v : even) images.push_back(branch_point_image(mesh, cut, T, v));
+  const auto values = [&](const Eigen::VectorXcd& T) {
+    WatchedValues out;
+    for (const ConePairOffset& o : offset_of) out.offset.push_back(o(T));
+    for (const int v : even) out.even_image.push_back(branch_point_image(mesh, cut, T, v));
+    return out;
   };
-  values(rounded_translations(problem, rounded), w.offset, w.even_image);
+  w.values = values(rounded_translations(problem, rounded));
   const int n = cut.num_paths();
-  w.offset_move.resize(static_cast<std::size_t>(n));
-  w.even_move.resize(static_cast<std::size_t>(n));
-  if (!with_moves || w.coincident() == 0) return w;
+  w.move.resize(static_cast<std::size_t>(n));
+  if (!with_moves || w.values.coincident() == 0) return w;
   for (int j = 0; j < n; ++j) {
     if (!problem.free_path[j]) continue;
     std::vector<Complex> unit(static_cast<std::size_t>(n), 0);
     unit[j] = 1;
-    values(completed(mesh, cut, unit), w.offset_move[j], w.even_move[j]);  // linear in the periods
+    w.move[j] = values(completed(mesh, cut, unit));  // linear in the periods
   }
   return w;
 }
@@ -168,28 +172,22 @@ Watched watch(const SeparationProblem& problem, const std::vector<Complex>& roun
 }  // namespace
 
 std::vector<ConePair> coincident_cones(const SeparationProblem& problem, const std::vector<Complex>& rounded) {
-  const Watched w = watch(problem, rounded, false);
-  std::vector<ConePair> out;
-  for (std::size_t k = 0; k < w.pairs.size(); ++k)
-    if (std::abs(w.offset[k]) < kSamePoint) out.push_back(w.pairs[k]);
-  return out;
+  return watch(problem, rounded, false).on_one_point();
 }
 
 SeparationResult separate_cones(const SeparationProblem& problem, std::vector<Complex>& rounded) {
   Watched w = watch(problem, rounded, true);
   SeparationResult result;
-  for (std::size_t k = 0; k < w.pairs.size(); ++k)
-    if (std::abs(w.offset[k]) < kSamePoint) result.coincident.push_back(w.pairs[k]);
-  const int even_off = w.even_off_lattice();
-  const std::vector<Complex> first_offset = w.offset;
-  for (int now = w.coincident(); now > 0;) {
+  result.coincident = w.on_one_point();
+  const int even_off = w.values.even_off_lattice();
+  for (int now = w.values.coincident(); now > 0;) {
     double best_energy = std::numeric_limits<double>::infinity();
     int best_path = -1;
     Complex best_step;
     for (int j = 0; j < static_cast<int>(rounded.size()); ++j) {
       if (!problem.free_path[j]) continue;
       for (const Complex& s : lattice_steps(problem.lattice)) {
-        const Watched after = w.stepped(j, s);
+        const WatchedValues after = w.stepped(j, s);
         if (after.coincident() >= now || after.even_off_lattice() > even_off) continue;
         rounded[j] += s;
         const double e = problem.energy(rounded);
@@ -199,17 +197,15 @@ SeparationResult separate_cones(const SeparationProblem& problem, std::vector<Co
     }
     if (best_path < 0) break;
     rounded[best_path] += best_step;
-    Watched after = w.stepped(best_path, best_step);
-    after.offset_move = std::move(w.offset_move);
-    after.even_move = std::move(w.even_move);
-    w = std::move(after);
-    now = w.coincident();
+    w.values = w.stepped(best_path, best_step);
+    now = w.values.coincident();
     ++result.steps;
   }
-  for (std::size_t k = 0; k < w.pairs.size(); ++k)
-    if (std::abs(first_offset[k]) < kSamePoint && std::abs(w.offset[k]) >= kSamePoint)
-      result.set_apart.push_back(w.pairs[k]);
-  result.left = w.coincident();
+  const std::vector<ConePair> left = w.on_one_point();
+  for (const ConePair& pair : result.coincident)
+    if (std::none_of(left.begin(), left.end(), [&](const ConePair& l) { return l.p == pair.p && l.q == pair.q; }))
+      result.set_apart.push_back(pair);
+  result.left = static_cast<int>(left.size());
   return result;
 }
 

@@ -1,13 +1,13 @@
 #pragma once
 // Branch points kept off one lattice point by re-rounding the periods (issue 14 item 3, beyond the thesis). Every
 // branch point p sits on the fixed point of the transitions composed around it, z ↦ i^K z + D (4.2): φ(p) =
-// D / (1 − i^K), and D is a Gaussian-integer combination of the rounded periods (param/disk_functions.h
-// complete_translations). Two branch points a few edges apart that the rounding (6.3) puts on one point hold the
-// triangles between them at zero area (adjacent ones) or force a fold or a wrong winding there, and no untangling in
-// the seamless subspace undoes that. Their offset φ(q) − φ(p), seen along a shortest face path from p, is linear in
-// the cut translations; changing one free period by one lattice step moves it by a known amount. Steps are taken one
-// at a time, the cheapest by E_H (6.3) among those that lower the number of close pairs on one point and move no even
-// branch point off its integer point (param/even_branch_fix.h).
+// D / (1 − i^K) (param/disk_functions.h branch_point_image), and D is a Gaussian-integer combination of the rounded
+// periods (param/disk_functions.h complete_translations). Two branch points a few edges apart that the rounding (6.3)
+// puts on one point hold the triangles between them at zero area (adjacent ones) or force a fold or a wrong winding
+// there, and no untangling in the seamless subspace undoes that. Their offset φ(q) − φ(p), seen along a shortest face
+// path from p, is linear in the cut translations; changing one free period by one lattice step moves it by a known
+// amount. Steps are taken one at a time, the cheapest by E_H (6.3) among those that lower the number of close pairs on
+// one point and move no even branch point off its integer point (param/even_branch_fix.h).
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
@@ -21,11 +21,6 @@ namespace quadcover {
 struct ConePair {
   int p, q;
 };
-
-/// φ(v) of a branch point v in the chart of its first fan face (fan_crossings(v).front().from): the fixed point
-/// D / (1 − i^K) of the transitions composed around it with translations T. \pre cut = build_cover_cut(mesh, …);
-/// T has #E entries; v an interior branch point.
-Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v);
 
 /// φ(q) − φ(p) in the chart of p's first fan face, reached along a shortest path of faces from there to q's first fan
 /// face: a linear function of the cut translations T (#E).

@@ -160,6 +160,11 @@ std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut,
   return {mod4(K), D};
 }
 
+Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v) {
+  const auto [K, D] = transition_around(mesh, cut, T, v);
+  return K == 0 ? Complex(0) : D / (Complex(1) - ipow(K));
+}
+
 Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c) {
   Eigen::MatrixX3cd sigma = Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3);
   std::vector<char> on_cut(static_cast<std::size_t>(mesh.num_vertices()), 0);
@@ -169,12 +174,8 @@ Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eig
     if (!on_cut[v]) continue;
     const auto fan = mesh.fan(v);
     const auto crossings = fan_crossings(mesh, v);
-    Complex x0 = 0;
-    if (cut.branch[v]) {  // the value is pinned by the rotation around v: x0 = i^K x0 + D
-      const auto [K, D] = transition_around(mesh, cut, c, v);
-      if (K != 0) x0 = D / (Complex(1) - ipow(K));
-    }
-    Complex x = x0;
+    // At a branch point the value is pinned by the rotation around v: x = i^K x + D.
+    Complex x = cut.branch[v] ? branch_point_image(mesh, cut, c, v) : Complex(0);
     sigma(fan[0].face, fan[0].corner) = x;
     for (std::size_t i = 0; i + 1 < fan.size(); ++i) {
       x = carry_across(mesh, cut, c, crossings[i], x);

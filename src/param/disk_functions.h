@@ -64,4 +64,8 @@ Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eig
 /// K and translation D of z ↦ i^K z + D. \pre cut = build_cover_cut(mesh, …); c has #E entries; 0 <= v < #V.
 std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, int v);
 
+/// φ(v) of a branch point v in the chart of its first fan face (fan_crossings(v).front().from): the fixed point
+/// D / (1 − i^K) of transition_around(v) with translations T (0 where K = 0). \pre as transition_around.
+Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v);
+
 }  // namespace quadcover

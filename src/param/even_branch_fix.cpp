@@ -52,14 +52,13 @@ std::vector<int> fix_even_branch_points(const Mesh& mesh, const CoverCut& cc, st
   std::vector<char> r;
   for (int q = 0; q < nv; ++q) {
     if (!cc.branch[q] || mod4(cc.quarter_index[q]) != 2) continue;
-    const auto [K, D] = transition_around(mesh, cc, cr, q);
     std::vector<std::uint64_t> row(bits.empty() ? 0 : bits[0].size(), 0);
     for (const FanCrossing& x : fan_crossings(mesh, q))
       if (cc.graph.cut[x.edge])
         for (std::size_t w = 0; w < row.size(); ++w) row[w] ^= bits[x.edge][w];
     evens.push_back(q);
     A.push_back(row);
-    r.push_back(distance_to_gaussian_integers(0.5 * D) > 0.25 ? 1 : 0);
+    r.push_back(distance_to_gaussian_integers(branch_point_image(mesh, cc, cr, q)) > 0.25 ? 1 : 0);
   }
   std::vector<char> x;
   const bool ok = solve_gf2(A, r, n, x);
@@ -81,7 +80,7 @@ std::vector<int> fix_even_branch_points(const Mesh& mesh, const CoverCut& cc, st
     for (int j = 0; j < n; ++j) cr[cc.path_edge[j]] = rounded[j];
     complete_translations(mesh, cc, cr);
     for (int q : evens)
-      if (distance_to_gaussian_integers(0.5 * transition_around(mesh, cc, cr, q).second) > 0.25) unfixed.push_back(q);
+      if (distance_to_gaussian_integers(branch_point_image(mesh, cc, cr, q)) > 0.25) unfixed.push_back(q);
   }
   return unfixed;
 }

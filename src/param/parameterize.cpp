@@ -63,12 +63,12 @@ struct PeriodRounding {
   bool active = false;
   PeriodMatrix pm;
   std::vector<int> variable_of_path;  ///< per path: its index in pm.paths, or -1 (dependent path)
-  /// E_H = xᵀ P x of the periods currently in P.rounded_periods.
-  double energy(const Parameterization& P) const {
+  /// E_H = xᵀ P x of the rounded periods `rounded` of the periods `periods`.
+  double energy(const std::vector<Complex>& periods, const std::vector<Complex>& rounded) const {
     const int m = static_cast<int>(pm.paths.size());
     Eigen::VectorXd x(2 * m);
     for (int a = 0; a < m; ++a) {
-      const Complex d = P.rounded_periods[pm.paths[a]] - P.periods[pm.paths[a]];
+      const Complex d = rounded[pm.paths[a]] - periods[pm.paths[a]];
       x[a] = d.real();
       x[m + a] = d.imag();
     }
@@ -92,7 +92,7 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   for (int a = 0; a < m; ++a) r.variable_of_path[r.pm.paths[a]] = a;
   P.diagnostics.rounding.variables = 2 * m;
   P.diagnostics.rounding.period_matrix_asymmetry = r.pm.asymmetry;
-  P.diagnostics.rounding.energy_direct = r.energy(P);
+  P.diagnostics.rounding.energy_direct = r.energy(P.periods, P.rounded_periods);
   const Eigen::MatrixXd T = lattice_basis(options.lattice, m);
   Eigen::VectorXd beta(2 * m);
   for (int a = 0; a < m; ++a) {
@@ -114,7 +114,7 @@ PeriodRounding round_with_period_matrix(const Mesh& mesh, const CoverCut& cc, co
   P.diagnostics.rounding.candidates = rr.candidates;
   P.diagnostics.rounding.proven_optimal = rr.proven_optimal;
   P.diagnostics.rounding.stopped_early = rr.stopped_early;
-  P.diagnostics.rounding.energy_rounded = r.energy(P);
+  P.diagnostics.rounding.energy_rounded = r.energy(P.periods, P.rounded_periods);
   return r;
 }
 
@@ -128,11 +128,8 @@ void separate_close_cones(const Mesh& mesh, const CoverCut& cc, const Eigen::Vec
     free_path[j] = rounding.active
                        ? rounding.variable_of_path[j] >= 0
                        : std::find(cc.dependent_path.begin(), cc.dependent_path.end(), j) == cc.dependent_path.end();
-  Parameterization priced;  // only its periods are read
-  priced.periods = P.periods;
   const auto energy = [&](const std::vector<Complex>& rounded) {
-    priced.rounded_periods = rounded;
-    if (rounding.active) return rounding.energy(priced);
+    if (rounding.active) return rounding.energy(P.periods, rounded);
     double sum = 0;
     for (std::size_t j = 0; j < rounded.size(); ++j) sum += std::norm(rounded[j] - P.periods[j]);
     return sum;
@@ -149,7 +146,7 @@ void separate_close_cones(const Mesh& mesh, const CoverCut& cc, const Eigen::Vec
   for (const ConePair& pair : r.coincident) diagnostics.coincident_cones.emplace_back(pair.p, pair.q);
   diagnostics.coincident_cone_pairs_left = r.left;
   for (const ConePair& pair : r.set_apart) diagnostics.separated_cones.emplace_back(pair.p, pair.q);
-  if (r.steps > 0 && rounding.active) diagnostics.energy_rounded = rounding.energy(P);
+  if (r.steps > 0 && rounding.active) diagnostics.energy_rounded = rounding.energy(P.periods, P.rounded_periods);
 }
 
 }  // namespace
@@ -355,7 +352,7 @@ Eigen::VectorXcd round_periods_of(const Mesh& mesh, const CoverCut& cc, const Ha
   if (options.lattice == Lattice::Rotated && options.fix_even_branch_points && cc.b_even > 0) {
     // The parity step with the smallest E_H (period matrix) or, without it, the smallest |d_j|.
     P.diagnostics.unfixed_even_branch_points = fix_even_branch_points(mesh, cc, P.rounded_periods, [&](int j) {
-      return rounding.active && rounding.variable_of_path[j] >= 0 ? rounding.energy(P)
+      return rounding.active && rounding.variable_of_path[j] >= 0 ? rounding.energy(P.periods, P.rounded_periods)
                                                                   : std::abs(P.rounded_periods[j] - P.periods[j]);
     });
   }
