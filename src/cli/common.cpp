@@ -1,5 +1,6 @@
 #include "cli/common.h"
 
+#include <pthread.h>
 #include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <tbb/parallel_for.h>
@@ -123,6 +124,29 @@ void install_interrupt_handler() {
     handle(sig, on_terminating_signal);
   if (!kSanitized)  // the sanitizers report crashes through their own handlers
     for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) handle(sig, on_crash_signal);
+}
+
+int run_watching_signals(const std::function<int()>& job) {
+  sigset_t watched;
+  sigemptyset(&watched);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGXCPU})
+    sigaddset(&watched, sig);
+  const int job_done = SIGRTMIN;  // sent by the job's thread when it returns
+  sigaddset(&watched, job_done);
+  if (pthread_sigmask(SIG_BLOCK, &watched, nullptr) != 0) return job();
+  const pthread_t watcher = pthread_self();
+  int code = kInternal;
+  std::thread worker([&] {
+    code = job();
+    pthread_kill(watcher, job_done);
+  });
+  for (int sig = 0; sig != job_done;) {
+    if (sigwait(&watched, &sig) != 0 || sig == job_done) continue;
+    if (sig == SIGINT && !g_interrupted.exchange(true)) continue;  // the first Ctrl-C asks the stages to stop
+    on_terminating_signal(sig);
+  }
+  worker.join();
+  return code;
 }
 
 bool interrupted() { return g_interrupted.load(); }

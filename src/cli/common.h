@@ -86,6 +86,14 @@ void add_mesh_inputs(CLI::App& cmd, MeshFiles& files, const std::string& output_
 /// and SIGPIPE remove the temporary files of unfinished writes and exit with 128 + signal; SIGSEGV, SIGBUS,
 /// SIGFPE, SIGILL and SIGABRT remove them and then take their default action (not under a sanitizer). \pre none
 void install_interrupt_handler();
+/// Runs `job` on a new thread while the calling thread takes the asynchronous signals (SIGINT, SIGTERM, SIGHUP,
+/// SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGXCPU) with sigwait and acts on them as the handlers of
+/// install_interrupt_handler() do. They stay blocked in every thread the job starts, so a library that swaps in its
+/// own handler for a while (METIS traps SIGTERM while it orders) never receives them. The caller is the main
+/// thread, which the kernel prefers for a signal sent to the process; a thread that existed before (OpenBLAS starts
+/// one) still has the handlers. Returns job's value. \pre called on the main thread before any thread of ours
+/// exists, after install_interrupt_handler(); job does not throw.
+int run_watching_signals(const std::function<int()>& job);
 /// True after Ctrl-C (or request_interrupt()). \pre none
 bool interrupted();
 /// Sets / clears the interrupt flag (tests; also the SIGINT handler's action). \pre none

@@ -6,11 +6,11 @@
 #include "cli/huge_pages.h"
 #include "cli/registry.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// Parses the command line and runs the chosen subcommand; returns the exit code.
+int run_command_line(int argc, char** argv) {
   using namespace quadcover;
-  cli::restart_with_huge_pages(argv);
-  cli::run_start_time();  // --time-limit counts from here
-  cli::install_interrupt_handler();
   CLI::App app{"quadcover: seamless quad-aligned parameterization and quad remeshing (QuadCover, Kälberer)"};
   app.set_version_flag("--version", std::string("quadcover ") + QUADCOVER_VERSION);
   app.require_subcommand(1);
@@ -31,4 +31,14 @@ int main(int argc, char** argv) {
     return code;
   }
   return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace quadcover;
+  cli::restart_with_huge_pages(argv);
+  cli::run_start_time();  // --time-limit counts from here
+  cli::install_interrupt_handler();
+  return cli::run_watching_signals([argc, argv] { return run_command_line(argc, argv); });
 }

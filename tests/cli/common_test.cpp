@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 #include "io/atomic_file.h"
 #include "support/cli_runner.h"
@@ -232,6 +234,56 @@ TEST(Outputs, JsonIsWrittenAtomicallyAndFailureLeavesNoFile) {
   std::size_t count = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++count;
   EXPECT_EQ(count, 1u);  // no temporary left behind
+  fs::remove_all(dir);
+}
+
+// The pattern of the 5-point Laplacian on an m × m grid.
+Eigen::SparseMatrix<Complex> grid_pattern(int m) {
+  std::vector<Eigen::Triplet<Complex>> entries;
+  const auto at = [m](int i, int j) { return i * m + j; };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      entries.emplace_back(at(i, j), at(i, j), 4.0);
+      if (i + 1 < m)
+        entries.emplace_back(at(i + 1, j), at(i, j), -1.0), entries.emplace_back(at(i, j), at(i + 1, j), -1.0);
+      if (j + 1 < m)
+        entries.emplace_back(at(i, j + 1), at(i, j), -1.0), entries.emplace_back(at(i, j), at(i, j + 1), -1.0);
+    }
+  Eigen::SparseMatrix<Complex> A(m * m, m * m);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+// METIS traps SIGTERM with its own handler while it orders: a SIGTERM sent then used to end the ordering, not the
+// process. The watcher thread of run_watching_signals takes it instead. The child orders new grids for up to 10 s
+// (almost all of its time in METIS) while writing a file; SIGTERM after 300 ms must end it with 128 + SIGTERM and no
+// file. Without the CHOLMOD build there is no METIS and the test checks the same exit on the plain job.
+TEST(Cancellation, SigtermDuringAMetisOrderingEndsTheProcess) {
+  const fs::path dir = fresh_dir("metis_signal");
+  const std::string target = (dir / "out.txt").string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    clear_interrupt();
+    install_interrupt_handler();
+    ::_exit(run_watching_signals([&] {
+      write_file_atomically(target, [](std::ostream& out) {
+        out << "x" << std::flush;
+        const auto start = std::chrono::steady_clock::now();
+        for (int m = 200; std::chrono::steady_clock::now() - start < std::chrono::seconds(10); ++m)
+          if (nested_dissection_ordering(grid_pattern(m), 1).empty())
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      });
+      return 0;
+    }));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << "the ordering swallowed SIGTERM";
+  EXPECT_TRUE(fs::is_empty(dir));
   fs::remove_all(dir);
 }
 
