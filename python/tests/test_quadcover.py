@@ -250,11 +250,23 @@ def test_parameterize_relaxation_lowers_arap_and_keeps_the_map_seamless():
         quadcover.parameterize(V, F, field="wobbly")
 
 
-def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_point():
-    # cow: two close cones rounded onto one lattice point leave wrong windings unless set apart (README).
+def test_split_cones_keyword_chooses_which_singularities_of_the_field_are_split():
+    # cow's field has +3/4 and ±1/2 singularities: split into quarters by default, kept with whole turns only.
     V, F = mesh("cow")
-    _, off = quadcover.parameterize(V, F, separate_cones=False)
-    _, on = quadcover.parameterize(V, F)
+    _, default = quadcover.parameterize(V, F, optimize="none")
+    _, whole = quadcover.parameterize(V, F, optimize="none", split_cones=4)
+    assert default["options"]["split_min_quarters"] == 2 and whole["options"]["split_min_quarters"] == 4
+    assert default["field"]["singularity_moves"] > 0 and whole["field"]["singularity_moves"] == 0
+    with pytest.raises(ValueError, match="split_cones"):
+        quadcover.parameterize(V, F, split_cones=1)
+
+
+def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_point():
+    # cow with whole turns split only (its +3/4 cones kept): two close cones rounded onto one lattice point leave
+    # wrong windings unless set apart (README).
+    V, F = mesh("cow")
+    _, off = quadcover.parameterize(V, F, separate_cones=False, split_cones=4)
+    _, on = quadcover.parameterize(V, F, split_cones=4)
     assert off["parameterization"]["wrong_windings"] > 0 and off["rounding"]["separated_cones"] == []
     assert off["rounding"]["coincident_cone_pairs"] > 0
     assert on["parameterization"]["wrong_windings"] == 0 and on["parameterization"]["non_positive_triangles"] == 0

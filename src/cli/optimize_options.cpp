@@ -59,6 +59,13 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--fill", options.fill, kFillHelp)
       ->check(CLI::IsMember({"smooth", "propagate"}))
       ->capture_default_str();
+  cmd.add_option("--split-cones", options.split_min_quarters,
+                 "Split every interior singularity of the field whose index is at least N/4 in absolute value into "
+                 "index ±1/4 ones on nearby vertices (2: half cones too, whose quad vertices have valence 2 or 6; "
+                 "3: from three-quarter cones, a valence-1 vertex; 4: whole turns only); report "
+                 "field.singularity_moves")
+      ->check(CLI::Range(2, 4))
+      ->capture_default_str();
   cmd.add_option("--feature-angle", options.feature_angle,
                  "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
                  "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
@@ -155,6 +162,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.density.target_quads = cli.quads;
   options.field_style = flag("--field", [&] { return parse_field_style(cli.field); });
   options.fill = parse_fill_option(cli.fill);
+  options.split_min_quarters = cli.split_min_quarters;
   options.optimize = flag("--optimize", [&] { return parse_optimize_mode(cli.optimize); });
   options.param.rounding.strategy = flag("--rounding", [&] { return parse_rounding_strategy(cli.rounding); });
   options.max_evaluations = cli.max_iterations;

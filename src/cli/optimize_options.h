@@ -32,6 +32,7 @@ struct OptimizeCliOptions {
   int validity_retries = PipelineOptions{}.validity_retries;  ///< PipelineOptions::validity_retries
   std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
   std::string fill = "smooth";        ///< FieldOptions::fill: smooth or propagate (thesis 5.1.2)
+  int split_min_quarters = PipelineOptions{}.split_min_quarters;  ///< PipelineOptions::split_min_quarters
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)

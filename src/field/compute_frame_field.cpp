@@ -110,7 +110,7 @@ void smooth_field(const Mesh& mesh, const FieldOptions& options, FrameSmoother& 
   r.energy_align = smoother.alignment_energy(alpha);
 }
 
-// Quarter moves along paths (5.2.2) leave no |index| >= 2 quarters; the frames are then smoothed (5.3) once
+// Quarter moves along paths (5.2.2) leave no |index| >= split_min_quarters; the frames are then smoothed (5.3) once
 // more with that matching, starting from the current field (its θ is small, so ±π/2 changes never wrap).
 void split_singularities(const Mesh& mesh, const FieldOptions& options, std::unique_ptr<FrameSmoother>& smoother,
                          FrameFieldResult& r) {

@@ -56,8 +56,11 @@ struct FieldOptions {
   /// vertices (field/singularity_split.h), then smooth once more with that matching. A whole-turn singularity
   /// (index ±1) is invisible to the 4-sheeted cover and folds the parameterization flat.
   bool split_singularities = true;
-  /// Default 4: whole turns only (splitting the |q| = 2, 3 cones as well raises distortion).
-  int split_min_quarters = 4;
+  /// Default 2: every singularity of the split field has |q| = 1 (valence 3 or 5). A +3/4 cone (angle π/2) is one
+  /// quad corner, a vertex of valence 1 that no quad mesh holds (the extraction cut it out as a spike); a +1/2 cone
+  /// is a valence-2 vertex (a doublet) and a -1/2 cone a valence-6 one (BENCHMARKS.md, "Half and three-quarter cones
+  /// split"). 4 splits whole turns only.
+  int split_min_quarters = 2;
 };
 
 /// Presets of the field stage for the commands and the Python module (`--field`).

@@ -30,6 +30,7 @@ nlohmann::json mesh_json(const Mesh& mesh) {
 
 nlohmann::json options_json(const PipelineOptions& o) {
   return {{"field", to_string(o.field_style)},
+          {"split_min_quarters", o.split_min_quarters},
           {"optimize", to_string(o.optimize)},
           {"max_iterations", o.max_evaluations},
           {"keep_better", o.keep_better},
@@ -70,6 +71,7 @@ nlohmann::json field_json(const ParamJob& job) {
     list.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
   }
   return {{"branch_points_initial", job.field_branch_points},
+          {"singularity_moves", job.field_singularity_moves},
           {"branch_points", list},
           {"b_odd", odd},
           {"b_even", even},

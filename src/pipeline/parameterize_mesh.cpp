@@ -443,6 +443,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   const Mesh& mesh = job.mesh(input);
   const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
+  job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
   fix_default_density(mesh, field.field, param.density);  // one scale for the optimization, keep-better and the map
   OptimizeOptions oo = optimize_stage_options(options, param);

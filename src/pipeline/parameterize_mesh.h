@@ -42,6 +42,8 @@ struct ParamJob {
   FoldRefinementReport fold_refinement;  ///< what the fold refinement did (pipeline/fold_refinement.h)
   FrameField field;             ///< the field the map was made from (optimized or original, see optimize["kept"])
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
+  /// Quarters the field stage moved to split singularities of |index| >= 1/2 (FieldOptions::split_min_quarters).
+  int field_singularity_moves = 0;
   Parameterization map;
   nlohmann::json optimize;            ///< the "optimize" object (optimize/optimize_field.h to_json, plus "kept")
   DensityReport density;              ///< how a requested quad count was met

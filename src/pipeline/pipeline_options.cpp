@@ -8,6 +8,8 @@ namespace quadcover {
 
 void validate(const PipelineOptions& o) {
   const ParamOptions& p = o.param;
+  if (o.split_min_quarters < 2)
+    throw InputError("split_cones", 0, "must be >= 2 (2 = every half cone, 4 = whole turns only)");
   if (p.density.edge_length < 0) throw InputError("edge_length", 0, "must be > 0 (0 = default density)");
   if (p.density.target_quads < 0) throw InputError("quads", 0, "must be > 0 (0 = default density)");
   if (p.density.edge_length > 0 && p.density.target_quads > 0)
@@ -34,6 +36,7 @@ FieldOptions field_stage_options(const PipelineOptions& options) {
   FieldOptions o = field_options(options.field_style);
   o.features = options.param.features;
   o.fill = options.fill;
+  o.split_min_quarters = options.split_min_quarters;
   return o;
 }
 

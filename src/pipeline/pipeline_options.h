@@ -15,6 +15,9 @@ namespace quadcover {
 struct PipelineOptions {
   /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5) or smoothest.
   FieldStyle field_style = FieldStyle::Curvature;
+  /// The field stage splits its singularities of |quarter index| >= this into quarter-index ones (>= 2;
+  /// FieldOptions::split_min_quarters).
+  int split_min_quarters = FieldOptions{}.split_min_quarters;
   /// Frames of the untrusted faces before the smoothing (FieldOptions::fill): the power-field solve, or the
   /// thesis's trusted propagation (5.1.2).
   Fill fill = Fill::Smooth;

@@ -1,6 +1,7 @@
 // `param` / `remesh --fill propagate|smooth` through the real binary: the thesis's trusted propagation (5.1.2) is
 // reachable from the jobs, it changes the field (branch points of the field stage, the written map), the default is
 // the smooth fill (same bytes as `--fill smooth`), the report names the fill, and another word is refused (exit 2).
+// Also the field stage's other choice, --split-cones.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,6 +46,28 @@ TEST_F(FillCli, RemeshTakesItToo) {
   const nlohmann::json propagate = run("remesh", "quads", "--fill propagate --smooth-quads 0");
   EXPECT_EQ(propagate["options"]["fill"], "propagate");
   EXPECT_GT(propagate["quad_mesh"]["quads"].get<int>(), 0);
+}
+
+// --split-cones N: cow's field has cones of index +3/4 and ±1/2; the default (2) splits them all into quarters and
+// says how many quarters moved, 4 (whole turns only) moves none and writes another map; 1 is refused.
+TEST_F(FillCli, SplitConesChoosesWhichSingularitiesAreSplit) {
+  const auto run_cow = [&](const std::string& name, const std::string& extra) {
+    return quadcover::testing::run_cli_report(
+        "param " + quadcover::testing::data_path("cow") + " -o " + path(name + ".obj") + " --optimize none -q " + extra,
+        path(name + ".json"));
+  };
+  const nlohmann::json by_default = run_cow("default", ""), whole_turns = run_cow("whole", "--split-cones 4");
+  EXPECT_EQ(by_default["options"]["split_min_quarters"], 2);
+  EXPECT_EQ(whole_turns["options"]["split_min_quarters"], 4);
+  EXPECT_GE(by_default["field"]["singularity_moves"].get<int>(), 3 * 2 + 2 * 2);  // two +3/4, two ±1/2 at least
+  EXPECT_EQ(whole_turns["field"]["singularity_moves"], 0);
+  EXPECT_NE(slurp(path("default.obj")), slurp(path("whole.obj")));
+  const auto r =
+      run_cli("param " + quadcover::testing::data_path("cow") + " -o " + path("refused.obj") + " --split-cones 1 -q",
+              path("err.txt"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--split-cones"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("refused.obj")));
 }
 
 TEST_F(FillCli, AnotherWordIsRefused) {

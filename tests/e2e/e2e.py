@@ -234,8 +234,9 @@ def check_remesh(binary, mesh_path, name, out, info):
                 ex.get("merged_polygons", 0) + ex.get("degenerate_faces", 0) + ex.get("removed_spikes", 0))
     # Issue 14 item 5: from an injective map with every cone where the field put it (0 non-positive triangles, 0
     # wrong windings) on a closed surface, the extraction repairs nothing; its repair counters are a fallback.
-    # A +3/4 cone of the field (cone angle π/2) is one quad corner: a valence-1 vertex, removed as one spike with its
-    # degenerate face; those are the field's, not a fold's, and are said on stderr.
+    # A +3/4 cone of the map (cone angle π/2) is one quad corner: a valence-1 vertex, removed as one spike with its
+    # degenerate face; those are the cones', not a fold's, and are said on stderr. The field stage splits such cones
+    # of the field; a close-cone merge could still make one.
     pm = rep["parameterization"]
     spikes = pm["branch_points_by_index"].get("3", 0)
     by_cones = min(ex.get("degenerate_faces", 0), spikes) + min(ex.get("removed_spikes", 0), spikes)

@@ -15,9 +15,16 @@
 namespace quadcover {
 namespace {
 
+// cow's field with whole turns split only (its two +3/4 cones kept), whose rounding puts close cones on one point.
+FieldOptions whole_turns_split() {
+  FieldOptions o;
+  o.split_min_quarters = 4;
+  return o;
+}
+
 struct SolvedCow {
   Mesh mesh = testing::load_test_mesh("cow");
-  FrameField field = compute_frame_field(mesh);
+  FrameField field = compute_frame_field(mesh, whole_turns_split());
   CoverCut cut = build_cover_cut(mesh, field.matching);
 
   Parameterization map(bool separate) const {

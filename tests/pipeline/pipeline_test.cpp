@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/errors.h"
+#include "field/indices.h"
 #include "metrics/param_quality.h"
 #include "metrics/quad_quality.h"
 #include "param/seams.h"
@@ -25,7 +26,8 @@ nlohmann::json without_costs(nlohmann::json r) {
 
 TEST(PipelineOptions, EveryContradictoryOrOutOfRangeOptionIsNamed) {
   const std::vector<std::pair<std::function<void(PipelineOptions&)>, std::string>> cases = {
-      {[](PipelineOptions& o) { o.param.density.edge_length = 0.1, o.param.density.target_quads = 100; }, "edge_length/quads"},
+      {[](PipelineOptions& o) { o.param.density.edge_length = 0.1, o.param.density.target_quads = 100; },
+       "edge_length/quads"},
       {[](PipelineOptions& o) { o.param.density.edge_length = -1; }, "edge_length"},
       {[](PipelineOptions& o) { o.param.density.target_quads = -5; }, "quads"},
       {[](PipelineOptions& o) { o.param.stiffening.max_iterations = -1; }, "stiffening"},
@@ -33,6 +35,7 @@ TEST(PipelineOptions, EveryContradictoryOrOutOfRangeOptionIsNamed) {
       {[](PipelineOptions& o) { o.max_evaluations = -2; }, "max_iterations"},
       {[](PipelineOptions& o) { o.smoothing.iterations = -1; }, "smooth_quads"},
       {[](PipelineOptions& o) { o.smoothing.rigidity = 1.5; }, "smooth_rigidity"},
+      {[](PipelineOptions& o) { o.split_min_quarters = 1; }, "split_cones"},
   };
   EXPECT_NO_THROW(validate(PipelineOptions{}));
   for (const auto& [change, name] : cases) {
@@ -88,6 +91,30 @@ TEST(RemeshMesh, ReportIsTheQuadMeshItReturns) {
   EXPECT_EQ(s["faces"], q.faces);
   EXPECT_EQ(s["input_faces"], mesh.num_faces());
   EXPECT_FALSE(s["optimize"].contains("log"));
+}
+
+// Issue 14: a +3/4 cone (angle π/2) is one quad corner, a vertex of valence 1 that the extraction could only cut
+// out as a spike. cow's field has two; the field stage splits them (FieldOptions::split_min_quarters), so the
+// default remesh has no branch point of |index| >= 3/4, no spike removed and no vertex of valence 1. (Its map may
+// still have ±1/2 cones: the close-cone merges make them.)
+TEST(RemeshMesh, ThreeQuarterConesLeaveNoVertexOfValenceOne) {
+  const Mesh mesh = testing::load_test_mesh("cow");
+  FieldOptions unsplit = field_stage_options(PipelineOptions{});
+  unsplit.split_singularities = false;
+  int three_quarter = 0;
+  for (const BranchPoint& b : branch_points(mesh, compute_frame_field(mesh, unsplit)))
+    three_quarter += b.quarter_index == 3;
+  ASSERT_GT(three_quarter, 0) << "the field no longer has the cones this test is about";
+  const RemeshJob job = remesh_mesh(mesh, PipelineOptions{});
+  for (const BranchPoint& b : job.param.map.branch_points) EXPECT_LT(std::abs(b.quarter_index), 3) << b.vertex;
+  EXPECT_EQ(job.extraction.report.removed_spikes, 0);
+  std::vector<int> valence(static_cast<std::size_t>(job.extraction.mesh.num_vertices()), 0);
+  for (const auto& face : job.extraction.mesh.faces)
+    for (int v : face) ++valence[static_cast<std::size_t>(v)];
+  EXPECT_EQ(std::count(valence.begin(), valence.end(), 1), 0);
+  EXPECT_EQ(job.extraction.report.non_quads, 0);
+  EXPECT_EQ(remesh_report(mesh, job)["field"]["singularity_moves"], job.param.field_singularity_moves);
+  EXPECT_GE(job.param.field_singularity_moves, 3 * three_quarter);
 }
 
 // A requested quad count is met within 3 % on meshes of different shapes (sphere, torus, the bunny), where h =
