@@ -269,6 +269,30 @@ def needle_triangles():
     return orient(V, F, lambda c: c)
 
 
+def sharp_tetrahedron():
+    # Hard: a tall tetrahedron whose side faces meet at 30-degree apex angles (a +3/4 cone of the field at the
+    # apex: one quad corner) and whose base corners carry half cones; 40 x 40 subdivided faces.
+    half = np.radians(15.0)
+    slant = 0.5 / np.tan(half)
+    height = np.sqrt(slant**2 - 1 / 12)
+    B = np.array([[0, 0, 0], [1, 0, 0], [0.5, np.sqrt(3) / 2, 0]])
+    apex = np.array([0.5, np.sqrt(3) / 6, height])
+    n, pts, tris = 40, [], []
+    for P, Q, R in ((B[0], B[2], B[1]), (B[0], B[1], apex), (B[1], B[2], apex), (B[2], B[0], apex)):
+        ids = {}
+        for i in range(n + 1):
+            for j in range(n + 1 - i):
+                ids[i, j] = len(pts)
+                pts.append(P + (Q - P) * i / n + (R - P) * j / n)
+        for i in range(n):
+            for j in range(n - i):
+                tris.append((ids[i, j], ids[i + 1, j], ids[i, j + 1]))
+                if i + j < n - 1:
+                    tris.append((ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]))
+    V, F = weld(np.array(pts), tris)
+    return orient(V, F, lambda c: c - V.mean(axis=0))
+
+
 # name -> (generator, expected (boundary loops, genus, components), expected orientation of a closed surface)
 CASES = {
     "thin_box": (thin_box, (0, 0, 1), "outward"),
@@ -281,6 +305,7 @@ CASES = {
     "sharp_bracket": (sharp_bracket, (0, 1, 1), "outward"),
     "inverted_torus": (inverted_torus, (0, 1, 1), "inward"),
     "needle_triangles": (needle_triangles, (0, 0, 1), "outward"),
+    "sharp_tetrahedron": (sharp_tetrahedron, (0, 0, 1), "outward"),
 }
 
 # ---------------------------------------------------------------- self-check
