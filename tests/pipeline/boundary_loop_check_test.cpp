@@ -48,7 +48,9 @@ void expect_loop_matches_mesh(const Mesh& mesh, const std::vector<BoundaryLoopCh
   }
   EXPECT_EQ(found, 1);
   EXPECT_LE(c.enforced_lines, c.lines);
-  EXPECT_EQ(c.reason.empty(), c.non_quads == 0);
+  EXPECT_EQ(c.reason.empty(), c.non_quads == 0 && !c.closed_over);
+  const int v = c.first_vertex - 1;
+  EXPECT_EQ(c.at, mesh.V().row(v).transpose());
 }
 
 TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
@@ -75,9 +77,11 @@ TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
   EXPECT_GT(h.non_quads, 0);
   EXPECT_EQ(h.reason.rfind("2.0 grid units around, too short for a ring of quads (4)", 0), 0u) << h.reason;
   EXPECT_NE(h.reason.find("at about 4.0 times the quads"), std::string::npos) << h.reason;
-  const std::string named =
-      "boundary loop " + std::to_string(hole) + " (through vertex " + std::to_string(h.first_vertex) +
-      ", 8 edges, 2.0 grid units): " + std::to_string(h.non_quads) + " non-quad faces, " + h.reason;
+  EXPECT_FALSE(h.closed_over);
+  const std::string named = "boundary loop " + std::to_string(hole) + " (through vertex " +
+                            std::to_string(h.first_vertex) +
+                            " at (0.475, 0.475, 0), 8 edges, 2.0 grid units): " + std::to_string(h.non_quads) +
+                            " non-quad faces, " + h.reason;
   EXPECT_NE(std::find(job.param.warnings.begin(), job.param.warnings.end(), named), job.param.warnings.end());
 
   // By default the clipped polygons around the hole are made quads, and the hole stays.
@@ -87,6 +91,33 @@ TEST(BoundaryLoopCheck, AHoleShorterThanARingOfQuadsIsNamedWithItsLength) {
   EXPECT_TRUE(quads.surface.same_topology);
   EXPECT_EQ(quads.surface.output.boundary_loops, 2);
   for (const BoundaryLoopCheck& c : quads.boundary_loops) EXPECT_EQ(c.non_quads, 0);
+}
+
+// Issue 14 item 4 / issue 15 item 3: a hole of 1 grid unit around fits inside one quad, which covers it. The quad mesh
+// then has one boundary loop fewer than the input, and the hole's record says so (closed over, why, and the density
+// that would keep it), as does a warning with its place; the outer loop is followed.
+TEST(BoundaryLoopCheck, AHoleTheQuadsCoverIsNamedClosedOverWithItsPlace) {
+  const Mesh plate = plate_with_small_hole();
+  PipelineOptions options;
+  options.param.density.edge_length = 0.2;  // the hole is 0.2 around: 1 grid unit
+  options.validity_retries = 0;
+  const RemeshJob job = remesh_mesh(plate, options);
+  ASSERT_FALSE(job.param.refinement.mesh);
+  ASSERT_EQ(job.surface.output.boundary_loops, 1) << "the case this test is about no longer occurs";
+  ASSERT_EQ(job.boundary_loops.size(), 2u);
+  for (std::size_t k = 0; k < job.boundary_loops.size(); ++k) expect_loop_matches_mesh(plate, job.boundary_loops, k);
+  const BoundaryLoopCheck& outer = job.boundary_loops[0];
+  const BoundaryLoopCheck& hole = job.boundary_loops[1];
+  EXPECT_FALSE(outer.closed_over);
+  EXPECT_TRUE(hole.closed_over);
+  EXPECT_EQ(hole.reason.rfind("closed over by the quads: 1.0 grid units around, too short for a ring of quads (4)", 0),
+            0u)
+      << hole.reason;
+  EXPECT_NE(hole.reason.find("at about 16.0 times the quads"), std::string::npos) << hole.reason;
+  const std::string named = "boundary loop 2 (through vertex " + std::to_string(hole.first_vertex) +
+                            " at (0.475, 0.475, 0), 8 edges, 1.0 grid units): " + hole.reason;
+  EXPECT_NE(std::find(job.param.warnings.begin(), job.param.warnings.end(), named), job.param.warnings.end());
+  EXPECT_TRUE(to_json(job.boundary_loops)[1]["closed_over"].get<bool>());
 }
 
 TEST(BoundaryLoopCheck, ALoopOffItsIsoLineSaysWhyAndIsQuadsWhenTheCurvesAreRounded) {
