@@ -5,12 +5,14 @@
 # Usage: bench/hard_cases.sh [BUILD_DIR] [OUTDIR]   (default: build, and a temporary folder removed at exit)
 # Exits 0 whatever quadcover does (a failing case is a row of the table); 1 when the generator or checker fails.
 # HARD_CASES_TIMEOUT (seconds, default 1200) bounds each quadcover command (exit 124 = timed out).
+# HARD_CASES_ARGS (default empty) is added to both commands, e.g. "--faces 200" for coarse maps with close cones.
 set -uo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 build=$(realpath -m "${1:-$repo/build}")
 bin="$build/quadcover"
 py=/usr/bin/python3
 limit=${HARD_CASES_TIMEOUT:-1200}
+read -r -a extra <<<"${HARD_CASES_ARGS:-}"
 if [ $# -ge 2 ]; then
   out=$(realpath -m "$2")
   mkdir -p "$out" || exit 1
@@ -38,8 +40,8 @@ echo "## Hard cases"
 echo
 echo '```'
 echo "$py $repo/bench/hard_cases.py $out"
-echo "$bin param $out/M.obj -o $out/M.param.obj -q --report $out/M.param.json"
-echo "$bin remesh $out/M.obj -o $out/M.quads.obj -q --report $out/M.quads.json"
+echo "$bin param $out/M.obj -o $out/M.param.obj -q --report $out/M.param.json ${extra[*]}"
+echo "$bin remesh $out/M.obj -o $out/M.quads.obj -q --report $out/M.quads.json ${extra[*]}"
 echo "$py $repo/bench/check_outputs.py $out $out/runs.tsv"
 echo '```'
 echo
@@ -58,8 +60,8 @@ for mesh in "$out"/*.obj; do
   name=$(basename "$mesh" .obj)
   case $name in *.param | *.quads) continue ;; esac
   rm -f "$out/$name".{param,quads}.{obj,json} # no stale outputs from an earlier run
-  p=$(run "$name" param "$bin" param "$mesh" -o "$out/$name.param.obj" -q --report "$out/$name.param.json")
-  r=$(run "$name" remesh "$bin" remesh "$mesh" -o "$out/$name.quads.obj" -q --report "$out/$name.quads.json")
+  p=$(run "$name" param "$bin" param "$mesh" -o "$out/$name.param.obj" -q --report "$out/$name.param.json" "${extra[@]}")
+  r=$(run "$name" remesh "$bin" remesh "$mesh" -o "$out/$name.quads.obj" -q --report "$out/$name.quads.json" "${extra[@]}")
   echo "$name $p $r" >>"$out/runs.tsv"
   echo "$name: param $p, remesh $r (exit seconds stderr-lines)" >&2
 done
