@@ -66,6 +66,7 @@ RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, Progres
   job.boundary_loops =
       check_boundary_loops(mesh, input.num_vertices(), map, job.extraction.mesh, options.param.alignment);
   for (std::string& w : boundary_loop_warnings(job.boundary_loops)) job.param.warnings.push_back(std::move(w));
+  lap("surface_check");
   return job;
 }
 

@@ -25,8 +25,8 @@ TEST(JobMemory, RemeshReportHasAPeakForEveryTimedStage) {
   testing::expect_memory_matches_seconds(r);
   EXPECT_EQ(r["memory"]["input_faces"], mesh.num_faces());
   // In pipeline order, with the parameterization's steps and the report's own metrics.
-  const std::vector<std::string> order = {"field", "optimize", "param_cut", "param_assemble", "extract", "smooth",
-                                          "metrics"};
+  const std::vector<std::string> order = {"field",   "optimize", "keep_better",   "param_cut", "param_assemble",
+                                          "extract", "smooth",   "surface_check", "metrics"};
   for (std::size_t i = 0; i + 1 < order.size(); ++i) {
     EXPECT_GE(testing::memory_stage_index(r, order[i]), 0) << order[i];
     EXPECT_LT(testing::memory_stage_index(r, order[i]), testing::memory_stage_index(r, order[i + 1])) << order[i];
