@@ -9,6 +9,9 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hard_cases import UnionFind  # noqa: E402 (the generator's, one implementation)
+
 TAU = 1e-8  # relative area below which a triangle of the map counts as collapsed
 
 
@@ -51,21 +54,6 @@ def map_validity(path):
     a_3d = 0.5 * np.linalg.norm(np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), axis=1)
     a_ref = a_3d * (a_uv.sum() / a_3d.sum())
     return len(tris), int((a_uv < -TAU * a_ref).sum()), int((np.abs(a_uv) <= TAU * a_ref).sum())
-
-
-class UnionFind:
-    def __init__(self):
-        self.parent = {}
-
-    def find(self, a):
-        self.parent.setdefault(a, a)
-        while self.parent[a] != a:
-            self.parent[a] = self.parent[self.parent[a]]
-            a = self.parent[a]
-        return a
-
-    def union(self, a, b):
-        self.parent[self.find(a)] = self.find(b)
 
 
 def topology(path):

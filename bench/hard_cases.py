@@ -312,10 +312,13 @@ CASES = {
 
 
 class UnionFind:
-    def __init__(self, n):
-        self.parent = list(range(n))
+    """Disjoint sets of any hashable items (also bench/check_outputs.py's)."""
+
+    def __init__(self):
+        self.parent = {}
 
     def find(self, a):
+        self.parent.setdefault(a, a)
         while self.parent[a] != a:
             self.parent[a] = self.parent[self.parent[a]]
             a = self.parent[a]
@@ -343,13 +346,13 @@ def check(V, F):
         problems.append("%d degenerate triangles" % (area <= 1e-12 * area.mean()).sum())
     if not 500 <= len(F) <= 20000:
         problems.append("%d triangles, not 500-20000" % len(F))
-    uf = UnionFind(len(V))
+    uf = UnionFind()
     for a, b in count:
         uf.union(a, b)
     comps = {uf.find(v) for v in range(len(V))}
     bedges = [e for e, c in count.items() if c == 1]
     # boundary loops = cycle rank of the boundary edge graph (exact for disjoint loops, also counts touching ones)
-    buf = UnionFind(len(V))
+    buf = UnionFind()
     for a, b in bedges:
         buf.union(a, b)
     bverts = {v for e in bedges for v in e}
@@ -372,7 +375,7 @@ def pinched_vertices(F):
     for v, link in links.items():
         ws = sorted({w for e in link for w in e})
         index = {w: i for i, w in enumerate(ws)}
-        uf = UnionFind(len(ws))
+        uf = UnionFind()
         for w1, w2 in link:
             uf.union(index[w1], index[w2])
         fans = len({uf.find(i) for i in range(len(ws))})
