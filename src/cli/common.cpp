@@ -142,8 +142,7 @@ int run_watching_signals(const std::function<int()>& job) {
   });
   for (int sig = 0; sig != job_done;) {
     if (sigwait(&watched, &sig) != 0 || sig == job_done) continue;
-    if (sig == SIGINT && !g_interrupted.exchange(true)) continue;  // the first Ctrl-C asks the stages to stop
-    on_terminating_signal(sig);
+    (sig == SIGINT ? on_sigint : on_terminating_signal)(sig);  // as the handlers do
   }
   worker.join();
   return code;

@@ -16,6 +16,7 @@
 #include "calculus/stiffness.h"
 #include "calculus_test_util.h"
 #include "common/errors.h"
+#include "support/grid_matrix.h"
 
 namespace quadcover {
 namespace {
@@ -301,25 +302,11 @@ TEST(SparseCholesky, NestedDissectionOfAKnownPatternIsTheKeptOne) {
   EXPECT_TRUE(nested_dissection_ordering(A, static_cast<int>(A.rows()) + 1).empty());  // below min_size
 }
 
-// The 5-point Laplacian of a k by k grid plus the identity: SPD, k² rows.
-Eigen::SparseMatrix<double> grid_matrix(int k) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) {
-      const int p = i * k + j;
-      t.emplace_back(p, p, 5.0);
-      if (i + 1 < k) t.emplace_back(p, p + k, -1.0), t.emplace_back(p + k, p, -1.0);
-      if (j + 1 < k) t.emplace_back(p, p + 1, -1.0), t.emplace_back(p + 1, p, -1.0);
-    }
-  Eigen::SparseMatrix<double> A(k * k, k * k);
-  A.setFromTriplets(t.begin(), t.end());
-  return A;
-}
-
 // CHOLMOD's ordering of a large pattern is kept and used for the next matrix of that pattern: the factor is the
 // same bit for bit as the first one (the ordering is not chosen anew, but the choice would be the same).
 TEST(SparseCholesky, KeptChoiceOfOrderingGivesTheSameFactor) {
-  const Eigen::SparseMatrix<double> A = grid_matrix(120);  // 14400 rows: above the size whose orderings are kept
+  const Eigen::SparseMatrix<double> A =
+      testing::grid_matrix<double>(120);  // 14400 rows: above the size whose orderings are kept
   const Eigen::VectorXd b = random_vector(A.rows(), 64);
   for (const CholeskyBackend backend : backends()) {
     SparseCholesky<double> first(backend), second(backend);

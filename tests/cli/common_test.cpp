@@ -18,6 +18,7 @@
 #include "common/errors.h"
 #include "io/atomic_file.h"
 #include "support/cli_runner.h"
+#include "support/grid_matrix.h"
 #include "support/test_meshes.h"
 
 namespace quadcover::cli {
@@ -237,23 +238,6 @@ TEST(Outputs, JsonIsWrittenAtomicallyAndFailureLeavesNoFile) {
   fs::remove_all(dir);
 }
 
-// The pattern of the 5-point Laplacian on an m × m grid.
-Eigen::SparseMatrix<Complex> grid_pattern(int m) {
-  std::vector<Eigen::Triplet<Complex>> entries;
-  const auto at = [m](int i, int j) { return i * m + j; };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      entries.emplace_back(at(i, j), at(i, j), 4.0);
-      if (i + 1 < m)
-        entries.emplace_back(at(i + 1, j), at(i, j), -1.0), entries.emplace_back(at(i, j), at(i + 1, j), -1.0);
-      if (j + 1 < m)
-        entries.emplace_back(at(i, j + 1), at(i, j), -1.0), entries.emplace_back(at(i, j), at(i, j + 1), -1.0);
-    }
-  Eigen::SparseMatrix<Complex> A(m * m, m * m);
-  A.setFromTriplets(entries.begin(), entries.end());
-  return A;
-}
-
 // METIS traps SIGTERM with its own handler while it orders: a SIGTERM sent then used to end the ordering, not the
 // process. The watcher thread of run_watching_signals takes it instead. The child orders new grids for up to 10 s
 // (almost all of its time in METIS) while writing a file; SIGTERM after 300 ms must end it with 128 + SIGTERM and no
@@ -271,7 +255,7 @@ TEST(Cancellation, SigtermDuringAMetisOrderingEndsTheProcess) {
         out << "x" << std::flush;
         const auto start = std::chrono::steady_clock::now();
         for (int m = 200; std::chrono::steady_clock::now() - start < std::chrono::seconds(10); ++m)
-          if (nested_dissection_ordering(grid_pattern(m), 1).empty())
+          if (nested_dissection_ordering(testing::grid_matrix<Complex>(m), 1).empty())
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
       });
       return 0;
