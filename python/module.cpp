@@ -148,6 +148,7 @@ struct JobArgs {
   bool merge_cones = PipelineOptions{}.merge_coincident_cones, move_cones = PipelineOptions{}.move_wound_cones;
   bool separate_cones = PipelineOptions{}.separate_coincident_cones;
   int split_cones = PipelineOptions{}.split_min_quarters;
+  bool cancel_close_cones = PipelineOptions{}.cancel_close_cones;
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -174,6 +175,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.move_wound_cones = a.move_cones;
   o.separate_coincident_cones = a.separate_cones;
   o.split_min_quarters = a.split_cones;
+  o.cancel_close_cones = a.cancel_close_cones;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -375,6 +377,8 @@ constexpr const char* kParameterizeDoc =
     "again with them set apart by re-rounded periods (the CLI's --separate-cones). "
     "split_cones: split every interior singularity of the field of index at least split_cones/4 in absolute value "
     "into ±1/4 ones (2, 3 or 4 = whole turns only; the CLI's --split-cones). "
+    "cancel_close_cones: before the map, cancel the branch point pairs of opposite index less than one quad edge "
+    "apart (the CLI's --cancel-close-cones; report field.cancelled_close_pairs). "
     "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
     "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
     "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
@@ -393,13 +397,30 @@ JobArgs job_args(double edge_length, int quads, int faces, const std::string& la
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle, bool align_curves,
                  int fold_refinement_rounds, int validity_retries, bool round_curves, bool merge_cones, bool move_cones,
-                 bool separate_cones, int split_cones) {
+                 bool separate_cones, int split_cones, bool cancel_close_cones) {
   const double angle = feature_angle_degrees(feature_angle);
-  return JobArgs{edge_length,      quads,        faces,       lattice,        optimize,
-                 rounding,         field,        fill,        max_iterations, keep_better,
-                 stiffening,       relaxation,   angle,       align_curves,   fold_refinement_rounds,
-                 validity_retries, round_curves, merge_cones, move_cones,     separate_cones,
-                 split_cones};
+  return JobArgs{edge_length,
+                 quads,
+                 faces,
+                 lattice,
+                 optimize,
+                 rounding,
+                 field,
+                 fill,
+                 max_iterations,
+                 keep_better,
+                 stiffening,
+                 relaxation,
+                 angle,
+                 align_curves,
+                 fold_refinement_rounds,
+                 validity_retries,
+                 round_curves,
+                 merge_cones,
+                 move_cones,
+                 separate_cones,
+                 split_cones,
+                 cancel_close_cones};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -411,12 +432,12 @@ void def_jobs(py::module_& m) {
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
          bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
-         py::object progress) {
+         bool cancel_close_cones, py::object progress) {
         return parameterize_py(
             V, F,
             job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
                      relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones),
+                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones),
             std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -431,7 +452,8 @@ void def_jobs(py::module_& m) {
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
       py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
-      py::arg("split_cones") = PipelineOptions{}.split_min_quarters, py::arg("progress") = py::none(),
+      py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
+      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones, py::arg("progress") = py::none(),
       kParameterizeDoc);
   m.def(
       "remesh",
@@ -439,13 +461,13 @@ void def_jobs(py::module_& m) {
          const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones, int smooth_quads,
-         double smooth_rigidity, bool boundary_quads, py::object progress) {
+         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
+         bool cancel_close_cones, int smooth_quads, double smooth_rigidity, bool boundary_quads, py::object progress) {
         return remesh_py(
             V, F,
             job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
                      relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones),
+                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones),
             smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -461,6 +483,7 @@ void def_jobs(py::module_& m) {
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
       py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
       py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
+      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
       py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("progress") = py::none(),

@@ -262,11 +262,11 @@ def test_split_cones_keyword_chooses_which_singularities_of_the_field_are_split(
 
 
 def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_point():
-    # cow with whole turns split only (its +3/4 cones kept): two close cones rounded onto one lattice point leave
-    # wrong windings unless set apart (README).
+    # cow with whole turns split only (its +3/4 cones kept) and its close opposite pairs kept: two close cones
+    # rounded onto one lattice point leave wrong windings unless set apart (README).
     V, F = mesh("cow")
-    _, off = quadcover.parameterize(V, F, separate_cones=False, split_cones=4)
-    _, on = quadcover.parameterize(V, F, split_cones=4)
+    _, off = quadcover.parameterize(V, F, separate_cones=False, split_cones=4, cancel_close_cones=False)
+    _, on = quadcover.parameterize(V, F, split_cones=4, cancel_close_cones=False)
     assert off["parameterization"]["wrong_windings"] > 0 and off["rounding"]["separated_cones"] == []
     assert off["rounding"]["coincident_cone_pairs"] > 0
     assert on["parameterization"]["wrong_windings"] == 0 and on["parameterization"]["non_positive_triangles"] == 0
@@ -275,3 +275,16 @@ def test_separate_cones_keyword_sets_apart_the_cones_the_rounding_put_on_one_poi
     assert off["untangling"]["cone_separation"]["tried"] is False
     assert on["untangling"]["cone_separation"] == {"tried": True, "kept": True, "non_positive_triangles": 0,
                                                    "wrong_windings": 0}
+
+
+def test_cancel_close_cones_keyword_cancels_opposite_pairs_closer_than_a_quad_edge():
+    # cow's field (no optimization) has opposite branch points less than one quad edge apart; cancelled by default.
+    V, F = mesh("cow")
+    plain = dict(optimize="none", merge_cones=False, move_cones=False, separate_cones=False,
+                 fold_refinement_rounds=0, validity_retries=0)
+    _, on = quadcover.parameterize(V, F, **plain)
+    _, off = quadcover.parameterize(V, F, cancel_close_cones=False, **plain)
+    cancelled = on["field"]["cancelled_close_pairs"]
+    assert cancelled["original"] > 0 and cancelled["optimized"] == 0
+    assert off["field"]["cancelled_close_pairs"] == {"original": 0, "optimized": 0}
+    assert len(off["field"]["branch_points"]) - len(on["field"]["branch_points"]) == 2 * cancelled["original"]

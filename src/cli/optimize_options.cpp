@@ -20,6 +20,10 @@ void add_switch(CLI::App& cmd, const std::string& name, bool& value, const std::
 
 /// The repairs and retries that make the map valid (issue 14): cone merges and moves, fold refinement, retries.
 void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
+  add_switch(cmd, "--cancel-close-cones", options.cancel_close_cones,
+             "Before the map, cancel the branch point pairs of opposite index less than one quad edge apart (they "
+             "would land on one lattice point or on neighbouring ones, and the map fold between them); report "
+             "field.cancelled_close_pairs");
   add_switch(cmd, "--merge-cones", options.merge_cones,
              "Merge branch point pairs the map puts on one lattice point into one cone and solve the map again when "
              "that leaves fewer flipped or collapsed triangles");
@@ -167,6 +171,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.rounding.strategy = flag("--rounding", [&] { return parse_rounding_strategy(cli.rounding); });
   options.max_evaluations = cli.max_iterations;
   options.keep_better = cli.keep_better;
+  options.cancel_close_cones = cli.cancel_close_cones;
   options.merge_coincident_cones = cli.merge_cones;
   options.move_wound_cones = cli.move_cones;
   options.separate_coincident_cones = cli.separate_cones;

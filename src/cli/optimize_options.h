@@ -25,6 +25,7 @@ struct OptimizeCliOptions {
   std::string rounding = "search3";   ///< see param/period_rounding.h
   long max_iterations = kAutoBudget;  ///< E_D evaluations of Algorithm 6.1 (0 = unlimited, -1 = auto)
   bool keep_better = true;            ///< see parameterize_best()
+  bool cancel_close_cones = true;     ///< PipelineOptions::cancel_close_cones
   bool merge_cones = true;            ///< PipelineOptions::merge_coincident_cones
   bool move_cones = true;             ///< PipelineOptions::move_wound_cones
   bool separate_cones = true;         ///< PipelineOptions::separate_coincident_cones

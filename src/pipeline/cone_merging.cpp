@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <queue>
+#include <tuple>
+#include <unordered_map>
 
 #include "common/quarter_turn.h"
 #include "field/indices.h"
@@ -130,6 +133,59 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
     used[c] = used[n] = 1;
   }
   return moves;
+}
+
+namespace {
+
+/// The vertices within `radius` of p along the mesh edges, with their distances (Dijkstra, bounded).
+std::vector<std::pair<int, double>> vertices_within(const Mesh& mesh, int p, double radius) {
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
+  std::unordered_map<int, double> best{{p, 0.0}};
+  std::vector<std::pair<int, double>> out;
+  heap.push({0.0, p});
+  while (!heap.empty()) {
+    const auto [d, v] = heap.top();
+    heap.pop();
+    if (d > best[v]) continue;
+    out.emplace_back(v, d);
+    for (const int n : sorted_neighbours(mesh, v)) {
+      const double next = d + (mesh.V().row(v) - mesh.V().row(n)).norm();
+      if (next >= radius) continue;
+      const auto it = best.find(n);
+      if (it != best.end() && it->second <= next) continue;
+      best[n] = next;
+      heap.push({next, n});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
+                                                  double max_distance) {
+  const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), points);
+  struct Pair {
+    double distance;
+    int p, q;
+  };
+  std::vector<Pair> pairs;
+  for (const BranchPoint& b : points)
+    for (const auto& [q, d] : vertices_within(mesh, b.vertex, max_distance))
+      if (q > b.vertex && quarter[q] == -b.quarter_index && !mesh.is_boundary_vertex(q))
+        pairs.push_back({d, b.vertex, q});
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return std::tie(a.distance, a.p, a.q) < std::tie(b.distance, b.p, b.q);
+  });
+  std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  std::vector<ConeMerge> merges;
+  for (const Pair& pair : pairs) {
+    if (used[pair.p] || used[pair.q]) continue;
+    merges.push_back({pair.q, pair.p, mod4(quarter[pair.q])});
+    used[pair.p] = used[pair.q] = 1;
+  }
+  return merges;
 }
 
 FrameField merge_cones(const Mesh& mesh, const FrameFieldResult& stage, const FrameField& field, double lambda,

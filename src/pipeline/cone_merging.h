@@ -49,6 +49,14 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
 /// \pre map was made on mesh.
 std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization& map);
 
+/// Pairs of branch points with opposite quarter indices (q, −q) closer than `max_distance` along the mesh edges: a grid
+/// of quad edge h puts every cone on a lattice point, so two cones less than h apart land on one point or on
+/// neighbouring ones, and the map folds or stretches between them. Merging such a pair cancels it (index 0). Pairs
+/// in order of distance (ties by vertex numbers), each vertex in at most one merge, `from` the higher number.
+/// \pre points are interior vertices of mesh (field/indices.h branch_points), max_distance >= 0.
+std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
+                                                  double max_distance);
+
 /// `field` with the merges applied to its matching and its frames smoothed again for that matching (the field
 /// stage's weights, trusted and constrained faces and λ; field/smoothing.h).
 /// \throw NumericalError if the smoothing system cannot be factored.

@@ -72,6 +72,8 @@ nlohmann::json field_json(const ParamJob& job) {
   }
   return {{"branch_points_initial", job.field_branch_points},
           {"singularity_moves", job.field_singularity_moves},
+          {"cancelled_close_pairs",
+           {{"original", job.cancelled_original_pairs}, {"optimized", job.cancelled_optimized_pairs}}},
           {"branch_points", list},
           {"b_odd", odd},
           {"b_even", even},

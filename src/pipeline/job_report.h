@@ -20,8 +20,9 @@ inline constexpr int kReportSchemaVersion = 1;
 /// names the source ("" from Python). Keys:
 ///   schema_version, job ("param"), input, mesh {vertices, faces, genus, boundary_loops, components}, options,
 ///   edge_length, density {target_quads, first_quads, quads, resolves},
-///   field {branch_points_initial, singularity_moves, branch_points [{vertex, quarter_index, index}], b_odd, b_even,
-///          unfixed_even_branch_points, features {sharp_angle_degrees, boundaries, sharp_edges, constrained_faces}},
+///   field {branch_points_initial, singularity_moves, cancelled_close_pairs {original, optimized},
+///          branch_points [{vertex, quarter_index, index}], b_odd, b_even, unfixed_even_branch_points, features
+///          {sharp_angle_degrees, boundaries, sharp_edges, constrained_faces}},
 ///   parameterization (metrics/report.h to_json(ParamQuality): flipped, collapsed and non-positive triangles, ARAP,
 ///          cones, seams; plus seamless, parameter_extent, cut_edges, parameter_area, flipped_faces, h_sym),
 ///   optimize, rounding, relaxation, stiffening, untangling, aligned_curves {curves, max_deviation, conflicts},

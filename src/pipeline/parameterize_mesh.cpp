@@ -9,8 +9,10 @@
 
 #include "common/seconds_since.h"
 #include "field/compute_frame_field.h"
+#include "field/indices.h"
 #include "mesh/vertex_rings.h"
 #include "optimize/optimize_field.h"
+#include "param/density.h"
 #include "param/seams.h"
 #include "pipeline/cone_merging.h"
 #include "pipeline/memory_budget.h"
@@ -23,6 +25,15 @@ namespace {
 
 /// Ends the stage `meter` measured under `stage` in the job's seconds and peak bytes.
 void lap(StageMeter& meter, ParamJob& job, const char* stage) { meter.lap(stage, job.seconds, job.peak_bytes); }
+
+/// Cancels in `field` the opposite branch point pairs closer than the quad edge h (close_opposite_cone_merges) and
+/// smooths it again for the new matching. \return the pairs cancelled.
+int cancel_close_opposite_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, double h,
+                                FrameField& field) {
+  const std::vector<ConeMerge> pairs = close_opposite_cone_merges(mesh, branch_points(mesh, field), h);
+  if (!pairs.empty()) field = merge_cones(mesh, stage, field, lambda, pairs);
+  return static_cast<int>(pairs.size());
+}
 
 /// `both`: the cost of parameterize_keep_better. Where it also solved the original field, the time beyond the kept
 /// map's own steps (its param_* entries) is the comparison's: recorded as "keep_better".
@@ -473,6 +484,12 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
                            ") and kept its best field so far; the map was completed from it");
   // From here on every stage runs to the end: a stopped run still gives a valid, complete map.
   FinishingProgress finishing(progress);
+  if (options.cancel_close_cones) {  // in the field the map is meant to be made from; keep-better's other one as it is
+    const double h = target_edge_length(mesh, param.density, job.field_branch_points);
+    const int cancelled = cancel_close_opposite_cones(mesh, field, oo.lambda, h, optimized.field);
+    (oo.mode == OptimizeMode::None ? job.cancelled_original_pairs : job.cancelled_optimized_pairs) = cancelled;
+    lap(meter, job, "cone_cancelling");
+  }
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,
                                      job.optimize);
   record_comparison_solve(meter.lap(), job);

@@ -30,6 +30,13 @@ struct PipelineOptions {
   /// Split the edges where the curve constraints would hold a triangle at zero area (pipeline/curve_refinement.h);
   /// the map then lives on a finer triangulation (ParamJob::mesh).
   bool refine_curve_triangles = false;
+  /// Before the map: cancel the branch point pairs of opposite index closer than one quad edge h along the mesh
+  /// edges (close_opposite_cone_merges, pipeline/cone_merging.h) in the field the map is meant to be made from:
+  /// Algorithm 6.1's, or the field stage's with OptimizeMode::None (keep-better compares the optimized field with
+  /// the field stage's as it is). The rounding puts every cone on a lattice point, so such a pair lands on one point
+  /// or on neighbouring ones and the map folds or winds wrong between them (BENCHMARKS.md, "Close opposite cones
+  /// cancelled").
+  bool cancel_close_cones = true;
   /// Merge branch point pairs that the map puts on one lattice point into one cone and solve the map again
   /// (pipeline/cone_merging.h).
   bool merge_coincident_cones = true;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "field/compute_frame_field.h"
 #include "field/feature_alignment.h"
 #include "mesh/vertex_rings.h"
 #include "metrics/report.h"
@@ -191,15 +192,17 @@ int wrongly_wound(const Mesh& mesh, const Parameterization& map) {
   return n;
 }
 
-/// The job without cone merges or validity retries, with its map's windings and the field's targets.
+/// The job without cone merges or validity retries (and without the cancelling of close opposite pairs before the
+/// map, which removes some of the cases), with its map's windings and the field's targets.
 struct WithoutMerges {
   ParamJob job;
   Eigen::VectorXi wound;
   std::vector<int> target;
 };
 
-WithoutMerges parameterize_without_merges(const Mesh& mesh) {
+WithoutMerges parameterize_without_merges(const Mesh& mesh, bool cancel_close_cones = false) {
   PipelineOptions plain;
+  plain.cancel_close_cones = cancel_close_cones;
   plain.merge_coincident_cones = false;
   plain.separate_coincident_cones = false;  // the case before any re-rounding
   plain.validity_retries = 0;
@@ -210,10 +213,13 @@ WithoutMerges parameterize_without_merges(const Mesh& mesh) {
   return w;
 }
 
-/// At the defaults the job merges cones, and the written map winds as the field everywhere, every triangle positive.
+/// At the defaults (but for the cancelling of close opposite pairs) the job merges cones, and the written map winds as
+/// the field everywhere, every triangle positive.
 void expect_merged_and_valid_at_the_defaults(const Mesh& mesh) {
   SCOPED_TRACE("the default job");
-  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  PipelineOptions o;
+  o.cancel_close_cones = false;
+  const ParamJob with = parameterize_mesh(mesh, o);
   EXPECT_GT(with.merged_cone_pairs, 0);
   EXPECT_EQ(wrongly_wound(with.mesh(mesh), with.map), 0);
   EXPECT_EQ(non_positive_triangles(with.map), 0);
@@ -241,6 +247,11 @@ TEST(ConeMerging, MergesOppositeConesOnOnePointWithARegularVertexWoundTwiceBetwe
     EXPECT_NE(target[m.into], 0);
   }
   expect_merged_and_valid_at_the_defaults(mesh);
+  // Cancelled before the map (the default), no opposite pair is left on one point.
+  const WithoutMerges c = parameterize_without_merges(mesh, true);
+  EXPECT_GT(c.job.cancelled_original_pairs + c.job.cancelled_optimized_pairs, 0);
+  for (const ConeMerge& m : close_coincident_merges(c.job.mesh(mesh), c.job.map))
+    EXPECT_NE(c.target[m.from], -c.target[m.into]) << m.from << " " << m.into;
 }
 
 TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) {
@@ -273,6 +284,7 @@ TEST(ConeSeparation, TheJobSetsApartTheConesItsRoundingPutOnOnePointWhenTheMapWi
   // The field as a split of whole turns only leaves it (its two +3/4 cones kept): that field's rounding has the case.
   PipelineOptions whole_turns;
   whole_turns.split_min_quarters = 4;
+  whole_turns.cancel_close_cones = false;  // it removes the pair
   PipelineOptions plain = whole_turns;
   plain.separate_coincident_cones = false;
   const ParamJob without = parameterize_mesh(mesh, plain);
@@ -390,6 +402,57 @@ TEST(FeatureCounts, TheReportCountsTheInputsSharpEdgesNotTheRefinedHalves) {
   EXPECT_EQ(r["field"]["features"]["sharp_edges"].get<std::size_t>(), input.feature_edges.size());
   EXPECT_EQ(r["field"]["features"]["constrained_faces"].get<long>(),
             std::count(input.constrained.begin(), input.constrained.end(), 1));
+}
+
+TEST(CloseOppositeCones, PairsTheNearestOppositeConesCloserThanTheDistanceEachVertexOnce) {
+  const Mesh grid = testing::make_grid(10);  // spacing 0.1
+  const auto id = [](int i, int j) { return j * 11 + i; };
+  // a +1 with a −1 beside it (0.1) and another −1 two steps below (0.2); two −1/+1 two steps apart (0.2); two +1
+  // side by side (same sign: never a pair).
+  const int a = id(3, 5), b = id(4, 5), below = id(3, 3), c = id(6, 5), d = id(8, 5), e = id(2, 7), g = id(2, 8);
+  std::vector<BranchPoint> points{{below, -1}, {a, 1}, {b, -1}, {c, -1}, {d, 1}, {e, 1}, {g, 1}};
+  std::sort(points.begin(), points.end(),
+            [](const BranchPoint& x, const BranchPoint& y) { return x.vertex < y.vertex; });
+  const auto merges = close_opposite_cone_merges(grid, points, 0.25);
+  ASSERT_EQ(merges.size(), 2u);
+  // a goes with its nearest partner b, not with `below`; c with d; from the higher vertex number; the quarters of
+  // `from` modulo 4.
+  EXPECT_EQ(merges[0].from, b);
+  EXPECT_EQ(merges[0].into, a);
+  EXPECT_EQ(merges[0].quarters, 3);
+  EXPECT_EQ(merges[1].from, d);
+  EXPECT_EQ(merges[1].into, c);
+  EXPECT_EQ(merges[1].quarters, 1);
+  // Closer than 0.15: only the pair 0.1 apart; with nothing closer than 0.05, none.
+  const auto near = close_opposite_cone_merges(grid, points, 0.15);
+  ASSERT_EQ(near.size(), 1u);
+  EXPECT_EQ(near[0].into, a);
+  EXPECT_TRUE(close_opposite_cone_merges(grid, points, 0.05).empty());
+}
+
+TEST(CloseOppositeCones, TheJobCancelsThemBeforeTheMapAndReportsHowMany) {
+  // cow's field has opposite branch points less than one quad edge apart. With the optimization and every later
+  // cone change off, the map's cones are the field's less the cancelled pairs.
+  const Mesh mesh = testing::load_test_mesh("cow");
+  PipelineOptions o;
+  o.optimize = OptimizeMode::None;
+  o.merge_coincident_cones = o.move_wound_cones = o.separate_coincident_cones = false;
+  o.fold_refinement_rounds = o.validity_retries = 0;
+  const ParamJob on = parameterize_mesh(mesh, o);
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(o));
+  const double h = on.map.edge_length;
+  const std::size_t close = close_opposite_cone_merges(mesh, field.branch_points, h).size();
+  ASSERT_GT(close, 0u) << "the case this test is about no longer occurs on cow";
+  EXPECT_EQ(on.cancelled_original_pairs, static_cast<int>(close));
+  EXPECT_EQ(on.cancelled_optimized_pairs, 0);
+  EXPECT_EQ(on.map.branch_points.size(), field.branch_points.size() - 2 * close);
+  EXPECT_TRUE(close_opposite_cone_merges(mesh, on.map.branch_points, h).empty());
+  const nlohmann::json report = param_report(mesh, on, on.map.uv);
+  EXPECT_EQ(report["field"]["cancelled_close_pairs"]["original"], close);
+  o.cancel_close_cones = false;
+  const ParamJob off = parameterize_mesh(mesh, o);
+  EXPECT_EQ(off.cancelled_original_pairs, 0);
+  EXPECT_EQ(off.map.branch_points.size(), field.branch_points.size());
 }
 
 }  // namespace

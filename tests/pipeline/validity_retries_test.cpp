@@ -242,14 +242,16 @@ std::pair<int, int> enforced_and_freed(const Parameterization& map) {
 // Rounding the curves with the periods (param/curve_rounding.h, --round-curves) pins every crease of fandisk; that map
 // winds wrongly beside a few cones, so the job frees the curves there and keeps the others pinned: valid, with more
 // curves on iso-lines than the period-matrix rounding alone. cow's curves leave more wrong windings even when freed,
-// so the job falls back to the period-matrix map and says so; lilium_disk's boundary loop needs neither. The result
-// is never less valid than without the option.
+// so the job falls back to the period-matrix map and says so (with its close opposite cone pairs kept: cancelled,
+// they leave none); lilium_disk's boundary loop needs neither. The result is never less valid than without the
+// option.
 TEST(CurveRoundingFallback, FreesTheCurvesAtWrongWindingsAndFallsBackOnlyWhenStillWorse) {
   for (const char* name : {"fandisk", "cow", "lilium_disk"}) {
     SCOPED_TRACE(name);
     const Mesh mesh = testing::load_test_mesh(name);
     PipelineOptions plain;
     plain.validity_retries = 0;
+    plain.cancel_close_cones = false;
     PipelineOptions rounding = plain;
     rounding.param.alignment.round_with_periods = true;
     const ParamJob a = parameterize_mesh(mesh, plain);
