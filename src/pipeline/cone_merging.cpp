@@ -137,7 +137,8 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
 
 namespace {
 
-/// The vertices within `radius` of p along the mesh edges, with their distances (Dijkstra, bounded).
+/// The vertices within `radius` of p along interior edges, through interior vertices only, as relocation_path walks
+/// (a pair found here always has a path to merge along), with their distances (Dijkstra, bounded).
 std::vector<std::pair<int, double>> vertices_within(const Mesh& mesh, int p, double radius) {
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
@@ -149,8 +150,12 @@ std::vector<std::pair<int, double>> vertices_within(const Mesh& mesh, int p, dou
     heap.pop();
     if (d > best[v]) continue;
     out.emplace_back(v, d);
-    for (const int n : sorted_neighbours(mesh, v)) {
-      const double next = d + (mesh.V().row(v) - mesh.V().row(n)).norm();
+    if (mesh.is_boundary_vertex(v)) continue;
+    for (const Mesh::FanCorner& c : mesh.fan(v)) {
+      const int e = mesh.FE()(c.face, (c.corner + 1) % 3);  // the edge from v to its corner + 2
+      if (mesh.is_boundary_edge(e)) continue;
+      const int n = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
+      const double next = d + mesh.edge_lengths()[e];
       if (next >= radius) continue;
       const auto it = best.find(n);
       if (it != best.end() && it->second <= next) continue;

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "field/compute_frame_field.h"
 #include "field/feature_alignment.h"
+#include "field/relocation.h"
 #include "mesh/vertex_rings.h"
 #include "metrics/report.h"
 #include "param/seams.h"
@@ -428,6 +430,24 @@ TEST(CloseOppositeCones, PairsTheNearestOppositeConesCloserThanTheDistanceEachVe
   ASSERT_EQ(near.size(), 1u);
   EXPECT_EQ(near[0].into, a);
   EXPECT_TRUE(close_opposite_cone_merges(grid, points, 0.05).empty());
+}
+
+TEST(CloseOppositeCones, MeasuresAlongInteriorEdgesSoThatEveryPairHasAPathToMergeAlong) {
+  // Two 4 × 4 grids (spacing 0.25) joined by one strip quad between boundary vertices: the interior vertices 13 (left)
+  // and 36 (right) are 0.75 apart through the strip, but every path between them through interior edges passes a
+  // boundary vertex, so relocation_path has none.
+  const Mesh grid = testing::make_grid(4);
+  Eigen::MatrixX3d V(50, 3);
+  V << grid.V(), grid.V().rowwise() + Eigen::RowVector3d(1.25, 0, 0);
+  Eigen::MatrixX3i F(grid.num_faces() * 2 + 2, 3);
+  F << grid.F(), grid.F().array() + 25, Eigen::RowVector3i(14, 35, 40), Eigen::RowVector3i(14, 40, 19);
+  const Mesh joined = Mesh::from_triangles(V, F);
+  ASSERT_TRUE(joined.is_boundary_vertex(14) && !joined.is_boundary_vertex(13) && !joined.is_boundary_vertex(36));
+  EXPECT_THROW(relocation_path(joined, 13, 36), std::invalid_argument);
+  EXPECT_TRUE(close_opposite_cone_merges(joined, {{13, 1}, {36, -1}}, 1.0).empty());
+  const auto inside = close_opposite_cone_merges(joined, {{11, -1}, {13, 1}}, 1.0);  // 0.5 apart on the left grid
+  ASSERT_EQ(inside.size(), 1u);
+  EXPECT_EQ(relocation_path(joined, inside[0].from, inside[0].into).size(), 3u);
 }
 
 TEST(CloseOppositeCones, TheJobCancelsThemBeforeTheMapAndReportsHowMany) {
