@@ -5,6 +5,7 @@
 #include <queue>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 #include "field/indices.h"
 
@@ -20,6 +21,17 @@ int edge_between(const Mesh& mesh, int a, int b) {
     }
   }
   return -1;
+}
+
+/// Calls step(e, w) for every edge e from v to a vertex w that a relocation path from p may take: interior edges,
+/// and none out of a boundary vertex but p (boundary vertices only as the target).
+template <class Step>
+void relocation_steps(const Mesh& mesh, int p, int v, Step step) {
+  if (v != p && mesh.is_boundary_vertex(v)) return;
+  for (const auto& c : mesh.fan(v)) {
+    const int e = mesh.FE()(c.face, (c.corner + 1) % 3);  // edge {v, corner+2}
+    if (!mesh.is_boundary_edge(e)) step(e, mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0));
+  }
 }
 }  // namespace
 
@@ -39,19 +51,14 @@ std::vector<int> relocation_path(const Mesh& mesh, int p, int q) {
     heap.pop();
     if (d > dist[static_cast<std::size_t>(v)]) continue;
     if (v == q) break;
-    if (v != p && mesh.is_boundary_vertex(v)) continue;  // boundary vertices only as the target
-    for (const auto& c : mesh.fan(v)) {
-      const int k = (c.corner + 1) % 3;  // edge {v, corner+2}
-      const int e = mesh.FE()(c.face, k);
-      if (mesh.is_boundary_edge(e)) continue;
-      const int w = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
+    relocation_steps(mesh, p, v, [&](int e, int w) {
       const double nd = d + mesh.edge_lengths()[e];
       if (nd < dist[static_cast<std::size_t>(w)]) {
         dist[static_cast<std::size_t>(w)] = nd;
         prev[static_cast<std::size_t>(w)] = v;
         heap.push({nd, w});
       }
-    }
+    });
   }
   if (q != p && prev[static_cast<std::size_t>(q)] < 0)
     throw std::invalid_argument("relocation_path: vertex " + std::to_string(q) + " is not reachable from " +
@@ -60,6 +67,29 @@ std::vector<int> relocation_path(const Mesh& mesh, int p, int q) {
   while (path.back() != p) path.push_back(prev[static_cast<std::size_t>(path.back())]);
   std::reverse(path.begin(), path.end());
   return path;
+}
+
+std::vector<std::pair<int, double>> relocation_reach(const Mesh& mesh, int p, double radius) {
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
+  std::unordered_map<int, double> best{{p, 0.0}};  // sparse: the reach is small against the mesh
+  std::vector<std::pair<int, double>> out;
+  heap.push({0.0, p});
+  while (!heap.empty()) {
+    const auto [d, v] = heap.top();
+    heap.pop();
+    if (d > best[v]) continue;
+    out.emplace_back(v, d);
+    relocation_steps(mesh, p, v, [&](int e, int w) {
+      const double next = d + mesh.edge_lengths()[e];
+      if (next >= radius) return;
+      const auto it = best.find(w);
+      if (it != best.end() && it->second <= next) return;
+      best[w] = next;
+      heap.push({next, w});
+    });
+  }
+  return out;
 }
 
 std::vector<MatchingChange> relocation_changes(const Mesh& mesh, const std::vector<int>& path, int quarters) {

@@ -1,6 +1,7 @@
 #pragma once
 // Branch point relocation (thesis 5.2.2): moving the matching index from one vertex to another along an edge path.
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "field/frame_field.h"
@@ -13,6 +14,11 @@ namespace quadcover {
 /// vertices, so that every crossed edge carries a matching.
 /// \throw std::invalid_argument if p is a boundary vertex or q is unreachable.
 std::vector<int> relocation_path(const Mesh& mesh, int p, int q);
+
+/// The vertices that relocation paths from interior vertex p reach within `radius` (path length along the same
+/// interior edges, through interior vertices only), with their distances, nearest first (Dijkstra, bounded): each
+/// has a relocation_path from p. \pre p an interior vertex of mesh, radius >= 0.
+std::vector<std::pair<int, double>> relocation_reach(const Mesh& mesh, int p, double radius);
 
 /// The matching changes that move `quarters` quarter units of matching index (Def. 3.2) from path.front() to
 /// path.back(): `quarters` is added to the matching across every path edge in the direction that crosses it

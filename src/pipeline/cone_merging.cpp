@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <queue>
 #include <tuple>
-#include <unordered_map>
 
 #include "common/quarter_turn.h"
 #include "field/indices.h"
@@ -135,39 +133,6 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
   return moves;
 }
 
-namespace {
-
-/// The vertices within `radius` of p along interior edges, through interior vertices only, as relocation_path walks
-/// (a pair found here always has a path to merge along), with their distances (Dijkstra, bounded).
-std::vector<std::pair<int, double>> vertices_within(const Mesh& mesh, int p, double radius) {
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
-  std::unordered_map<int, double> best{{p, 0.0}};
-  std::vector<std::pair<int, double>> out;
-  heap.push({0.0, p});
-  while (!heap.empty()) {
-    const auto [d, v] = heap.top();
-    heap.pop();
-    if (d > best[v]) continue;
-    out.emplace_back(v, d);
-    if (mesh.is_boundary_vertex(v)) continue;
-    for (const Mesh::FanCorner& c : mesh.fan(v)) {
-      const int e = mesh.FE()(c.face, (c.corner + 1) % 3);  // the edge from v to its corner + 2
-      if (mesh.is_boundary_edge(e)) continue;
-      const int n = mesh.E()(e, 0) == v ? mesh.E()(e, 1) : mesh.E()(e, 0);
-      const double next = d + mesh.edge_lengths()[e];
-      if (next >= radius) continue;
-      const auto it = best.find(n);
-      if (it != best.end() && it->second <= next) continue;
-      best[n] = next;
-      heap.push({next, n});
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
                                                   double max_distance) {
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), points);
@@ -177,7 +142,7 @@ std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::v
   };
   std::vector<Pair> pairs;
   for (const BranchPoint& b : points)
-    for (const auto& [q, d] : vertices_within(mesh, b.vertex, max_distance))
+    for (const auto& [q, d] : relocation_reach(mesh, b.vertex, max_distance))
       if (q > b.vertex && quarter[q] == -b.quarter_index && !mesh.is_boundary_vertex(q))
         pairs.push_back({d, b.vertex, q});
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {

@@ -49,10 +49,11 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
 /// \pre map was made on mesh.
 std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization& map);
 
-/// Pairs of branch points with opposite quarter indices (q, −q) closer than `max_distance` along the mesh edges: a grid
-/// of quad edge h puts every cone on a lattice point, so two cones less than h apart land on one point or on
-/// neighbouring ones, and the map folds or stretches between them. Merging such a pair cancels it (index 0). Pairs
-/// in order of distance (ties by vertex numbers), each vertex in at most one merge, `from` the higher number.
+/// Pairs of branch points with opposite quarter indices (q, −q) closer than `max_distance` along the paths a merge
+/// takes (field/relocation.h relocation_reach): a grid of quad edge h puts every cone on a lattice point, so two cones
+/// less than h apart land on one point or on neighbouring ones, and the map folds or stretches between them. Merging
+/// such a pair cancels it (index 0). Pairs in order of distance (ties by vertex numbers), each vertex in at most one
+/// merge, `from` the higher number.
 /// \pre points are interior vertices of mesh (field/indices.h branch_points), max_distance >= 0.
 std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
                                                   double max_distance);
