@@ -70,10 +70,12 @@ nlohmann::json field_json(const ParamJob& job) {
     (mod4(b.quarter_index) == 2 ? even : odd) += 1;
     list.push_back({{"vertex", b.vertex}, {"quarter_index", b.quarter_index}, {"index", b.quarter_index / 4.0}});
   }
+  const bool original = job.options.optimize == OptimizeMode::None;  // the map's field was the field stage's
   return {{"branch_points_initial", job.field_branch_points},
           {"singularity_moves", job.field_singularity_moves},
           {"cancelled_close_pairs",
-           {{"original", job.cancelled_original_pairs}, {"optimized", job.cancelled_optimized_pairs}}},
+           {{"original", original ? job.cancelled_close_pairs : 0},
+            {"optimized", original ? 0 : job.cancelled_close_pairs}}},
           {"branch_points", list},
           {"b_odd", odd},
           {"b_even", even},

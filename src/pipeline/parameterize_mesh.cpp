@@ -486,8 +486,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   FinishingProgress finishing(progress);
   if (options.cancel_close_cones) {  // in the field the map is meant to be made from; keep-better's other one as it is
     const double h = target_edge_length(mesh, param.density, job.field_branch_points);
-    const int cancelled = cancel_close_opposite_cones(mesh, field, oo.lambda, h, optimized.field);
-    (oo.mode == OptimizeMode::None ? job.cancelled_original_pairs : job.cancelled_optimized_pairs) = cancelled;
+    job.cancelled_close_pairs = cancel_close_opposite_cones(mesh, field, oo.lambda, h, optimized.field);
     lap(meter, job, "cone_cancelling");
   }
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,

@@ -44,9 +44,9 @@ struct ParamJob {
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
   /// Quarters the field stage moved to split singularities of |index| >= 1/2 (FieldOptions::split_min_quarters).
   int field_singularity_moves = 0;
-  /// Opposite branch point pairs cancelled before the map (PipelineOptions::cancel_close_cones): in the field stage's
-  /// field (with OptimizeMode::None) or in Algorithm 6.1's.
-  int cancelled_original_pairs = 0, cancelled_optimized_pairs = 0;
+  /// Opposite branch point pairs cancelled before the map (PipelineOptions::cancel_close_cones): in Algorithm 6.1's
+  /// field, or in the field stage's with OptimizeMode::None (options.optimize says which).
+  int cancelled_close_pairs = 0;
   Parameterization map;
   nlohmann::json optimize;            ///< the "optimize" object (optimize/optimize_field.h to_json, plus "kept")
   DensityReport density;              ///< how a requested quad count was met
