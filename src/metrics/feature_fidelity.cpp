@@ -74,9 +74,11 @@ FeatureFidelity feature_fidelity(const Mesh& reference, const Eigen::MatrixX3d& 
   FeatureFidelity out;
   out.h = total / static_cast<double>(E.rows());
   const std::vector<int> boundary = options.features.boundaries ? reference.boundary_edges() : std::vector<int>{};
-  FeatureOptions sharp_only = options.features;
-  sharp_only.boundaries = false;
-  const std::vector<int> sharp = feature_constraints(reference, sharp_only).feature_edges;
+  const auto sharp_edges = [&](FeatureOptions features) {
+    features.boundaries = false;
+    return feature_constraints(reference, features).feature_edges;
+  };
+  const std::vector<int> sharp = sharp_edges(options.features), followed = sharp_edges(options.followed);
   const SegmentGrid grid(V, E);
   const auto distances = [&](const std::vector<int>& edges) {
     const std::vector<Eigen::Vector3d> s = edge_samples(reference, edges, options.spacing * out.h);
@@ -91,6 +93,7 @@ FeatureFidelity feature_fidelity(const Mesh& reference, const Eigen::MatrixX3d& 
   out.total = summarize(n_edges, std::move(all), options.covered_within);
   out.boundary = summarize(static_cast<int>(boundary.size()), std::move(db), options.covered_within);
   out.sharp = summarize(static_cast<int>(sharp.size()), std::move(ds), options.covered_within);
+  out.followed = summarize(static_cast<int>(followed.size()), distances(followed), options.covered_within);
   return out;
 }
 
@@ -104,7 +107,11 @@ nlohmann::json feature_fidelity_to_json(const FeatureFidelity& f) {
     j["max"] = any ? nlohmann::json(p.max) : nlohmann::json();
     return j;
   };
-  return {{"h", f.h}, {"boundary", part(f.boundary)}, {"sharp", part(f.sharp)}, {"total", part(f.total)}};
+  return {{"h", f.h},
+          {"boundary", part(f.boundary)},
+          {"sharp", part(f.sharp)},
+          {"followed", part(f.followed)},
+          {"total", part(f.total)}};
 }
 
 }  // namespace quadcover

@@ -12,9 +12,13 @@
 namespace quadcover {
 
 struct FeatureFidelityOptions {
-  /// Which edges are features: boundary edges when `boundaries`, and the sharp edges exactly as the field detects
-  /// them (field/feature_alignment.h: dihedral angle above sharp_angle_degrees, on curves of min_curve_edges).
-  FeatureOptions features;
+  /// Which edges are features: boundary edges when `boundaries`, and every interior edge whose dihedral angle exceeds
+  /// sharp_angle_degrees (issue 15's definition: isolated sharp edges count, min_curve_edges = 1), whether or not
+  /// the field follows it.
+  FeatureOptions features{.boundaries = true, .sharp_angle_degrees = 35.0, .min_curve_edges = 1};
+  /// The sharp edges the field follows (field/feature_alignment.h with these options: the job passes its own), also
+  /// measured on their own (FeatureFidelity::followed).
+  FeatureOptions followed;
   double spacing = 0.05;        ///< sample spacing along the feature edges, in h
   double covered_within = 0.1;  ///< a sample is covered when an output edge is this close, in h
 };
@@ -29,7 +33,8 @@ struct FeatureFidelityPart {
 
 struct FeatureFidelity {
   double h = 0;  ///< output mean edge length (undirected edges)
-  FeatureFidelityPart boundary, sharp, total;
+  FeatureFidelityPart boundary, sharp, total;  ///< total: boundary and sharp
+  FeatureFidelityPart followed;  ///< the sharp edges the field follows (FeatureFidelityOptions::followed), a subset
 };
 
 /// Samples the feature edges of `reference` (the input triangle mesh) every spacing·h and measures each sample's
@@ -39,8 +44,8 @@ FeatureFidelity feature_fidelity(const Mesh& reference, const Eigen::MatrixX3d& 
                                  const std::vector<std::vector<int>>& faces,
                                  const FeatureFidelityOptions& options = {});
 
-/// {"h", "boundary", "sharp", "total"}; each part {"edges", "samples", "covered_percent", "mean", "p95", "max"}
-/// (covered_percent and the distances null for a part without samples). \pre none
+/// {"h", "boundary", "sharp", "followed", "total"}; each part {"edges", "samples", "covered_percent", "mean", "p95",
+/// "max"} (covered_percent and the distances null for a part without samples). \pre none
 nlohmann::json feature_fidelity_to_json(const FeatureFidelity& f);
 
 }  // namespace quadcover

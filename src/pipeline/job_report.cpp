@@ -242,7 +242,9 @@ nlohmann::json remesh_report(const Mesh& mesh, const RemeshJob& job, const std::
   r["extraction"] = to_json(job.extraction.report);
   r["quad_mesh"] = to_json(quad_quality(q));
   r["surface_distance"] = to_json(surface_distance(q.V, q.faces, mesh.V(), mesh.F()));
-  r["feature_fidelity"] = feature_fidelity_to_json(feature_fidelity(mesh, q.V, q.faces));
+  FeatureFidelityOptions fidelity;
+  fidelity.followed = job.param.options.param.features;  // the curves this job's field followed
+  r["feature_fidelity"] = feature_fidelity_to_json(feature_fidelity(mesh, q.V, q.faces, fidelity));
   r["quad_smoothing"] = quad_smoothing_to_json(job.param.options.smoothing, job.smoothing);
   r["surface_check"] = to_json(job.surface);
   r["boundary_loops"] = to_json(job.boundary_loops);

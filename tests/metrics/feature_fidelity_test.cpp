@@ -68,9 +68,32 @@ TEST(FeatureFidelity, FoldedGridCoversCreaseAndBoundary) {
   const auto [V, F] = quad_grid(4, true);
   const FeatureFidelity f = feature_fidelity(ref, V, F);
   EXPECT_EQ(f.sharp.edges, 16);  // the crease x = 0.5, a curve of 16 edges at 90°
+  EXPECT_EQ(f.followed.edges, 16);  // long enough for the field to follow it
   expect_exact(f.sharp);
+  expect_exact(f.followed);
   expect_exact(f.boundary);
   EXPECT_EQ(f.total.samples, f.sharp.samples + f.boundary.samples);
+}
+
+TEST(FeatureFidelity, ShortCreasesCountThoughTheFieldDoesNotFollowThem) {
+  // A crease of 4 edges at 90°: too short for a feature curve of the field (8 edges), still a sharp edge of the
+  // metric's definition (dihedral > 35°). An output flat at the fold line's height misses it.
+  const Mesh ref = reference(4, true);
+  const FeatureFidelity f = feature_fidelity(ref, quad_grid(4, true).first, quad_grid(4, true).second);
+  EXPECT_EQ(f.sharp.edges, 4);
+  EXPECT_EQ(f.followed.edges, 0);
+  EXPECT_EQ(f.followed.samples, 0);
+  expect_exact(f.sharp);
+  EXPECT_EQ(f.total.samples, f.sharp.samples + f.boundary.samples);
+  EXPECT_TRUE(feature_fidelity_to_json(f)["followed"]["covered_percent"].is_null());
+  auto [V, F] = quad_grid(3, false);  // flat, lines at x = 1/3 and 2/3: the crease x = 0.5 lies between them
+  const FeatureFidelity missed = feature_fidelity(ref, V, F);
+  EXPECT_EQ(missed.sharp.edges, 4);
+  EXPECT_LT(missed.sharp.covered_percent, 100.0);
+  // With the field's own detection as the definition, the same crease would not be measured at all.
+  FeatureFidelityOptions field_curves;
+  field_curves.features = FeatureOptions{};
+  EXPECT_EQ(feature_fidelity(ref, V, F, field_curves).sharp.edges, 0);
 }
 
 TEST(FeatureFidelity, ShiftedCopyIsAtTheShift) {

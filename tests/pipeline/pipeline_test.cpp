@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/errors.h"
+#include "field/feature_alignment.h"
 #include "field/indices.h"
 #include "metrics/param_quality.h"
 #include "metrics/quad_quality.h"
@@ -91,6 +92,26 @@ TEST(RemeshMesh, ReportIsTheQuadMeshItReturns) {
   EXPECT_EQ(s["faces"], q.faces);
   EXPECT_EQ(s["input_faces"], mesh.num_faces());
   EXPECT_FALSE(s["optimize"].contains("log"));
+}
+
+// Issue 15: the report's feature fidelity measures every edge sharper than 35° (sharp, total), whatever the field
+// followed, and apart from them the sharp edges this job's field followed (followed: none with sharp features off).
+TEST(RemeshMesh, FeatureFidelityCountsEverySharpEdgeAndSaysWhichWereFollowed) {
+  const Mesh mesh = testing::load_test_mesh("fandisk");
+  PipelineOptions options;
+  const nlohmann::json r = remesh_report(mesh, remesh_mesh(mesh, options))["feature_fidelity"];
+  FeatureOptions every;
+  every.min_curve_edges = 1;
+  const int sharp = static_cast<int>(feature_constraints(mesh, every).feature_edges.size());
+  const int followed = static_cast<int>(feature_constraints(mesh, FeatureOptions{}).feature_edges.size());
+  ASSERT_LT(followed, sharp) << "fandisk no longer has sharp edges off the field's curves";
+  EXPECT_EQ(r["sharp"]["edges"], sharp);
+  EXPECT_EQ(r["total"]["edges"], sharp);
+  EXPECT_EQ(r["followed"]["edges"], followed);
+  options.param.features.sharp_angle_degrees = 0;
+  const nlohmann::json off = remesh_report(mesh, remesh_mesh(mesh, options))["feature_fidelity"];
+  EXPECT_EQ(off["sharp"]["edges"], sharp);
+  EXPECT_EQ(off["followed"]["edges"], 0);
 }
 
 // Issue 14: a +3/4 cone (angle π/2) is one quad corner, a vertex of valence 1 that the extraction could only cut
