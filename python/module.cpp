@@ -7,7 +7,9 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <climits>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
@@ -69,9 +71,12 @@ RowMatrixX3i face_array(const py::array& F, Eigen::Index n_vertices) {
   return M;
 }
 
-Mesh make_mesh(const py::array& V, const py::array& F) {
+Mesh make_mesh(const py::array& V, const py::array& F, std::vector<int>* vertex_map = nullptr) {
   const RowMatrixX3d P = vertex_array(V);
-  return build_mesh(PolygonSoup::from_triangles(Eigen::MatrixX3d(P), Eigen::MatrixX3i(face_array(F, P.rows())))).mesh;
+  MeshBuildResult built =
+      build_mesh(PolygonSoup::from_triangles(Eigen::MatrixX3d(P), Eigen::MatrixX3i(face_array(F, P.rows()))));
+  if (vertex_map) *vertex_map = std::move(built.vertex_map);
+  return std::move(built.mesh);
 }
 
 /// Progress of long stages for Python: calls `callback(stage, fraction, message)` (with the GIL) if given, whose
@@ -132,6 +137,52 @@ double feature_angle_degrees(const py::object& value) {
                    "expected a number of degrees in [0, 180] or 'off', got " + py::repr(value).cast<std::string>());
 }
 
+/// features= as vertex pairs: None, or a #E×2 integer array of indices into V. \throw InputError otherwise.
+std::optional<std::vector<std::pair<int, int>>> feature_edge_pairs(const py::object& value) {
+  if (value.is_none()) return std::nullopt;
+  Eigen::Matrix<long long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> E;
+  try {
+    E = value.cast<Eigen::Matrix<long long, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>();
+  } catch (const py::cast_error&) {
+    throw InputError("features", 0, "expected None or a #E×2 integer array of vertex indices");
+  }
+  if (E.size() > 0 && E.cols() != 2)
+    throw InputError("features", 0,
+                     "expected a #E×2 array of vertex indices, got " + std::to_string(E.cols()) + " columns");
+  std::vector<std::pair<int, int>> pairs;
+  for (Eigen::Index r = 0; r < E.rows() && E.cols() == 2; ++r) {
+    if (E(r, 0) < 0 || E(r, 1) < 0 || E(r, 0) > INT_MAX || E(r, 1) > INT_MAX)
+      throw InputError("features", r + 1, "vertex index out of range");
+    pairs.emplace_back(static_cast<int>(E(r, 0)), static_cast<int>(E(r, 1)));
+  }
+  return pairs;
+}
+
+/// FeatureOptions::given from features= on the mesh built from V (vertex_map: V's row -> mesh vertex, -1 unused).
+/// \throw InputError naming the row (1-based) of a pair that is not an edge of the mesh.
+void set_given_features(const Mesh& mesh, const std::vector<int>& vertex_map,
+                        const std::optional<std::vector<std::pair<int, int>>>& pairs, PipelineOptions& options) {
+  if (!pairs) return;
+  std::vector<std::pair<int, int>> edges;
+  for (std::size_t r = 0; r < pairs->size(); ++r) {
+    const auto [a, b] = (*pairs)[r];
+    const auto n = static_cast<int>(vertex_map.size());
+    const int va = a < n ? vertex_map[static_cast<std::size_t>(a)] : -1,
+              vb = b < n ? vertex_map[static_cast<std::size_t>(b)] : -1;
+    if (va < 0 || vb < 0)
+      throw InputError("features", static_cast<long>(r + 1),
+                       "vertex " + std::to_string(va < 0 ? a : b) + " is not a vertex of a face of F");
+    edges.emplace_back(va, vb);
+  }
+  std::vector<int> missing;
+  options.param.features.given = feature_segments(mesh, edges, missing);
+  if (!missing.empty()) {
+    const auto [a, b] = (*pairs)[static_cast<std::size_t>(missing.front())];
+    throw InputError("features", missing.front() + 1,
+                     "vertices " + std::to_string(a) + " and " + std::to_string(b) + " are not joined by an edge of F");
+  }
+}
+
 /// The keyword arguments shared by parameterize() and remesh(), as pipeline options.
 struct JobArgs {
   double edge_length = 0;
@@ -149,6 +200,7 @@ struct JobArgs {
   bool separate_cones = PipelineOptions{}.separate_coincident_cones;
   int split_cones = PipelineOptions{}.split_min_quarters;
   bool cancel_close_cones = PipelineOptions{}.cancel_close_cones;
+  std::optional<std::vector<std::pair<int, int>>> feature_edges;  ///< features=: given sharp edges (indices into V)
 };
 
 PipelineOptions pipeline_options(const JobArgs& a) {
@@ -277,8 +329,10 @@ void warn(const nlohmann::json& report) {
 }
 
 py::tuple parameterize_py(const py::array& V, const py::array& F, const JobArgs& args, py::object progress_callback) {
-  const Mesh mesh = make_mesh(V, F);
-  const PipelineOptions options = pipeline_options(args);
+  std::vector<int> vertex_map;
+  const Mesh mesh = make_mesh(V, F, &vertex_map);
+  PipelineOptions options = pipeline_options(args);
+  set_given_features(mesh, vertex_map, args.feature_edges, options);
   PythonProgress progress(std::move(progress_callback));
   nlohmann::json report;
   Eigen::MatrixX3cd uv;
@@ -310,8 +364,10 @@ py::object face_list(const std::vector<std::vector<int>>& faces) {
 
 py::tuple remesh_py(const py::array& V, const py::array& F, const JobArgs& args, int smooth_quads_rounds,
                     double smooth_rigidity, bool boundary_quads, py::object progress_callback) {
-  const Mesh mesh = make_mesh(V, F);
+  std::vector<int> vertex_map;
+  const Mesh mesh = make_mesh(V, F, &vertex_map);
   PipelineOptions options = pipeline_options(args);
+  set_given_features(mesh, vertex_map, args.feature_edges, options);
   options.smoothing.iterations = smooth_quads_rounds;
   options.smoothing.rigidity = smooth_rigidity;
   options.extraction.quadrangulate_boundary = boundary_quads;
@@ -363,6 +419,8 @@ constexpr const char* kParameterizeDoc =
     "propagation, 5.1.2). "
     "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
     "edges) are sharp features the field follows, 0 or 'off' = none (boundaries are always followed), in [0, 180]. "
+    "features: None, or a #E×2 integer array of vertex pairs (indices into V), edges of F given as the sharp "
+    "features instead of detecting them (the CLI's --features; feature_angle is then not used). "
     "align_curves: put the boundary and sharp feature curves on integer iso-lines (quad edges). "
     "round_curves: with align_curves, round the periods and the curves' integers together (the CLI's "
     "--round-curves; the curves through wrong windings are freed, and it falls back to the map without when "
@@ -397,7 +455,7 @@ JobArgs job_args(double edge_length, int quads, int faces, const std::string& la
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle, bool align_curves,
                  int fold_refinement_rounds, int validity_retries, bool round_curves, bool merge_cones, bool move_cones,
-                 bool separate_cones, int split_cones, bool cancel_close_cones) {
+                 bool separate_cones, int split_cones, bool cancel_close_cones, const py::object& features) {
   const double angle = feature_angle_degrees(feature_angle);
   return JobArgs{edge_length,
                  quads,
@@ -420,7 +478,8 @@ JobArgs job_args(double edge_length, int quads, int faces, const std::string& la
                  move_cones,
                  separate_cones,
                  split_cones,
-                 cancel_close_cones};
+                 cancel_close_cones,
+                 feature_edge_pairs(features)};
 }
 
 /// parameterize() and remesh(): the keywords of JobArgs, in this order, then the job's own.
@@ -432,12 +491,12 @@ void def_jobs(py::module_& m) {
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
          bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
-         bool cancel_close_cones, py::object progress) {
+         bool cancel_close_cones, const py::object& features, py::object progress) {
         return parameterize_py(
             V, F,
             job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
                      relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones),
+                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones, features),
             std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -453,8 +512,8 @@ void def_jobs(py::module_& m) {
       py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
       py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
       py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
-      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones, py::arg("progress") = py::none(),
-      kParameterizeDoc);
+      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones, py::arg("features") = py::none(),
+      py::arg("progress") = py::none(), kParameterizeDoc);
   m.def(
       "remesh",
       [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
@@ -462,12 +521,13 @@ void def_jobs(py::module_& m) {
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
          bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
-         bool cancel_close_cones, int smooth_quads, double smooth_rigidity, bool boundary_quads, py::object progress) {
+         bool cancel_close_cones, int smooth_quads, double smooth_rigidity, bool boundary_quads,
+         const py::object& features, py::object progress) {
         return remesh_py(
             V, F,
             job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
                      relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones),
+                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones, features),
             smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
@@ -486,8 +546,8 @@ void def_jobs(py::module_& m) {
       py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
-      py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("progress") = py::none(),
-      kRemeshDoc);
+      py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("features") = py::none(),
+      py::arg("progress") = py::none(), kRemeshDoc);
 }
 
 }  // namespace

@@ -86,3 +86,27 @@ def test_fill_propagate_reaches_the_field_stage():
     assert propagate["field"]["branch_points_initial"] > smooth["field"]["branch_points_initial"]
     with pytest.raises(ValueError):
         quadcover.parameterize(bunny, optimize="none", fill="flood")
+
+
+def test_given_features_are_the_clis_features_file(tmp_path):
+    """features= (vertex pairs, indices into V) gives the sharp edges as the CLI's --features FILE (counted from 1)."""
+    fandisk = mesh("fandisk")
+    F = np.asarray(fandisk.faces)
+    pairs = np.unique(np.sort(np.concatenate([F[:40, [0, 1]], F[:40, [1, 2]]]), axis=1), axis=0)
+    _, given = quadcover.parameterize(fandisk, optimize="none", features=pairs)
+    assert features(given)["given_edges"] == len(pairs) == features(given)["sharp_edges"]
+    assert given["options"]["feature_angle"] is None
+    path, rep = tmp_path / "f.txt", tmp_path / "r.json"
+    path.write_text("".join(f"{a + 1} {b + 1}\n" for a, b in pairs))
+    subprocess.run([cli_path(), "param", os.path.join(DATA, "fandisk.obj"), "-o", str(tmp_path / "p.obj"),
+                    "--optimize", "none", "--features", str(path), "--report", str(rep), "-q"], check=True)
+    assert json.loads(rep.read_text())["field"]["features"] == features(given)
+    _, none = quadcover.parameterize(fandisk, optimize="none", features=np.zeros((0, 2), dtype=int))
+    assert features(none)["sharp_edges"] == 0 and features(none)["given_edges"] == 0
+
+
+@pytest.mark.parametrize("bad, message", [([[0, 3000]], "not joined by an edge"), ([[0, 10 ** 7]], "not a vertex"),
+                                          ([[0, 1, 2]], "#E×2"), ("edges", "#E×2"), ([[-1, 2]], "out of range")])
+def test_bad_features_are_a_value_error(bad, message):
+    with pytest.raises(ValueError, match=message):
+        quadcover.parameterize(mesh("fandisk"), optimize="none", features=bad)

@@ -167,7 +167,11 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress);
 struct FileVertices {
   Eigen::MatrixX3d positions;  ///< every vertex of the file, unreferenced ones included
   std::vector<int> of_mesh;    ///< mesh vertex -> its 0-based number in the file
+  std::vector<int> mesh_of;    ///< file vertex -> mesh vertex, -1 for one used by no face
 };
+/// load_mesh that also returns, per vertex of the file, its mesh vertex (-1: dropped, used by no face).
+/// \throw InputError, TopologyError as read_mesh / build_mesh.
+Mesh load_mesh(const std::string& input, ProgressSink& progress, std::vector<int>& mesh_vertex_of_file);
 /// load_mesh that also returns the file's vertices; the warning then says that unreferenced vertices are kept.
 /// \throw InputError, TopologyError as read_mesh / build_mesh.
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices);

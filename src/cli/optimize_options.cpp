@@ -6,6 +6,8 @@
 
 #include "cli/commands.h"
 #include "common/errors.h"
+#include "field/feature_alignment.h"
+#include "io/read_feature_edges.h"
 #include "render/html_report.h"
 #include "render/plots.h"
 
@@ -50,6 +52,28 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
+/// --feature-angle, --features and --no-features (one of them at most).
+void add_feature_options(CLI::App& cmd, OptimizeCliOptions& options) {
+  auto* angle =
+      cmd.add_option(
+             "--feature-angle", options.feature_angle,
+             "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
+             "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
+             "features (boundaries are still followed)")
+          ->type_name("DEG|off")
+          ->capture_default_str();
+  auto* features = cmd.add_option("--features", options.features_file,
+                                  "Sharp features given instead of detected: a text file with one edge per line, two "
+                                  "vertex numbers counted from 1 in the mesh file's order ('#' comments); the field "
+                                  "follows them and, with --align, they lie on quad edges, whatever their angle")
+                       ->type_name("FILE")
+                       ->excludes(angle);
+  cmd.add_flag("--no-features", options.no_features,
+               "No sharp features (as --feature-angle off); boundaries are still followed")
+      ->excludes(angle)
+      ->excludes(features);
+}
+
 }  // namespace
 
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
@@ -70,12 +94,7 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "field.singularity_moves")
       ->check(CLI::Range(2, 4))
       ->capture_default_str();
-  cmd.add_option("--feature-angle", options.feature_angle,
-                 "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
-                 "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
-                 "features (boundaries are still followed)")
-      ->type_name("DEG|off")
-      ->capture_default_str();
+  add_feature_options(cmd, options);
   add_switch(cmd, "--align", options.align,
              "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges");
   add_switch(cmd, "--round-curves", options.round_curves,
@@ -180,9 +199,37 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.relaxation.iterations = cli.relaxation;
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
-  options.param.features.sharp_angle_degrees = parse_feature_angle(cli.feature_angle);
+  options.param.features.sharp_angle_degrees = cli.no_features ? 0 : parse_feature_angle(cli.feature_angle);
+  if (!cli.features_file.empty()) read_feature_edges(cli.features_file);  // a malformed file fails before any work
   options.param.alignment.enabled = cli.align;
   options.param.alignment.round_with_periods = cli.round_curves;
+}
+
+void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
+                        PipelineOptions& options) {
+  if (cli.features_file.empty()) return;
+  const std::string& path = cli.features_file;
+  std::vector<std::pair<int, int>> edges;
+  const std::vector<FeatureEdgeLine> lines = read_feature_edges(path);
+  const auto vertex = [&](int file_vertex, long line) {
+    const auto n = static_cast<int>(mesh_vertex_of_file.size());
+    if (file_vertex >= n)
+      throw InputError(path, line,
+                       "vertex " + std::to_string(file_vertex + 1) + " is not in the mesh (it has " +
+                           std::to_string(n) + " vertices)");
+    const int v = mesh_vertex_of_file[static_cast<std::size_t>(file_vertex)];
+    if (v < 0) throw InputError(path, line, "vertex " + std::to_string(file_vertex + 1) + " is used by no face");
+    return v;
+  };
+  for (const FeatureEdgeLine& l : lines) edges.emplace_back(vertex(l.a, l.line), vertex(l.b, l.line));
+  std::vector<int> missing;
+  options.param.features.given = feature_segments(mesh, edges, missing);
+  if (!missing.empty()) {
+    const FeatureEdgeLine& l = lines[static_cast<std::size_t>(missing.front())];
+    throw InputError(path, l.line,
+                     "vertices " + std::to_string(l.a + 1) + " and " + std::to_string(l.b + 1) +
+                         " are not joined by an edge of the mesh");
+  }
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

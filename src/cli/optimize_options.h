@@ -7,7 +7,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "mesh/mesh.h"
 #include "optimize/optimize_field.h"
 #include "param/relaxation.h"
 #include "param/stiffening.h"
@@ -38,6 +40,8 @@ struct OptimizeCliOptions {
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
   std::string feature_angle = "35";  ///< sharp feature angle in degrees, or "off" (= 0), field/feature_alignment.h
+  std::string features_file;         ///< --features FILE: the sharp edges given (io/read_feature_edges.h)
+  bool no_features = false;          ///< --no-features: no sharp features (= --feature-angle off)
   bool align = true;                 ///< see ParamOptions::alignment
   bool round_curves = ParamOptions{}.alignment.round_with_periods;  ///< ParamOptions::alignment.round_with_periods
 };
@@ -55,6 +59,13 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 /// pipeline from the command line. \throw InputError (naming the flag) for an unknown field style, fill, mode or
 /// rounding strategy, or a feature angle that is neither 'off' nor a number of degrees in [0, 180].
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options);
+
+/// --features FILE against the loaded mesh: sets options.param.features.given to the file's edges.
+/// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). Nothing without
+/// --features. \throw InputError (the feature file and its line) for a vertex the mesh file does not have or uses in
+/// no face, or two vertices not joined by an edge of the mesh; as read_feature_edges for a malformed file.
+void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
+                        PipelineOptions& options);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations
 /// of Algorithm 6.1. Written as SVG for a ".svg" path, else PNG (atomically). \throw InputError if the log is

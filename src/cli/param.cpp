@@ -98,6 +98,7 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   StageMeter meter;
   FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
   const Mesh mesh = load_mesh(input, progress, file_vertices);
+  apply_feature_file(opt.optimize, mesh, file_vertices.mesh_of, po);
   const StageCost read = meter.lap();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read.seconds});

@@ -68,7 +68,9 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   StageMeter meter;
-  const Mesh mesh = load_mesh(input, progress);
+  std::vector<int> mesh_vertex_of_file;
+  const Mesh mesh = load_mesh(input, progress, mesh_vertex_of_file);
+  apply_feature_file(opt.optimize, mesh, mesh_vertex_of_file, po);
   const StageCost read = meter.lap();
   RemeshJob job;
   try {

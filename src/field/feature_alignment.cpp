@@ -1,10 +1,12 @@
 #include "field/feature_alignment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
 
 #include "common/union_find.h"
+#include "mesh/segment_grid.h"
 #include "mesh/shape_operator.h"
 
 namespace quadcover {
@@ -36,23 +38,77 @@ void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& shar
   std::erase_if(sharp, [&](int e) { return size[static_cast<std::size_t>(curves.find(e))] < min_edges; });
 }
 
+// The interior edges lying on the given segments: both ends and the midpoint within a 1e-9 of the mean edge length.
+std::vector<int> edges_on_segments(const Mesh& mesh, const std::vector<FeatureSegment>& given) {
+  std::vector<int> edges;
+  if (given.empty()) return edges;
+  Eigen::MatrixX3d ends(2 * given.size(), 3);
+  Eigen::MatrixX2i segments(given.size(), 2);
+  for (std::size_t s = 0; s < given.size(); ++s) {
+    const auto i = static_cast<Eigen::Index>(s);
+    ends.row(2 * i) = given[s].a.transpose();
+    ends.row(2 * i + 1) = given[s].b.transpose();
+    segments.row(i) << static_cast<int>(2 * i), static_cast<int>(2 * i + 1);
+  }
+  const SegmentGrid grid(ends, segments);
+  const double tolerance = 1e-9 * mesh.mean_edge_length();
+  const auto on = [&](const Eigen::Vector3d& p) { return grid.squared_distance(p) <= tolerance * tolerance; };
+  for (int e = 0; e < mesh.num_edges(); ++e) {
+    if (mesh.is_boundary_edge(e)) continue;
+    const Eigen::Vector3d a = mesh.V().row(mesh.E()(e, 0)).transpose(), b = mesh.V().row(mesh.E()(e, 1)).transpose();
+    if (on(a) && on(b) && on(0.5 * (a + b))) edges.push_back(e);
+  }
+  return edges;
+}
+
+// The sharp interior edges: the given ones, or those above the angle on curves of min_curve_edges.
+std::vector<int> sharp_edges(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta) {
+  if (options.given) return edges_on_segments(mesh, *options.given);
+  std::vector<int> sharp;
+  if (options.sharp_angle_degrees <= 0) return sharp;
+  const double threshold = options.sharp_angle_degrees * std::numbers::pi / 180.0;
+  for (int e = 0; e < mesh.num_edges(); ++e)
+    if (!mesh.is_boundary_edge(e) && std::abs(beta[e]) > threshold) sharp.push_back(e);
+  keep_feature_curves(mesh, options.min_curve_edges, sharp);
+  return sharp;
+}
+
 }  // namespace
+
+bool has_sharp_features(const FeatureOptions& options) {
+  return options.given ? !options.given->empty() : options.sharp_angle_degrees > 0;
+}
+
+std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
+                                             std::vector<int>& missing) {
+  std::vector<std::pair<int, int>> keys(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) keys[i] = std::minmax(edges[i].first, edges[i].second);
+  std::vector<std::pair<int, int>> present;
+  for (int e = 0; e < mesh.num_edges(); ++e) present.push_back(std::minmax(mesh.E()(e, 0), mesh.E()(e, 1)));
+  std::sort(present.begin(), present.end());
+  std::vector<FeatureSegment> out;
+  missing.clear();
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (!std::binary_search(present.begin(), present.end(), keys[i])) {
+      missing.push_back(static_cast<int>(i));
+      continue;
+    }
+    out.push_back({mesh.V().row(keys[i].first).transpose(), mesh.V().row(keys[i].second).transpose()});
+  }
+  return out;
+}
 
 FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options) {
   const int nf = mesh.num_faces(), ne = mesh.num_edges();
   const Eigen::VectorXd beta = signed_dihedral_angles(mesh);
-  const double threshold = options.sharp_angle_degrees * std::numbers::pi / 180.0;
   Eigen::VectorXd strength = Eigen::VectorXd::Zero(ne);
   FeatureConstraints out;
-  for (int e = 0; e < ne; ++e) {
-    if (mesh.is_boundary_edge(e)) {
-      if (options.boundaries) strength[e] = std::numbers::pi;
-    } else if (options.sharp_angle_degrees > 0 && std::abs(beta[e]) > threshold) {
-      out.feature_edges.push_back(e);
-    }
-  }
-  keep_feature_curves(mesh, options.min_curve_edges, out.feature_edges);
-  for (int e : out.feature_edges) strength[e] = std::abs(beta[e]);
+  if (options.boundaries)
+    for (int e = 0; e < ne; ++e)
+      if (mesh.is_boundary_edge(e)) strength[e] = std::numbers::pi;
+  out.feature_edges = sharp_edges(mesh, options, beta);
+  // A given edge may be flat: it still wins over no feature, and boundaries still win over it.
+  for (int e : out.feature_edges) strength[e] = std::max(std::abs(beta[e]), 1e-6);
   out.constrained.assign(static_cast<std::size_t>(nf), 0);
   out.source_edge.assign(static_cast<std::size_t>(nf), -1);
   out.direction = Eigen::VectorXcd::Zero(nf);

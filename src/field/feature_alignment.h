@@ -2,11 +2,18 @@
 // Alignment to boundary curves and sharp feature edges (beyond the thesis): faces along such curves get their
 // cross fixed to the curve direction; they count as trusted and smoothing keeps them fixed.
 #include <Eigen/Core>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "mesh/mesh.h"
 
 namespace quadcover {
+
+/// A sharp feature given by the user: the segment of an edge of the input mesh.
+struct FeatureSegment {
+  Eigen::Vector3d a, b;
+};
 
 struct FeatureOptions {
   bool boundaries = true;  ///< constrain faces that have a boundary edge
@@ -19,7 +26,20 @@ struct FeatureOptions {
   /// on coarse organic meshes; CAD creases are long chains (BENCHMARKS.md, "Option defaults"). 1 keeps every
   /// sharp edge.
   int min_curve_edges = 8;
+  /// Sharp features given by the user (`--features FILE`): when set, the sharp edges are exactly the edges lying on
+  /// these segments (both halves of a split edge too, so a refined mesh keeps them), whatever their dihedral angle;
+  /// sharp_angle_degrees and min_curve_edges are then not used. Empty: no sharp features.
+  std::optional<std::vector<FeatureSegment>> given;
 };
+
+/// Whether `options` ask for any sharp feature (given segments, or a positive angle). \pre none
+bool has_sharp_features(const FeatureOptions& options);
+
+/// The segments of the given edges of `mesh` (vertex pairs), for FeatureOptions::given; `missing` receives the
+/// positions in `edges` of the pairs that are not an edge of the mesh (none are then returned for them).
+/// \pre the vertex numbers are in [0, #V).
+std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
+                                             std::vector<int>& missing);
 
 struct FeatureConstraints {
   std::vector<char> constrained;   ///< #F: 1 if the face's cross is fixed
@@ -28,7 +48,8 @@ struct FeatureConstraints {
   std::vector<int> feature_edges;  ///< sharp interior edges, ascending (boundary edges not listed)
 };
 
-/// Finds boundary and sharp edges and, for every face having one, the direction its cross must contain.
+/// Finds boundary and sharp edges (detected from the dihedral angle, or the given ones) and, for every face having
+/// one, the direction its cross must contain.
 /// A face with several such edges follows the strongest (boundary counts as π, a sharp edge as |β_e|; ties:
 /// longer edge, then lower face-edge index): a cross cannot contain two non-perpendicular directions. \pre none
 FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options = {});

@@ -9,7 +9,7 @@ std::vector<int> curve_refinement_edges(const Mesh& mesh, const FeatureOptions& 
   std::vector<char> curve_edge(static_cast<std::size_t>(ne), 0), curve_vertex(mesh.num_vertices(), 0);
   if (features.boundaries)
     for (int e = 0; e < ne; ++e) curve_edge[e] = mesh.is_boundary_edge(e) ? 1 : 0;
-  if (features.sharp_angle_degrees > 0)
+  if (has_sharp_features(features))
     for (int e : feature_constraints(mesh, features).feature_edges) curve_edge[e] = 1;
   for (int e = 0; e < ne; ++e)
     if (curve_edge[e]) curve_vertex[mesh.E()(e, 0)] = curve_vertex[mesh.E()(e, 1)] = 1;

@@ -48,7 +48,10 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"move_wound_cones", o.move_wound_cones},
           {"fold_refinement_rounds", o.fold_refinement_rounds},
           {"validity_retries", o.validity_retries},
-          {"feature_angle", o.param.features.sharp_angle_degrees},
+          {"feature_angle",
+           o.param.features.given ? nlohmann::json() : nlohmann::json(o.param.features.sharp_angle_degrees)},
+          {"given_feature_edges",
+           o.param.features.given ? nlohmann::json(o.param.features.given->size()) : nlohmann::json()},
           {"fill", to_string(o.fill)}};
 }
 
@@ -56,7 +59,9 @@ nlohmann::json options_json(const PipelineOptions& o) {
 /// cross was fixed to a boundary or sharp edge, and the sharp edges.
 nlohmann::json features_json(const Mesh& mesh, const PipelineOptions& o) {
   const FeatureConstraints c = feature_constraints(mesh, field_stage_options(o).features);
-  return {{"sharp_angle_degrees", o.param.features.sharp_angle_degrees},
+  const bool given = o.param.features.given.has_value();
+  return {{"sharp_angle_degrees", given ? nlohmann::json() : nlohmann::json(o.param.features.sharp_angle_degrees)},
+          {"given_edges", given ? nlohmann::json(o.param.features.given->size()) : nlohmann::json()},
           {"boundaries", o.param.features.boundaries},
           {"sharp_edges", c.feature_edges.size()},
           {"constrained_faces", std::count(c.constrained.begin(), c.constrained.end(), 1)}};

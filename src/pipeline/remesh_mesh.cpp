@@ -56,7 +56,9 @@ RemeshJob remesh_once(const Mesh& input, const PipelineOptions& options, Progres
     throw NumericalError("remesh", "the extraction produced no faces (the map is broken)");
   const Mesh& mesh = job.param.mesh(input);  // the map's triangulation (refined, or the input)
   const Parameterization& map = job.param.map;
-  job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, options.smoothing, finishing);
+  QuadSmoothingOptions smoothing = options.smoothing;
+  smoothing.features = options.param.features;  // the creases the field followed
+  job.smoothing = smooth_quads(job.extraction.mesh, mesh, map, smoothing, finishing);
   lap("smooth");
   if (job.smoothing.iterations < options.smoothing.iterations && finishing.skip_improvements())
     record_cut_short(job.param, "quad smoothing");

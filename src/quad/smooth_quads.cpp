@@ -370,7 +370,7 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
     if (corners[v].empty() || t < 0 || t >= mesh.num_faces()) fixed[v] = 1;
   }
   // Sharp feature curves of the input: vertices on or near them slide along them, their corners stay.
-  const std::vector<int> feature_edges = feature_constraints(mesh).feature_edges;
+  const std::vector<int> feature_edges = feature_constraints(mesh, options.features).feature_edges;
   const SegmentGrid feature_grid(mesh.V(), mesh.edge_endpoints(feature_edges));
   std::vector<int> feature_segment(nv, -1);
   snap_to_features(q, mesh, feature_edges, feature_grid, corners, h, options, fixed, feature_segment);

@@ -5,6 +5,7 @@
 // within its tangent plane, to the mean of the corners its quads ask for, then back onto the input surface
 // (closest point). The connectivity is unchanged; the integer-grid map only decides it.
 #include "common/progress.h"
+#include "field/feature_alignment.h"
 #include "mesh/mesh.h"
 #include "param/parameterization.h"
 #include "quad/quad_mesh.h"
@@ -18,7 +19,9 @@ struct QuadSmoothingOptions {
   double rigidity = 0.5;
   /// Fraction of the way to the target taken per round (damped Jacobi).
   double step = 0.5;
-  /// Vertices within this many h of a sharp feature edge of the input (FeatureOptions) are on the feature.
+  /// The input's sharp feature edges (field/feature_alignment.h); the remesh job uses its options.param.features
+  /// (`--feature-angle`, `--features`). Vertices within feature_tolerance h of one are on the feature.
+  FeatureOptions features;
   double feature_tolerance = 1e-6;
   /// Interior vertices within this many h of a sharp feature curve are snapped onto it and then slide along it
   /// (their moves are projected onto the feature polyline) so that quad edges run on the crease; 0 = off (vertices

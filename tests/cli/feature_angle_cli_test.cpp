@@ -1,12 +1,15 @@
 // `param` / `remesh --feature-angle DEG|off --align BOOL --round-curves BOOL` through the real binary: the angle
 // reaches the field stage (report field.features: constrained faces and sharp edges follow it), 'off' keeps the
 // boundaries, the options section names it, an angle outside [0, 180] is refused (exit 2) before anything is
-// written, and --round-curves puts lilium_disk's boundary loop on quad edges.
+// written, and --round-curves puts lilium_disk's boundary loop on quad edges. `--features FILE` gives the sharp edges
+// instead (a bad file is refused naming its line), `--no-features` turns them off in the field and the smoothing.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "field/feature_alignment.h"
 #include "support/cli_runner.h"
 #include "support/test_meshes.h"
 
@@ -96,6 +99,72 @@ TEST_F(FeatureAngleCli, RoundCurvesPutsTheBoundaryLoopOnQuadEdges) {
   EXPECT_GT(plain["quad_mesh"]["non_quads"].get<int>(), 0);
   EXPECT_EQ(rounded["quad_mesh"]["non_quads"], 0);
   EXPECT_EQ(rounded["quad_mesh"]["boundary_loops"], 1);
+}
+
+// The given edges are the sharp features, whatever their angle: fandisk's edges above 35° (min_curve_edges 1: more
+// than the detection keeps) plus one flat edge are all followed, and no other edge is.
+TEST_F(FeatureAngleCli, GivenFeaturesReplaceTheDetection) {
+  const quadcover::Mesh mesh = quadcover::testing::load_test_mesh("fandisk");  // no unreferenced vertex
+  quadcover::FeatureOptions every;
+  every.min_curve_edges = 1;
+  std::vector<int> edges = quadcover::feature_constraints(mesh, every).feature_edges;
+  const auto detected = quadcover::feature_constraints(mesh).feature_edges.size();
+  ASSERT_GT(edges.size(), detected);
+  int flat = 0;
+  while (flat < mesh.num_edges() &&
+         (std::find(edges.begin(), edges.end(), flat) != edges.end() || mesh.is_boundary_edge(flat)))
+    ++flat;
+  edges.push_back(flat);
+  {
+    std::ofstream file(path("given.txt"));
+    file << "# fandisk: the edges above 35 degrees and one flat edge\n\n";
+    for (int e : edges) file << mesh.E()(e, 0) + 1 << " " << mesh.E()(e, 1) + 1 << "  # edge " << e << "\n";
+  }
+  const nlohmann::json given = report("param", "fandisk", "", "--features " + path("given.txt"));
+  EXPECT_EQ(given["field"]["features"]["given_edges"], edges.size());
+  EXPECT_EQ(given["field"]["features"]["sharp_edges"], edges.size());
+  EXPECT_TRUE(given["field"]["features"]["sharp_angle_degrees"].is_null());
+  EXPECT_TRUE(given["options"]["feature_angle"].is_null());
+  EXPECT_EQ(given["options"]["given_feature_edges"], edges.size());
+  EXPECT_GT(given["field"]["features"]["constrained_faces"].get<int>(),
+            report("param", "fandisk", "")["field"]["features"]["constrained_faces"].get<int>());
+}
+
+TEST_F(FeatureAngleCli, NoFeaturesTurnsThemOffInTheFieldAndTheSmoothing) {
+  const nlohmann::json none = report("remesh", "fandisk", "", "--no-features");
+  const nlohmann::json by_default = report("remesh", "fandisk", "");
+  EXPECT_EQ(none["options"]["feature_angle"], 0.0);
+  EXPECT_EQ(none["field"]["features"]["sharp_edges"], 0);
+  EXPECT_EQ(none["quad_smoothing"]["feature_vertices"], 0);  // no vertex snapped onto a crease it was told to ignore
+  EXPECT_GT(by_default["quad_smoothing"]["feature_vertices"].get<int>(), 0);
+}
+
+TEST_F(FeatureAngleCli, BadFeatureFileIsRefusedNamingItsLine) {
+  const std::string mesh = quadcover::testing::data_path("fandisk");
+  const auto refused = [&](const std::string& text, const std::string& message, const std::string& extra = "") {
+    SCOPED_TRACE(text);
+    {
+      std::ofstream file(path("bad.txt"));
+      file << text;
+    }
+    const std::string out = path("refused.obj");
+    const auto r =
+        run_cli("remesh " + mesh + " -o " + out + " -q --features " + path("bad.txt") + extra, path("e.txt"));
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  refused("1 2 3\n", "bad.txt:1: expected two vertex numbers");
+  refused("# header\n\n1\n", "bad.txt:3: expected two vertex numbers");
+  refused("0 1\n", "bad.txt:1: vertex numbers count from 1");
+  refused("5 5\n", "bad.txt:1: an edge needs two different vertices");
+  refused("1 99999999\n", "bad.txt:1: vertex 99999999 is not in the mesh");
+  refused("1 2\n1 6000\n", "bad.txt:2: vertices 1 and 6000 are not joined by an edge of the mesh");
+  refused("1 2\n", "excludes", " --feature-angle 20");
+  refused("1 2\n", "excludes", " --no-features");
+  const auto missing = run_cli("remesh " + mesh + " -o " + path("x.obj") + " --features " + path("none.txt"));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_FALSE(fs::exists(path("x.obj")));
 }
 
 TEST_F(FeatureAngleCli, OutOfRangeIsRefusedBeforeAnyWork) {

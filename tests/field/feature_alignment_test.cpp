@@ -8,10 +8,50 @@
 
 #include "field/compute_frame_field.h"
 #include "mesh/shape_operator.h"
+#include "mesh/split_edges.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
 namespace {
+
+// Given features (FeatureOptions::given): on a flat grid, whose dihedral angles are all 0, the given edges are the
+// sharp ones and constrain their faces; after a midpoint split of one of them, both halves still are.
+TEST(GivenFeatures, FlatEdgesGivenAreFollowedAndKeptThroughSplits) {
+  const Mesh grid = testing::make_grid(6);
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> expected;
+  for (int e = 0; e < grid.num_edges(); ++e) {  // the interior edges on the line y = 0.5
+    const Eigen::Vector3d a = grid.V().row(grid.E()(e, 0)), b = grid.V().row(grid.E()(e, 1));
+    if (!grid.is_boundary_edge(e) && std::abs(a.y() - 0.5) < 1e-12 && std::abs(b.y() - 0.5) < 1e-12) {
+      pairs.emplace_back(grid.E()(e, 0), grid.E()(e, 1));
+      expected.push_back(e);
+    }
+  }
+  ASSERT_EQ(expected.size(), 6u);
+  pairs.emplace_back(0, grid.num_vertices() - 1);  // opposite corners: not an edge
+  std::vector<int> missing;
+  FeatureOptions options;
+  options.given = feature_segments(grid, pairs, missing);
+  EXPECT_EQ(missing, std::vector<int>{6});
+  EXPECT_EQ(options.given->size(), 6u);
+  EXPECT_TRUE(has_sharp_features(options));
+  const FeatureConstraints fc = feature_constraints(grid, options);
+  EXPECT_EQ(fc.feature_edges, expected);
+  EXPECT_TRUE(feature_constraints(grid).feature_edges.empty());  // not detected: the grid is flat
+  for (int e : expected)
+    for (int f : {grid.EF()(e, 0), grid.EF()(e, 1)}) {
+      EXPECT_TRUE(fc.constrained[static_cast<std::size_t>(f)]) << f;
+      const int source = fc.source_edge[static_cast<std::size_t>(f)];
+      EXPECT_TRUE(source == e || grid.is_boundary_edge(source)) << f;  // a boundary beside it wins
+    }
+  const SplitMesh split = split_edges_at_midpoints(grid, {expected[1]});
+  const Mesh refined = Mesh::from_triangles(split.V, split.F);
+  EXPECT_EQ(feature_constraints(refined, options).feature_edges.size(), 7u);  // 5 whole and 2 halves
+  FeatureOptions none;
+  none.given.emplace();
+  EXPECT_FALSE(has_sharp_features(none));
+  EXPECT_TRUE(feature_constraints(grid, none).feature_edges.empty());
+}
 
 class FeatureMeshes : public ::testing::TestWithParam<std::string> {};
 
