@@ -25,8 +25,10 @@ for u, v in zip(field["cross_u"], field["cross_v"]):
     assert abs(sum(a * a for a in u) - 1) < 1e-9 and abs(sum(a * b for a, b in zip(u, v))) < 1e-9, mesh
 if report["boundary_loops"] == 0:
     assert report["index_sum"] == report["euler_characteristic"], f"{mesh}: Poincaré–Hopf violated: {report}"
-if "off" in args:
+if "off" in args or "--no-features" in args:  # fandisk is closed: nothing left to align to
     assert report["constrained_faces"] == 0, mesh
+if "--features" in args and args.split()[-1].endswith(".txt"):  # the file gives fandisk's edge 1-2 only
+    assert report["constrained_faces"] == 2 and field["options"]["given_feature_edges"] == 1, (report, field["options"])
 print(f"  {mesh} {args}: {report['branch_points']} branch points, index sum {report['index_sum']}, "
       f"E_S {report['energy_smooth']:.1f}")
 PY
@@ -37,6 +39,10 @@ check torus_5k --method csm
 check eight_genus2 --trusted 0.3 --lambda 0.9 --rounds 1
 check fandisk --features 50
 check camelhead_boundary --features off
+check fandisk --feature-angle 50
+check fandisk --no-features
+printf '# one edge\n1 2\n' >"$OUT/edge.txt"
+check fandisk --features "$OUT/edge.txt"
 check bunny_3k --fill propagate
 check spot --fill smooth --fill-alignment 100 --fill-unit-weight 0 --fill-iterations 0
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -11,6 +12,7 @@
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
 #include "field/indices.h"
+#include "io/read_feature_edges.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 
@@ -24,12 +26,32 @@ struct FieldCmdOptions : MeshFiles {
   double trusted = FieldOptions{}.trusted_fraction;
   double lambda = FieldOptions{}.lambda;
   int rounds = FieldOptions{}.smoothing_rounds;
-  std::string features = "35";
+  std::string feature_angle = "35";
+  std::string features;  ///< a feature file, or the old spelling DEG | off (see legacy_features)
+  bool no_features = false;
   std::string fill = "smooth";
   double fill_alignment = FieldOptions{}.fill_alignment;
   double fill_unit_weight = FieldOptions{}.fill_unit_weight;
   int fill_iterations = FieldOptions{}.fill_iterations;
 };
+
+/// The field command's old `--features DEG|off` (before --feature-angle and feature files): 'off' -> 0 (no sharp
+/// feature and no boundary alignment), an angle in (0, 180) -> itself; nothing for anything else (a feature file).
+std::optional<double> legacy_features(const std::string& text) {
+  if (text == "off") return 0.0;
+  std::size_t used = 0;
+  double degrees = -1;
+  try {
+    degrees = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size()) return std::nullopt;
+  if (!(degrees > 0 && degrees < 180))
+    throw InputError("--features", 0,
+                     "expected a feature file, or 'off' or an angle in degrees in (0, 180), got '" + text + "'");
+  return degrees;
+}
 
 FieldOptions to_field_options(const FieldCmdOptions& opt) {
   FieldOptions o;
@@ -47,20 +69,10 @@ FieldOptions to_field_options(const FieldCmdOptions& opt) {
   o.fill_alignment = opt.fill_alignment;
   o.fill_unit_weight = opt.fill_unit_weight;
   o.fill_iterations = opt.fill_iterations;
-  if (opt.features == "off") {
-    o.features.boundaries = false;
-    o.features.sharp_angle_degrees = 0;
-  } else {
-    std::size_t used = 0;
-    double deg = -1;
-    try {
-      deg = std::stod(opt.features, &used);
-    } catch (const std::exception&) {
-    }
-    if (used != opt.features.size() || !(deg > 0 && deg < 180))
-      throw InputError("--features", 0,
-                       "expected 'off' or an angle in degrees in (0, 180), got '" + opt.features + "'");
-    o.features.sharp_angle_degrees = deg;
+  o.features.sharp_angle_degrees = opt.no_features ? 0 : parse_feature_angle(opt.feature_angle);
+  if (const std::optional<double> legacy = legacy_features(opt.features)) {
+    o.features.boundaries = *legacy > 0;  // 'off' aligned to nothing, not even the boundaries
+    o.features.sharp_angle_degrees = *legacy;
   }
   return o;
 }
@@ -96,17 +108,19 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
       "X, Y: complex [re, im] per face in the face basis b1 = unit(p1 - p0), b2 = n x b1; Y = iX. matching: per edge "
       "(edge_vertices order, from face EF0 to EF1), counter-clockwise quarter turns, X_t ~ i^m rho_e X_s. "
       "cross_u, cross_v: unit 3D cross directions per face. quarter_index = 4 * index.";
-  j["options"] = {{"method", o.curvature.method == CurvatureMethod::HildebrandtPolthier ? "hp" : "csm"},
-                  {"csm_radius", o.curvature.csm_radius},
-                  {"trusted_fraction", o.trusted_fraction},
-                  {"lambda", o.lambda},
-                  {"smoothing_rounds", o.smoothing_rounds},
-                  {"fill", to_string(o.fill)},
-                  {"fill_alignment", o.fill_alignment},
-                  {"fill_unit_weight", o.fill_unit_weight},
-                  {"fill_iterations", o.fill_iterations},
-                  {"boundary_alignment", o.features.boundaries},
-                  {"sharp_angle_degrees", o.features.sharp_angle_degrees}};
+  j["options"] = {
+      {"method", o.curvature.method == CurvatureMethod::HildebrandtPolthier ? "hp" : "csm"},
+      {"csm_radius", o.curvature.csm_radius},
+      {"trusted_fraction", o.trusted_fraction},
+      {"lambda", o.lambda},
+      {"smoothing_rounds", o.smoothing_rounds},
+      {"fill", to_string(o.fill)},
+      {"fill_alignment", o.fill_alignment},
+      {"fill_unit_weight", o.fill_unit_weight},
+      {"fill_iterations", o.fill_iterations},
+      {"boundary_alignment", o.features.boundaries},
+      {"sharp_angle_degrees", o.features.given ? nlohmann::json() : nlohmann::json(o.features.sharp_angle_degrees)},
+      {"given_feature_edges", o.features.given ? nlohmann::json(o.features.given->size()) : nlohmann::json()}};
   j["X"] = complex_array(r.field.X);
   j["Y"] = complex_array(r.field.Y);
   const CrossDirections cross = cross_directions(mesh, r.field);
@@ -141,8 +155,12 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
 
 nlohmann::json run_field(const std::string& input, const std::string& output, const FieldCmdOptions& opt,
                          ProgressSink& progress) {
-  const FieldOptions options = to_field_options(opt);
-  const Mesh mesh = load_mesh(input, progress);  // warns about dropped unreferenced vertices (issue 18 item 16)
+  FieldOptions options = to_field_options(opt);
+  const bool feature_file = !opt.features.empty() && !legacy_features(opt.features);
+  if (feature_file) read_feature_edges(opt.features);  // a malformed file fails before any work
+  std::vector<int> mesh_vertex_of_file;  // load_mesh warns about dropped unreferenced vertices (issue 18 item 16)
+  const Mesh mesh = load_mesh(input, progress, mesh_vertex_of_file);
+  if (feature_file) options.features.given = read_given_features(opt.features, mesh, mesh_vertex_of_file);
   const FrameFieldResult r = compute_frame_field_detailed(mesh, options, progress);
   write_json_atomically(output, field_document(input, mesh, r, options));
 
@@ -200,9 +218,10 @@ void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   cmd->add_option("--rounds", opt->rounds, "Smoothing rounds (re-matching between rounds); 0 disables smoothing")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  cmd->add_option("--features", opt->features,
-                  "Align to boundaries and to sharp edges above DEG degrees, or 'off' to align to nothing")
-      ->capture_default_str();
+  add_feature_options(*cmd, opt->feature_angle, opt->features, opt->no_features,
+                      "Sharp features given instead of detected: " + std::string(kFeatureFileHelp) +
+                          "; the field follows them whatever their angle. The old forms DEG (= --feature-angle DEG) "
+                          "and 'off' (no sharp feature and no boundary alignment either) are still read");
   cmd->add_option("--fill", opt->fill, kFillHelp)->capture_default_str();
   cmd->add_option("--fill-alignment", opt->fill_alignment,
                   "Smooth fill: strength mu of the alignment to the trusted curvature frames")

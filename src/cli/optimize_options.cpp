@@ -52,29 +52,24 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
-/// --feature-angle, --features and --no-features (one of them at most).
-void add_feature_options(CLI::App& cmd, OptimizeCliOptions& options) {
+}  // namespace
+
+void add_feature_options(CLI::App& cmd, std::string& feature_angle, std::string& features_file, bool& no_features,
+                         const std::string& features_help) {
   auto* angle =
       cmd.add_option(
-             "--feature-angle", options.feature_angle,
+             "--feature-angle", feature_angle,
              "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
              "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
              "features (boundaries are still followed)")
           ->type_name("DEG|off")
           ->capture_default_str();
-  auto* features = cmd.add_option("--features", options.features_file,
-                                  "Sharp features given instead of detected: a text file with one edge per line, two "
-                                  "vertex numbers counted from 1 in the mesh file's order ('#' comments); the field "
-                                  "follows them and, with --align, they lie on quad edges, whatever their angle")
-                       ->type_name("FILE")
-                       ->excludes(angle);
-  cmd.add_flag("--no-features", options.no_features,
+  auto* features = cmd.add_option("--features", features_file, features_help)->type_name("FILE")->excludes(angle);
+  cmd.add_flag("--no-features", no_features,
                "No sharp features (as --feature-angle off); boundaries are still followed")
       ->excludes(angle)
       ->excludes(features);
 }
-
-}  // namespace
 
 void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
   cmd.add_option("--field", options.field,
@@ -94,7 +89,9 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "field.singularity_moves")
       ->check(CLI::Range(2, 4))
       ->capture_default_str();
-  add_feature_options(cmd, options);
+  add_feature_options(cmd, options.feature_angle, options.features_file, options.no_features,
+                      "Sharp features given instead of detected: " + std::string(kFeatureFileHelp) +
+                          "; the field follows them and, with --align, they lie on quad edges, whatever their angle");
   add_switch(cmd, "--align", options.align,
              "Put boundary and sharp feature curves the field follows on integer iso-lines, i.e. on quad edges");
   add_switch(cmd, "--round-curves", options.round_curves,
@@ -145,9 +142,6 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
       ->capture_default_str();
 }
 
-namespace {
-
-/// "off" -> 0, else the number of degrees in [0, 180]. \throw InputError naming --feature-angle otherwise.
 double parse_feature_angle(const std::string& text) {
   if (text == "off") return 0;
   double degrees = -1;
@@ -161,8 +155,6 @@ double parse_feature_angle(const std::string& text) {
     throw InputError("--feature-angle", 0, "expected 'off' or an angle in degrees in [0, 180], got '" + text + "'");
   return degrees;
 }
-
-}  // namespace
 
 Fill parse_fill_option(const std::string& text) {
   try {
@@ -207,8 +199,12 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
 
 void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
                         PipelineOptions& options) {
-  if (cli.features_file.empty()) return;
-  const std::string& path = cli.features_file;
+  if (!cli.features_file.empty())
+    options.param.features.given = read_given_features(cli.features_file, mesh, mesh_vertex_of_file);
+}
+
+std::vector<FeatureSegment> read_given_features(const std::string& path, const Mesh& mesh,
+                                                const std::vector<int>& mesh_vertex_of_file) {
   std::vector<std::pair<int, int>> edges;
   const std::vector<FeatureEdgeLine> lines = read_feature_edges(path);
   const auto vertex = [&](int file_vertex, long line) {
@@ -223,13 +219,14 @@ void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const s
   };
   for (const FeatureEdgeLine& l : lines) edges.emplace_back(vertex(l.a, l.line), vertex(l.b, l.line));
   std::vector<int> missing;
-  options.param.features.given = feature_segments(mesh, edges, missing);
+  std::vector<FeatureSegment> given = feature_segments(mesh, edges, missing);
   if (!missing.empty()) {
     const FeatureEdgeLine& l = lines[static_cast<std::size_t>(missing.front())];
     throw InputError(path, l.line,
                      "vertices " + std::to_string(l.a + 1) + " and " + std::to_string(l.b + 1) +
                          " are not joined by an edge of the mesh");
   }
+  return given;
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "field/feature_alignment.h"
 #include "mesh/mesh.h"
 #include "optimize/optimize_field.h"
 #include "param/relaxation.h"
@@ -59,6 +60,25 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options);
 /// pipeline from the command line. \throw InputError (naming the flag) for an unknown field style, fill, mode or
 /// rounding strategy, or a feature angle that is neither 'off' nor a number of degrees in [0, 180].
 void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& options);
+
+/// The feature file's format, for help texts.
+inline constexpr const char* kFeatureFileHelp =
+    "a text file with one edge per line, two vertex numbers counted from 1 in the mesh file's order ('#' comments)";
+
+/// --feature-angle DEG|off (default as given), --features FILE (help text `features_help`) and --no-features, one of
+/// them at most (CLI11 refuses two with exit 2). \pre the strings and the flag outlive cmd.
+void add_feature_options(CLI::App& cmd, std::string& feature_angle, std::string& features_file, bool& no_features,
+                         const std::string& features_help);
+
+/// "off" -> 0, else the number of degrees in [0, 180]. \throw InputError naming --feature-angle otherwise.
+double parse_feature_angle(const std::string& text);
+
+/// The edges of a feature file (io/read_feature_edges.h) on the loaded mesh, as FeatureOptions::given.
+/// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). \throw InputError (the
+/// feature file and its line) for a vertex the mesh file does not have or uses in no face, or two vertices not joined
+/// by an edge of the mesh; as read_feature_edges for a malformed file.
+std::vector<FeatureSegment> read_given_features(const std::string& path, const Mesh& mesh,
+                                                const std::vector<int>& mesh_vertex_of_file);
 
 /// --features FILE against the loaded mesh: sets options.param.features.given to the file's edges.
 /// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). Nothing without
