@@ -87,6 +87,9 @@ class QUADCOVER_AP_preferences(bpy.types.AddonPreferences):
 
 FIELD_STYLES = [("curvature", "Curvature", "Cross field along the principal curvature directions (thesis ch. 5)"),
                 ("smooth", "Smooth", "Smoothest cross field: lower distortion on organic shapes")]
+SHARP_EDGES = [("ANGLE", "By Angle", "Sharp features: the edges sharper than Feature Angle"),
+               ("MARKED", "Marked Sharp", "Sharp features: the edges marked sharp (Edge > Mark Sharp), whatever their "
+                "angle")]
 OUTPUTS = [("NEW", "New Object", "Add the result as a new object next to the original"),
            ("REPLACE", "Replace", "Replace the original's mesh (undo brings it back)")]
 
@@ -100,6 +103,7 @@ def _settings_props():
                                                  min=0.0, max=np.pi, description="Edges whose faces meet at more "
                                                  "than this angle (on creases of at least 8 edges) are followed by "
                                                  "the quads; 0 = no sharp features (boundaries are still followed)"),
+        "sharp_edges": bpy.props.EnumProperty(name="Sharp Edges", items=SHARP_EDGES, default="ANGLE"),
         "align_boundary": bpy.props.BoolProperty(name="Align to Boundary", default=True,
                                                  description="Quad edges run exactly along open boundaries and "
                                                  "along the sharp features of Feature Angle"),
@@ -123,14 +127,15 @@ QUADCOVER_PG_settings = type("QUADCOVER_PG_settings", (bpy.types.PropertyGroup,)
 def settings_from(props):
     return job_module.Settings(target_faces=props.target_faces, feature_angle=float(np.degrees(props.feature_angle)),
                                align_boundary=props.align_boundary, smoothing=props.smoothing,
-                               field_style=props.field_style)
+                               field_style=props.field_style, sharp_edges=props.sharp_edges)
 
 
 # ---- Blender mesh <-> arrays ------------------------------------------------------------------------------------
 
 def mesh_arrays(obj, depsgraph):
     """World-independent vertex positions and triangles (n-gons triangulated by Blender's loop triangles) of the
-    object with its modifiers applied; also whether vertex indices are the original mesh's (no modifiers)."""
+    object with its modifiers applied, its edges marked sharp (#k×2 vertex pairs); also whether vertex indices are
+    the original mesh's (no modifiers)."""
     evaluated = obj.evaluated_get(depsgraph)
     me = evaluated.to_mesh()
     try:
@@ -139,10 +144,14 @@ def mesh_arrays(obj, depsgraph):
         me.vertices.foreach_get("co", V)
         T = np.empty(3 * len(me.loop_triangles), dtype=np.int64)
         me.loop_triangles.foreach_get("vertices", T)
+        sharp = np.zeros(len(me.edges), dtype=bool)
+        me.edges.foreach_get("use_edge_sharp", sharp)
+        E = np.empty(2 * len(me.edges), dtype=np.int64)
+        me.edges.foreach_get("vertices", E)
         same = len(me.vertices) == len(obj.data.vertices)
     finally:
         evaluated.to_mesh_clear()
-    return V.reshape(-1, 3), T.reshape(-1, 3), same
+    return V.reshape(-1, 3), T.reshape(-1, 3), E.reshape(-1, 2)[sharp], same
 
 
 def build_mesh(name, result):
@@ -169,8 +178,8 @@ class Session:
         depsgraph = context.evaluated_depsgraph_get()
         meshes, self.same_indices = {}, {}
         for o in objects:
-            V, T, self.same_indices[o.name] = mesh_arrays(o, depsgraph)
-            meshes[o.name] = (V, T)
+            V, T, S, self.same_indices[o.name] = mesh_arrays(o, depsgraph)
+            meshes[o.name] = (V, T, S)
         self.job = job_module.RemeshJob(self.qc, meshes, settings_from(props))
 
     def problems(self):
@@ -317,7 +326,11 @@ class QUADCOVER_OT_remesh(bpy.types.Operator):
 def _draw_settings(layout, s, qc):
     layout.prop(s, "target_faces")
     row = layout.row()
-    row.enabled = qc is not None and job_module.supported(qc, job_module.FEATURE_ANGLE_NAMES) is not None
+    row.enabled = qc is not None and job_module.supported(qc, job_module.FEATURE_EDGE_NAMES) is not None
+    row.prop(s, "sharp_edges", expand=True)
+    row = layout.row()
+    row.enabled = qc is not None and job_module.supported(qc, job_module.FEATURE_ANGLE_NAMES) is not None and (
+        s.sharp_edges == "ANGLE" or job_module.supported(qc, job_module.FEATURE_EDGE_NAMES) is None)
     row.prop(s, "feature_angle")
     row = layout.row()
     row.enabled = qc is not None and job_module.supported(qc, job_module.BOUNDARY_NAMES) is not None

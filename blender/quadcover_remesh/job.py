@@ -18,11 +18,13 @@ class Settings:
     align_boundary: bool = True  # boundaries and sharp features on quad edges: remesh(align_curves=)
     smoothing: int = 20  # rounds of quad smoothing
     field_style: str = "curvature"
+    sharp_edges: str = "ANGLE"  # ANGLE: edges above feature_angle; MARKED: the edges marked sharp (remesh(features=))
 
 
 # Keyword names of these settings in quadcover.remesh (an older module lacks them: the panel greys them out and they are not passed).
 FEATURE_ANGLE_NAMES = ("feature_angle",)
 BOUNDARY_NAMES = ("align_curves",)
+FEATURE_EDGE_NAMES = ("features",)
 
 
 def supported(quadcover, names):
@@ -35,12 +37,17 @@ def supported(quadcover, names):
     return None
 
 
-def remesh_kwargs(quadcover, settings: Settings, faces: int):
+def remesh_kwargs(quadcover, settings: Settings, faces: int, marked=None):
+    """The keywords of quadcover.remesh for one part; marked: its edges marked sharp (#k×2 part vertex indices), the
+    sharp features instead of the angle when settings.sharp_edges is MARKED and the module takes them."""
     kw = {"field": settings.field_style, "smooth_quads": int(settings.smoothing)}
     if faces > 0:
         kw["faces"] = int(faces)
+    given = supported(quadcover, FEATURE_EDGE_NAMES) if settings.sharp_edges == "MARKED" else None
     name = supported(quadcover, FEATURE_ANGLE_NAMES)
-    if name:
+    if given:
+        kw[given] = np.zeros((0, 2), dtype=np.int64) if marked is None else np.asarray(marked, dtype=np.int64)
+    elif name:
         kw[name] = float(settings.feature_angle)
     name = supported(quadcover, BOUNDARY_NAMES)
     if name:
@@ -59,7 +66,7 @@ class ObjectResult:
 
 
 class RemeshJob:
-    """meshes: {name: (V, T)} triangle meshes. start() runs run() on a thread: prep.prepare() on each (.objects),
+    """meshes: {name: (V, T)} or {name: (V, T, S)} triangle meshes, S the edges marked sharp (#k×2 vertex pairs). start() runs run() on a thread: prep.prepare() on each (.objects),
     then the remesh of every part; cancel() asks it to stop; status() gives (fraction, text) for the status bar;
     done tells when it has stopped (results in .results, .error)."""
 
@@ -115,7 +122,7 @@ class RemeshJob:
         self.seconds = time.perf_counter() - t0
 
     def _run(self):
-        for name, (V, T) in self.meshes.items():
+        for name, (V, T, *_) in self.meshes.items():
             self._set(0.0, f"{name}: checking {len(T)} triangles")
             self.objects[name] = prep.prepare(V, T)
             if self._cancel.is_set():
@@ -140,8 +147,10 @@ class RemeshJob:
 
             self._set(base, f"{label}: remeshing {len(part.triangles)} triangles")
             try:
+                sharp = self.meshes[name][2] if len(self.meshes[name]) > 2 else None
+                marked = None if sharp is None else prep.part_edges(part, sharp)
                 QV, Q, report = self.qc.remesh(part.vertices, part.triangles, progress=progress,
-                                               **remesh_kwargs(self.qc, self.settings, faces))
+                                               **remesh_kwargs(self.qc, self.settings, faces, marked))
             except self.qc.Cancelled:
                 raise
             except (ValueError, RuntimeError) as e:

@@ -168,3 +168,20 @@ def face_targets(parts, total_faces, minimum=24):
     areas = np.array([p.area for p in parts], dtype=np.float64)
     share = areas / areas.sum() if areas.sum() > 0 else np.full(len(parts), 1.0 / max(1, len(parts)))
     return [max(minimum, int(round(total_faces * s))) for s in share]
+
+
+def part_edges(part, pairs):
+    """The edges of the part's triangles whose original vertices are one of `pairs` (#k×2 original vertex indices, in
+    either order), in the part's own vertex indices (#m×2, each edge once, sorted); a pair that is not an edge of
+    the part is left out. A vertex the preparation duplicated per fan gives each of its copies' edges."""
+    P = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    T = np.asarray(part.triangles, dtype=np.int64)
+    if len(P) == 0 or len(T) == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    E = np.sort(np.concatenate([T[:, [0, 1]], T[:, [1, 2]], T[:, [2, 0]]]), axis=1)
+    orig = np.asarray(part.original_vertices, dtype=np.int64)
+    n = int(max(orig.max(), P.max())) + 1
+    a, b = orig[E[:, 0]], orig[E[:, 1]]
+    keys = np.minimum(a, b) * n + np.maximum(a, b)
+    wanted = np.minimum(P[:, 0], P[:, 1]) * n + np.maximum(P[:, 0], P[:, 1])
+    return np.unique(E[np.isin(keys, wanted)], axis=0)

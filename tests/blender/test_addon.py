@@ -212,6 +212,42 @@ def _():
     assert aligned > 70 and aligned > 1.5 * no_features and aligned > 1.5 * not_aligned
 
 
+@check("edges marked sharp are the features with Sharp Edges = Marked: one marked rim on quad edges, not the other")
+def _():
+    import quadcover
+
+    from quadcover_remesh import job as job_module
+
+    assert job_module.supported(quadcover, job_module.FEATURE_EDGE_NAMES) == "features"
+    marked = np.array([[0, 1], [1, 2]])
+    kw = job_module.remesh_kwargs(quadcover, job_module.Settings(sharp_edges="MARKED"), 500, marked)
+    assert "feature_angle" not in kw and kw["features"].tolist() == marked.tolist(), kw
+    assert "features" not in job_module.remesh_kwargs(quadcover, job_module.Settings(), 500, marked)
+    # prep.part_edges: original pairs in the part's own numbers, either order, non-edges left out
+    part = prep.Part(np.zeros((4, 3)), np.array([[0, 1, 2], [0, 2, 3]]), np.array([10, 11, 12, 13]), 1.0)
+    assert prep.part_edges(part, [[11, 10], [12, 10], [11, 13], [99, 10]]).tolist() == [[0, 1], [0, 2]]
+    clear_scene()
+    bpy.ops.mesh.primitive_cylinder_add(vertices=32, radius=1.0, depth=2.0, end_fill_type="TRIFAN")
+    cyl = bpy.context.active_object
+    co = np.array([v.co[:] for v in cyl.data.vertices])
+    for e in cyl.data.edges:  # the top rim only (both ends on the circle at z = 1)
+        a, b = (co[i] for i in e.vertices)
+        e.use_edge_sharp = bool(min(a[2], b[2]) > 0.999 and min(np.hypot(*a[:2]), np.hypot(*b[:2])) > 0.999)
+    assert sum(e.use_edge_sharp for e in cyl.data.edges) == 32
+
+    def rim_edges(result, z):
+        P = np.array([v.co[:] for v in result.data.vertices])
+        E = np.array([e.vertices[:] for e in result.data.edges])
+        on = (np.abs(P[:, 2] - z) < 1e-3) & (np.abs(np.hypot(P[:, 0], P[:, 1]) - 1.0) < 0.02)
+        return int(np.sum(on[E[:, 0]] & on[E[:, 1]]))
+
+    result = remesh(cyl, target_faces=800, sharp_edges="MARKED")
+    top, bottom = rim_edges(result, 1.0), rim_edges(result, -1.0)
+    print(f"  quad edges on the marked rim {top}, on the unmarked one {bottom}")
+    # the marked rim (2 pi at h ~ 0.15) is an edge loop of ~40 quad edges; the unmarked 90-degree rim is not followed
+    assert top > 35 and top > 2 * bottom
+
+
 @check("two selected objects: one result each, named after its original")
 def _():
     clear_scene()
