@@ -15,7 +15,7 @@ struct FeatureFidelityOptions {
   /// Which edges are features: boundary edges when `boundaries`, and every interior edge whose dihedral angle exceeds
   /// sharp_angle_degrees (issue 15's definition: isolated sharp edges count, min_curve_edges = 1), whether or not
   /// the field follows it.
-  FeatureOptions features{.boundaries = true, .sharp_angle_degrees = 35.0, .min_curve_edges = 1};
+  FeatureOptions features{.boundaries = true, .sharp_angle_degrees = 35.0, .min_curve_edges = 1, .given = {}};
   /// The sharp edges the field follows (field/feature_alignment.h with these options: the job passes its own), also
   /// measured on their own (FeatureFidelity::followed).
   FeatureOptions followed;

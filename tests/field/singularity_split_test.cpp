@@ -131,7 +131,9 @@ TEST(SingularitySplit, DefaultSplitsHalfAndThreeQuarterConesOfRealMeshes) {
     FieldOptions whole_turns;
     whole_turns.split_min_quarters = 4;
     EXPECT_TRUE(compute_frame_field_detailed(m, whole_turns).singularity_moves.empty()) << name;
-    if (std::string(name) == "cow") EXPECT_EQ(interior_max0, 3);
+    if (std::string(name) == "cow") {
+      EXPECT_EQ(interior_max0, 3);
+    }
   }
 }
 
