@@ -547,7 +547,12 @@ std::vector<FileResult> process_files(const std::vector<std::string>& files, con
     }
     r.seconds = seconds_since(t0);
     const int n = ++done;
-    if (!global.quiet) {
+    const bool failed = !r.skipped && r.exit_code != kOk && r.exit_code != kPartial;
+    if (global.quiet && failed) {  // -q hides the progress lines, never an error
+      std::lock_guard lock(stderr_mutex());
+      const bool named = r.error.rfind(files[i], 0) == 0;
+      log << "error: " << (named ? "" : files[i] + ": ") << r.error << '\n' << std::flush;
+    } else if (!global.quiet) {
       std::lock_guard lock(stderr_mutex());
       log << '[' << n << '/' << files.size() << "] " << std::left << std::setw(static_cast<int>(width)) << files[i]
           << std::right

@@ -4,6 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "cli/common.h"
@@ -11,8 +12,9 @@
 #include "cli/registry.h"
 #include "common/errors.h"
 #include "field/compute_frame_field.h"
+#include "field/feature_alignment.h"
 #include "field/indices.h"
-#include "io/read_feature_edges.h"
+#include "io/feature_edge_file.h"
 #include "io/read_mesh.h"
 #include "mesh/mesh.h"
 
@@ -29,6 +31,7 @@ struct FieldCmdOptions : MeshFiles {
   std::string feature_angle = "35";
   std::string features;  ///< a feature file, or the old spelling DEG | off (see legacy_features)
   bool no_features = false;
+  std::string save_features;  ///< --save-features FILE: the sharp edges the field followed, in the --features format
   std::string fill = "smooth";
   double fill_alignment = FieldOptions{}.fill_alignment;
   double fill_unit_weight = FieldOptions{}.fill_unit_weight;
@@ -153,6 +156,29 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
   return j;
 }
 
+/// --save-features: the sharp edges `features` select on `mesh` (those the field followed), in the mesh file's numbers.
+void save_followed_features(const std::string& path, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
+                            const FeatureOptions& features) {
+  std::vector<int> file_vertex(static_cast<std::size_t>(mesh.num_vertices()), -1);
+  for (std::size_t f = 0; f < mesh_vertex_of_file.size(); ++f)
+    if (mesh_vertex_of_file[f] >= 0)
+      file_vertex[static_cast<std::size_t>(mesh_vertex_of_file[f])] = static_cast<int>(f);
+  std::vector<std::pair<int, int>> edges;
+  for (const int e : feature_constraints(mesh, features).feature_edges)
+    edges.emplace_back(file_vertex[static_cast<std::size_t>(mesh.E()(e, 0))],
+                       file_vertex[static_cast<std::size_t>(mesh.E()(e, 1))]);
+  std::ostringstream source;
+  if (features.given)
+    source << "given by --features";
+  else
+    source << "dihedral angle above " << features.sharp_angle_degrees << " degrees, on curves of at least "
+           << features.min_curve_edges << " such edges";
+  write_feature_edges(
+      path, edges,
+      {"quadcover: the " + std::to_string(edges.size()) + " sharp edges the field followed (" + source.str() + ")",
+       "one edge per line, two vertex numbers counted from 1 (the --features format)"});
+}
+
 nlohmann::json run_field(const std::string& input, const std::string& output, const FieldCmdOptions& opt,
                          ProgressSink& progress) {
   FieldOptions options = to_field_options(opt);
@@ -163,6 +189,8 @@ nlohmann::json run_field(const std::string& input, const std::string& output, co
   if (feature_file) options.features.given = read_given_features(opt.features, mesh, mesh_vertex_of_file);
   const FrameFieldResult r = compute_frame_field_detailed(mesh, options, progress);
   write_json_atomically(output, field_document(input, mesh, r, options));
+  if (!opt.save_features.empty())
+    save_followed_features(opt.save_features, mesh, mesh_vertex_of_file, options.features);
 
   const Eigen::VectorXi q = cross_field_quarter_index(mesh, r.field);
   std::map<int, int> by_index;  // quarter index -> count
@@ -222,6 +250,10 @@ void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
                       "Sharp features given instead of detected: " + std::string(kFeatureFileHelp) +
                           "; the field follows them whatever their angle. The old forms DEG (= --feature-angle DEG) "
                           "and 'off' (no sharp feature and no boundary alignment either) are still read");
+  cmd->add_option("--save-features", opt->save_features,
+                  "Also write the sharp edges the field followed (detected or given) to FILE in the --features "
+                  "format, to edit and give back with --features (one input)")
+      ->type_name("FILE");
   cmd->add_option("--fill", opt->fill, kFillHelp)->capture_default_str();
   cmd->add_option("--fill-alignment", opt->fill_alignment,
                   "Smooth fill: strength mu of the alignment to the trusted curvature frames")
@@ -239,6 +271,10 @@ void register_field(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   run_on_inputs(*cmd, global, exit_code, opt->inputs,
                 {"faces", "branch_points", "index_sum", "euler_characteristic", "energy_smooth"},
                 [opt](const std::string& input, bool batch, ProgressSink& progress) {
+                  if (batch && !opt->save_features.empty())
+                    throw InputError("--save-features", 0,
+                                     "takes one input: a batch would write every mesh's edges "
+                                     "to one file");
                   return run_field(input, output_path(input, opt->output, batch, ".field.json"), *opt, progress);
                 });
 }

@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "common/errors.h"
 #include "field/feature_alignment.h"
-#include "io/read_feature_edges.h"
+#include "io/feature_edge_file.h"
 #include "render/html_report.h"
 #include "render/plots.h"
 

@@ -41,7 +41,7 @@ struct OptimizeCliOptions {
   int stiffening = StiffeningOptions{}.max_iterations;  ///< see param/stiffening.h
   double max_memory_gb = 0;  ///< see PipelineOptions::max_memory_bytes (0 = the machine's available memory)
   std::string feature_angle = "35";  ///< sharp feature angle in degrees, or "off" (= 0), field/feature_alignment.h
-  std::string features_file;         ///< --features FILE: the sharp edges given (io/read_feature_edges.h)
+  std::string features_file;         ///< --features FILE: the sharp edges given (io/feature_edge_file.h)
   bool no_features = false;          ///< --no-features: no sharp features (= --feature-angle off)
   bool align = true;                 ///< see ParamOptions::alignment
   bool round_curves = ParamOptions{}.alignment.round_with_periods;  ///< ParamOptions::alignment.round_with_periods
@@ -73,7 +73,7 @@ void add_feature_options(CLI::App& cmd, std::string& feature_angle, std::string&
 /// "off" -> 0, else the number of degrees in [0, 180]. \throw InputError naming --feature-angle otherwise.
 double parse_feature_angle(const std::string& text);
 
-/// The edges of a feature file (io/read_feature_edges.h) on the loaded mesh, as FeatureOptions::given.
+/// The edges of a feature file (io/feature_edge_file.h) on the loaded mesh, as FeatureOptions::given.
 /// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). \throw InputError (the
 /// feature file and its line) for a vertex the mesh file does not have or uses in no face, or two vertices not joined
 /// by an edge of the mesh; as read_feature_edges for a malformed file.

@@ -45,6 +45,19 @@ TEST(InfoBatch, FolderAndFileWithOneBrokenMesh) {
   fs::remove_all(dir);
 }
 
+// -q hides the per-file progress lines of a batch, never an error: each failed file is named with its message.
+TEST(InfoBatch, QuietBatchStillNamesEveryFailure) {
+  const fs::path dir = quadcover::testing::fresh_dir("batch_cli_quiet", "files");
+  const std::string good = quadcover::testing::data_path("eight_genus2"),
+                    bad = quadcover::testing::data_path("bad/torus_klein_nonorientable");
+  const CliRun r = run_cli("field -q " + good + " " + bad + " -o " + dir.string(), (dir / "err.txt").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("error: " + bad), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("orientable"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("eight_genus2"), std::string::npos) << r.err;  // the good file: nothing
+  fs::remove_all(dir);
+}
+
 TEST(InfoBatch, GlobalOptionsAreAcceptedAndValidated) {
   EXPECT_EQ(run_cli("info --time-limit 5 -q " + quadcover::testing::data_path("eight_genus2")).code, 0);
   EXPECT_EQ(run_cli("info --time-limit -1 " + quadcover::testing::data_path("eight_genus2")).code, 2);

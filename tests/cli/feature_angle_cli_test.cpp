@@ -130,6 +130,27 @@ TEST_F(FeatureAngleCli, GivenFeaturesReplaceTheDetection) {
             report("param", "fandisk", "")["field"]["features"]["constrained_faces"].get<int>());
 }
 
+// `field --save-features F` writes the edges the field followed; `remesh --features F` then makes the same quads as
+// the detection, byte for byte. Two inputs with --save-features are refused.
+TEST_F(FeatureAngleCli, SavedFeaturesGiveBackTheSameQuads) {
+  const std::string mesh = quadcover::testing::data_path("fandisk");
+  ASSERT_EQ(run_cli("field " + mesh + " -o " + path("f.json") + " -q --save-features " + path("saved.txt")).code, 0);
+  const std::string saved = quadcover::testing::slurp(path("saved.txt"));
+  EXPECT_EQ(saved.rfind("# quadcover: the 662 sharp edges the field followed (dihedral angle above 35 degrees", 0), 0u)
+      << saved.substr(0, 200);
+  const std::string common = std::string(quadcover::testing::kWithoutRepairs) + " -q";
+  ASSERT_EQ(run_cli("remesh " + mesh + " -o " + path("given.obj") + common + " --features " + path("saved.txt")).code,
+            0);
+  ASSERT_EQ(run_cli("remesh " + mesh + " -o " + path("detected.obj") + common).code, 0);
+  EXPECT_EQ(quadcover::testing::slurp(path("given.obj")), quadcover::testing::slurp(path("detected.obj")));
+  const auto batch = run_cli("field " + mesh + " " + quadcover::testing::data_path("cow") + " -o " + path("dir") +
+                                 " --save-features " + path("both.txt"),
+                             path("e.txt"));
+  EXPECT_EQ(batch.code, 2);
+  EXPECT_NE(batch.err.find("--save-features: takes one input"), std::string::npos) << batch.err;
+  EXPECT_FALSE(fs::exists(path("both.txt")));
+}
+
 TEST_F(FeatureAngleCli, NoFeaturesTurnsThemOffInTheFieldAndTheSmoothing) {
   const nlohmann::json none = report("remesh", "fandisk", "", "--no-features");
   const nlohmann::json by_default = report("remesh", "fandisk", "");

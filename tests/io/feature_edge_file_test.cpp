@@ -1,6 +1,6 @@
 // Feature edge files (`--features FILE`): vertex pairs counted from 1, comments and blank lines, and every malformed
 // line reported with its number.
-#include "io/read_feature_edges.h"
+#include "io/feature_edge_file.h"
 
 #include <gtest/gtest.h>
 

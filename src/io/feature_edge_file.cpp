@@ -1,6 +1,9 @@
-#include "io/read_feature_edges.h"
+#include "io/feature_edge_file.h"
+
+#include <ostream>
 
 #include "common/errors.h"
+#include "io/atomic_file.h"
 #include "io/read_mesh.h"
 #include "io/text_scanner.h"
 
@@ -31,6 +34,14 @@ std::vector<FeatureEdgeLine> read_feature_edges_from_memory(std::string_view byt
     edges.push_back({static_cast<int>(a - 1), static_cast<int>(b - 1), scan.line()});
   }
   return edges;
+}
+
+void write_feature_edges(const std::string& path, const std::vector<std::pair<int, int>>& edges,
+                         const std::vector<std::string>& comment) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    for (const std::string& line : comment) out << "# " << line << '\n';
+    for (const auto& [a, b] : edges) out << a + 1 << ' ' << b + 1 << '\n';
+  });
 }
 
 }  // namespace quadcover
