@@ -163,24 +163,15 @@ std::optional<std::vector<std::pair<int, int>>> feature_edge_pairs(const py::obj
 void set_given_features(const Mesh& mesh, const std::vector<int>& vertex_map,
                         const std::optional<std::vector<std::pair<int, int>>>& pairs, PipelineOptions& options) {
   if (!pairs) return;
-  std::vector<std::pair<int, int>> edges;
-  for (std::size_t r = 0; r < pairs->size(); ++r) {
-    const auto [a, b] = (*pairs)[r];
-    const auto n = static_cast<int>(vertex_map.size());
-    const int va = a < n ? vertex_map[static_cast<std::size_t>(a)] : -1,
-              vb = b < n ? vertex_map[static_cast<std::size_t>(b)] : -1;
-    if (va < 0 || vb < 0)
-      throw InputError("features", static_cast<long>(r + 1),
-                       "vertex " + std::to_string(va < 0 ? a : b) + " is not a vertex of a face of F");
-    edges.emplace_back(va, vb);
-  }
-  std::vector<int> missing;
-  options.param.features.given = feature_segments(mesh, edges, missing);
-  if (!missing.empty()) {
-    const auto [a, b] = (*pairs)[static_cast<std::size_t>(missing.front())];
-    throw InputError("features", missing.front() + 1,
-                     "vertices " + std::to_string(a) + " and " + std::to_string(b) + " are not joined by an edge of F");
-  }
+  RefusedFeatureEdge refused;
+  options.param.features.given = feature_segments(mesh, vertex_map, *pairs, refused);
+  if (refused.why == RefusedFeatureEdge::Why::kNone) return;
+  const auto [a, b] = (*pairs)[static_cast<std::size_t>(refused.position)];
+  throw InputError(
+      "features", refused.position + 1,
+      refused.why == RefusedFeatureEdge::Why::kNotAnEdge
+          ? "vertices " + std::to_string(a) + " and " + std::to_string(b) + " are not joined by an edge of F"
+          : "vertex " + std::to_string(refused.vertex) + " is not a vertex of a face of F");
 }
 
 /// The keyword arguments shared by parameterize() and remesh(), as pipeline options.

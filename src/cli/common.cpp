@@ -166,13 +166,12 @@ void warn(ProgressSink& progress, const std::string& text) { progress.report("wa
 
 namespace {
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices,
-               std::vector<int>* mesh_vertex_of_file = nullptr) {
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices, bool written_back) {
   const PolygonSoup soup = read_mesh(input);
   MeshBuildResult built = build_mesh(soup);
   const std::size_t dropped = built.report.unreferenced_vertices;
   const std::string name = input == "-" ? std::string("<stdin>") : input;
-  if (dropped > 0 && file_vertices)
+  if (dropped > 0 && written_back)
     warn(progress, name + ": " + std::to_string(dropped) +
                        " unreferenced vertices (used by no face) are written back unchanged, without texture "
                        "coordinates, so the output keeps the input's vertex numbers");
@@ -180,9 +179,8 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
     warn(progress, name + ": " + std::to_string(dropped) + " unreferenced vertices (used by no face) dropped: the " +
                        "outputs number the " + std::to_string(built.mesh.num_vertices()) + " others in input " +
                        "order, so vertex numbers after the first dropped one differ from the input's");
-  if (mesh_vertex_of_file) *mesh_vertex_of_file = built.vertex_map;
   if (file_vertices) {
-    file_vertices->positions = soup.positions;
+    if (written_back) file_vertices->positions = soup.positions;
     file_vertices->mesh_of = built.vertex_map;
     file_vertices->of_mesh.assign(static_cast<std::size_t>(built.mesh.num_vertices()), -1);
     for (std::size_t v = 0; v < built.vertex_map.size(); ++v)
@@ -194,14 +192,10 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
 
 }  // namespace
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress) { return load_mesh(input, progress, nullptr); }
+Mesh load_mesh(const std::string& input, ProgressSink& progress) { return load_mesh(input, progress, nullptr, false); }
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress, std::vector<int>& mesh_vertex_of_file) {
-  return load_mesh(input, progress, nullptr, &mesh_vertex_of_file);
-}
-
-Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices) {
-  return load_mesh(input, progress, &file_vertices);
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back) {
+  return load_mesh(input, progress, &file_vertices, written_back);
 }
 
 // ---- progress -----------------------------------------------------------------------------------------------

@@ -163,18 +163,17 @@ void warn(ProgressSink& progress, const std::string& text);
 /// \throw InputError, TopologyError as read_mesh / build_mesh.
 Mesh load_mesh(const std::string& input, ProgressSink& progress);
 
-/// The file's own vertices, for outputs over the input mesh that keep the file's vertex numbers (`param`).
+/// The file's own vertices, for outputs over the input mesh that keep the file's vertex numbers (`param`) and for
+/// inputs that name them (feature files).
 struct FileVertices {
-  Eigen::MatrixX3d positions;  ///< every vertex of the file, unreferenced ones included
+  Eigen::MatrixX3d positions;  ///< every vertex of the file, unreferenced ones included (when written back)
   std::vector<int> of_mesh;    ///< mesh vertex -> its 0-based number in the file
   std::vector<int> mesh_of;    ///< file vertex -> mesh vertex, -1 for one used by no face
 };
-/// load_mesh that also returns, per vertex of the file, its mesh vertex (-1: dropped, used by no face).
+/// load_mesh that also returns the file's vertices; with `written_back` (the outputs keep the file's unreferenced
+/// vertices) the warning says that they are kept, else that they are dropped.
 /// \throw InputError, TopologyError as read_mesh / build_mesh.
-Mesh load_mesh(const std::string& input, ProgressSink& progress, std::vector<int>& mesh_vertex_of_file);
-/// load_mesh that also returns the file's vertices; the warning then says that unreferenced vertices are kept.
-/// \throw InputError, TopologyError as read_mesh / build_mesh.
-Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices);
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back);
 
 // ---- batch --------------------------------------------------------------------------------------------------
 

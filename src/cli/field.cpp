@@ -156,13 +156,10 @@ nlohmann::json field_document(const std::string& input, const Mesh& mesh, const 
   return j;
 }
 
-/// --save-features: the sharp edges `features` select on `mesh` (those the field followed), in the mesh file's numbers.
-void save_followed_features(const std::string& path, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
+/// --save-features: the sharp edges `features` select on `mesh` (those the field followed), in the mesh file's numbers
+/// (file_vertex: mesh vertex -> its number in the file).
+void save_followed_features(const std::string& path, const Mesh& mesh, const std::vector<int>& file_vertex,
                             const FeatureOptions& features) {
-  std::vector<int> file_vertex(static_cast<std::size_t>(mesh.num_vertices()), -1);
-  for (std::size_t f = 0; f < mesh_vertex_of_file.size(); ++f)
-    if (mesh_vertex_of_file[f] >= 0)
-      file_vertex[static_cast<std::size_t>(mesh_vertex_of_file[f])] = static_cast<int>(f);
   std::vector<std::pair<int, int>> edges;
   for (const int e : feature_constraints(mesh, features).feature_edges)
     edges.emplace_back(file_vertex[static_cast<std::size_t>(mesh.E()(e, 0))],
@@ -182,15 +179,15 @@ void save_followed_features(const std::string& path, const Mesh& mesh, const std
 nlohmann::json run_field(const std::string& input, const std::string& output, const FieldCmdOptions& opt,
                          ProgressSink& progress) {
   FieldOptions options = to_field_options(opt);
-  const bool feature_file = !opt.features.empty() && !legacy_features(opt.features);
-  if (feature_file) read_feature_edges(opt.features);  // a malformed file fails before any work
-  std::vector<int> mesh_vertex_of_file;  // load_mesh warns about dropped unreferenced vertices (issue 18 item 16)
-  const Mesh mesh = load_mesh(input, progress, mesh_vertex_of_file);
-  if (feature_file) options.features.given = read_given_features(opt.features, mesh, mesh_vertex_of_file);
+  // A feature file unless the old spelling; a malformed one fails before any work.
+  const FeatureFile feature_file = read_feature_file(legacy_features(opt.features) ? "" : opt.features);
+  FileVertices file_vertices;  // load_mesh warns about dropped unreferenced vertices (issue 18 item 16)
+  const Mesh mesh = load_mesh(input, progress, file_vertices, /*written_back=*/false);
+  if (const auto given = given_features(feature_file, mesh, file_vertices.mesh_of)) options.features.given = given;
   const FrameFieldResult r = compute_frame_field_detailed(mesh, options, progress);
   write_json_atomically(output, field_document(input, mesh, r, options));
   if (!opt.save_features.empty())
-    save_followed_features(opt.save_features, mesh, mesh_vertex_of_file, options.features);
+    save_followed_features(opt.save_features, mesh, file_vertices.of_mesh, options.features);
 
   const Eigen::VectorXi q = cross_field_quarter_index(mesh, r.field);
   std::map<int, int> by_index;  // quarter index -> count

@@ -7,7 +7,6 @@
 #include "cli/commands.h"
 #include "common/errors.h"
 #include "field/feature_alignment.h"
-#include "io/feature_edge_file.h"
 #include "render/html_report.h"
 #include "render/plots.h"
 
@@ -192,41 +191,32 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.stiffening.max_iterations = cli.stiffening;
   options.max_memory_bytes = static_cast<std::int64_t>(cli.max_memory_gb * 1e9);
   options.param.features.sharp_angle_degrees = cli.no_features ? 0 : parse_feature_angle(cli.feature_angle);
-  if (!cli.features_file.empty()) read_feature_edges(cli.features_file);  // a malformed file fails before any work
   options.param.alignment.enabled = cli.align;
   options.param.alignment.round_with_periods = cli.round_curves;
 }
 
-void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
-                        PipelineOptions& options) {
-  if (!cli.features_file.empty())
-    options.param.features.given = read_given_features(cli.features_file, mesh, mesh_vertex_of_file);
+FeatureFile read_feature_file(const std::string& path) {
+  return {path, path.empty() ? std::vector<FeatureEdgeLine>{} : read_feature_edges(path)};
 }
 
-std::vector<FeatureSegment> read_given_features(const std::string& path, const Mesh& mesh,
-                                                const std::vector<int>& mesh_vertex_of_file) {
+std::optional<std::vector<FeatureSegment>> given_features(const FeatureFile& file, const Mesh& mesh,
+                                                          const std::vector<int>& mesh_vertex_of_file) {
+  if (file.path.empty()) return std::nullopt;
   std::vector<std::pair<int, int>> edges;
-  const std::vector<FeatureEdgeLine> lines = read_feature_edges(path);
-  const auto vertex = [&](int file_vertex, long line) {
-    const auto n = static_cast<int>(mesh_vertex_of_file.size());
-    if (file_vertex >= n)
-      throw InputError(path, line,
-                       "vertex " + std::to_string(file_vertex + 1) + " is not in the mesh (it has " +
-                           std::to_string(n) + " vertices)");
-    const int v = mesh_vertex_of_file[static_cast<std::size_t>(file_vertex)];
-    if (v < 0) throw InputError(path, line, "vertex " + std::to_string(file_vertex + 1) + " is used by no face");
-    return v;
-  };
-  for (const FeatureEdgeLine& l : lines) edges.emplace_back(vertex(l.a, l.line), vertex(l.b, l.line));
-  std::vector<int> missing;
-  std::vector<FeatureSegment> given = feature_segments(mesh, edges, missing);
-  if (!missing.empty()) {
-    const FeatureEdgeLine& l = lines[static_cast<std::size_t>(missing.front())];
-    throw InputError(path, l.line,
-                     "vertices " + std::to_string(l.a + 1) + " and " + std::to_string(l.b + 1) +
-                         " are not joined by an edge of the mesh");
-  }
-  return given;
+  for (const FeatureEdgeLine& l : file.lines) edges.emplace_back(l.a, l.b);
+  RefusedFeatureEdge refused;
+  std::vector<FeatureSegment> given = feature_segments(mesh, mesh_vertex_of_file, edges, refused);
+  using Why = RefusedFeatureEdge::Why;
+  if (refused.why == Why::kNone) return given;
+  const FeatureEdgeLine& l = file.lines[static_cast<std::size_t>(refused.position)];
+  const std::string vertex = "vertex " + std::to_string(refused.vertex + 1);
+  throw InputError(
+      file.path, l.line,
+      refused.why == Why::kNoSuchVertex
+          ? vertex + " is not in the mesh (it has " + std::to_string(mesh_vertex_of_file.size()) + " vertices)"
+      : refused.why == Why::kVertexInNoFace ? vertex + " is used by no face"
+                                            : "vertices " + std::to_string(l.a + 1) + " and " +
+                                                  std::to_string(l.b + 1) + " are not joined by an edge of the mesh");
 }
 
 void write_optimization_plot(const std::string& path, const nlohmann::json& optimize_report) {

@@ -6,10 +6,12 @@
 // E_D decreases, so the state at any moment is the best one): the job then parameterizes that state.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "field/feature_alignment.h"
+#include "io/feature_edge_file.h"
 #include "mesh/mesh.h"
 #include "optimize/optimize_field.h"
 #include "param/relaxation.h"
@@ -73,19 +75,20 @@ void add_feature_options(CLI::App& cmd, std::string& feature_angle, std::string&
 /// "off" -> 0, else the number of degrees in [0, 180]. \throw InputError naming --feature-angle otherwise.
 double parse_feature_angle(const std::string& text);
 
-/// The edges of a feature file (io/feature_edge_file.h) on the loaded mesh, as FeatureOptions::given.
-/// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). \throw InputError (the
-/// feature file and its line) for a vertex the mesh file does not have or uses in no face, or two vertices not joined
-/// by an edge of the mesh; as read_feature_edges for a malformed file.
-std::vector<FeatureSegment> read_given_features(const std::string& path, const Mesh& mesh,
-                                                const std::vector<int>& mesh_vertex_of_file);
+/// A --features file, read before the mesh so that a malformed one fails before any work.
+struct FeatureFile {
+  std::string path;  ///< empty: no --features
+  std::vector<FeatureEdgeLine> lines;
+};
+/// Nothing for an empty path. \throw InputError as read_feature_edges (io/feature_edge_file.h).
+FeatureFile read_feature_file(const std::string& path);
 
-/// --features FILE against the loaded mesh: sets options.param.features.given to the file's edges.
-/// `mesh_vertex_of_file` maps the mesh file's vertices to the mesh's (−1: used by no face). Nothing without
-/// --features. \throw InputError (the feature file and its line) for a vertex the mesh file does not have or uses in
-/// no face, or two vertices not joined by an edge of the mesh; as read_feature_edges for a malformed file.
-void apply_feature_file(const OptimizeCliOptions& cli, const Mesh& mesh, const std::vector<int>& mesh_vertex_of_file,
-                        PipelineOptions& options);
+/// The file's edges on the loaded mesh, as FeatureOptions::given (nothing without a file). `mesh_vertex_of_file`
+/// maps the mesh file's vertices to the mesh's (-1: used by no face). \throw InputError (the feature file and its
+/// line) for a vertex the mesh file does not have or uses in no face, or two vertices not joined by an edge of the
+/// mesh.
+std::optional<std::vector<FeatureSegment>> given_features(const FeatureFile& file, const Mesh& mesh,
+                                                          const std::vector<int>& mesh_vertex_of_file);
 
 /// Thesis Figure 6.1 from an "optimize" report object: E_D and the branch point count over the E_D evaluations
 /// of Algorithm 6.1. Written as SVG for a ".svg" path, else PNG (atomically). \throw InputError if the log is

@@ -95,10 +95,11 @@ nlohmann::json run_param(const std::string& input, const ParamOutputs& out, cons
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
   const std::string format = param_output_format(out.obj);
 
+  const FeatureFile feature_file = read_feature_file(opt.optimize.features_file);  // malformed: fails before any work
   StageMeter meter;
   FileVertices file_vertices;  // the OBJ keeps the input's vertex numbers, unreferenced vertices included
-  const Mesh mesh = load_mesh(input, progress, file_vertices);
-  apply_feature_file(opt.optimize, mesh, file_vertices.mesh_of, po);
+  const Mesh mesh = load_mesh(input, progress, file_vertices, /*written_back=*/true);
+  po.param.features.given = given_features(feature_file, mesh, file_vertices.mesh_of);
   const StageCost read = meter.lap();
   ParamJob job = parameterize_mesh(mesh, po, progress);
   job.seconds.insert(job.seconds.begin(), {"read", read.seconds});

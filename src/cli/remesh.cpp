@@ -67,10 +67,11 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
     throw InputError(out.quads, 0, "--ply-quality needs a .ply output");
   const RenderOptions render_options = picture_render_options(opt.pictures);  // bad --size/--view fail now
   const std::vector<ViewCamera> views = picture_views(opt.pictures);
+  const FeatureFile feature_file = read_feature_file(opt.optimize.features_file);  // malformed: fails before any work
   StageMeter meter;
-  std::vector<int> mesh_vertex_of_file;
-  const Mesh mesh = load_mesh(input, progress, mesh_vertex_of_file);
-  apply_feature_file(opt.optimize, mesh, mesh_vertex_of_file, po);
+  FileVertices file_vertices;
+  const Mesh mesh = load_mesh(input, progress, file_vertices, /*written_back=*/false);
+  po.param.features.given = given_features(feature_file, mesh, file_vertices.mesh_of);
   const StageCost read = meter.lap();
   RemeshJob job;
   try {

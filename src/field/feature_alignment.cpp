@@ -79,21 +79,31 @@ bool has_sharp_features(const FeatureOptions& options) {
   return options.given ? !options.given->empty() : options.sharp_angle_degrees > 0;
 }
 
-std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
-                                             std::vector<int>& missing) {
-  std::vector<std::pair<int, int>> keys(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) keys[i] = std::minmax(edges[i].first, edges[i].second);
+std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<int>& mesh_vertex_of_input,
+                                             const std::vector<std::pair<int, int>>& edges,
+                                             RefusedFeatureEdge& refused) {
+  using Why = RefusedFeatureEdge::Why;
+  refused = {};
   std::vector<std::pair<int, int>> present;
   for (int e = 0; e < mesh.num_edges(); ++e) present.push_back(std::minmax(mesh.E()(e, 0), mesh.E()(e, 1)));
   std::sort(present.begin(), present.end());
+  const auto n = static_cast<int>(mesh_vertex_of_input.size());
+  const auto mesh_vertex = [&](int v) { return v < n ? mesh_vertex_of_input[static_cast<std::size_t>(v)] : -1; };
   std::vector<FeatureSegment> out;
-  missing.clear();
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    if (!std::binary_search(present.begin(), present.end(), keys[i])) {
-      missing.push_back(static_cast<int>(i));
-      continue;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto [a, b] = edges[i];
+    const int ma = mesh_vertex(a), mb = mesh_vertex(b);
+    if (ma < 0 || mb < 0) {
+      const int v = ma < 0 ? a : b;
+      refused = {v < n ? Why::kVertexInNoFace : Why::kNoSuchVertex, static_cast<int>(i), v};
+      return out;
     }
-    out.push_back({mesh.V().row(keys[i].first).transpose(), mesh.V().row(keys[i].second).transpose()});
+    const std::pair<int, int> key = std::minmax(ma, mb);
+    if (!std::binary_search(present.begin(), present.end(), key)) {
+      refused = {Why::kNotAnEdge, static_cast<int>(i), -1};
+      return out;
+    }
+    out.push_back({mesh.V().row(key.first).transpose(), mesh.V().row(key.second).transpose()});
   }
   return out;
 }

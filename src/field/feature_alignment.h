@@ -35,11 +35,21 @@ struct FeatureOptions {
 /// Whether `options` ask for any sharp feature (given segments, or a positive angle). \pre none
 bool has_sharp_features(const FeatureOptions& options);
 
-/// The segments of the given edges of `mesh` (vertex pairs), for FeatureOptions::given; `missing` receives the
-/// positions in `edges` of the pairs that are not an edge of the mesh (none are then returned for them).
-/// \pre the vertex numbers are in [0, #V).
-std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
-                                             std::vector<int>& missing);
+/// The first edge feature_segments refused: its position in the list, why, and for a vertex problem the vertex.
+struct RefusedFeatureEdge {
+  enum class Why { kNone, kNoSuchVertex, kVertexInNoFace, kNotAnEdge };
+  Why why = Why::kNone;
+  int position = -1;
+  int vertex = -1;  ///< the input's vertex number (0-based) for kNoSuchVertex and kVertexInNoFace
+};
+
+/// The segments of the given edges, for FeatureOptions::given. `edges` are vertex pairs of the input (a mesh file,
+/// or the rows of V), mapped to `mesh` by `mesh_vertex_of_input` (-1: a vertex in no face, dropped by the mesh).
+/// Stops at the first pair naming a vertex the input lacks or uses in no face, or two vertices not joined by an edge
+/// of the mesh, and says which in `refused` (why = kNone when all are edges). \pre the numbers are >= 0.
+std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector<int>& mesh_vertex_of_input,
+                                             const std::vector<std::pair<int, int>>& edges,
+                                             RefusedFeatureEdge& refused);
 
 struct FeatureConstraints {
   std::vector<char> constrained;   ///< #F: 1 if the face's cross is fixed

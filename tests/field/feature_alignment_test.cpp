@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include "field/compute_frame_field.h"
 #include "mesh/shape_operator.h"
@@ -29,11 +30,26 @@ TEST(GivenFeatures, FlatEdgesGivenAreFollowedAndKeptThroughSplits) {
   }
   ASSERT_EQ(expected.size(), 6u);
   pairs.emplace_back(0, grid.num_vertices() - 1);  // opposite corners: not an edge
-  std::vector<int> missing;
+  std::vector<int> identity(static_cast<std::size_t>(grid.num_vertices()));
+  std::iota(identity.begin(), identity.end(), 0);
+  RefusedFeatureEdge refused;
   FeatureOptions options;
-  options.given = feature_segments(grid, pairs, missing);
-  EXPECT_EQ(missing, std::vector<int>{6});
+  options.given = feature_segments(grid, identity, pairs, refused);
+  EXPECT_EQ(refused.why, RefusedFeatureEdge::Why::kNotAnEdge);
+  EXPECT_EQ(refused.position, 6);
   EXPECT_EQ(options.given->size(), 6u);
+  // Through an input numbering: a vertex the input lacks, and one the mesh dropped (in no face).
+  std::vector<int> dropped = identity;
+  dropped[3] = -1;
+  feature_segments(grid, dropped, {{0, 1}, {3, 4}}, refused);
+  EXPECT_EQ(refused.why, RefusedFeatureEdge::Why::kVertexInNoFace);
+  EXPECT_EQ(refused.position, 1);
+  EXPECT_EQ(refused.vertex, 3);
+  feature_segments(grid, identity, {{0, grid.num_vertices()}}, refused);
+  EXPECT_EQ(refused.why, RefusedFeatureEdge::Why::kNoSuchVertex);
+  EXPECT_EQ(refused.vertex, grid.num_vertices());
+  EXPECT_EQ(feature_segments(grid, identity, {{1, 0}}, refused).size(), 1u);  // either order
+  EXPECT_EQ(refused.why, RefusedFeatureEdge::Why::kNone);
   EXPECT_TRUE(has_sharp_features(options));
   const FeatureConstraints fc = feature_constraints(grid, options);
   EXPECT_EQ(fc.feature_edges, expected);
