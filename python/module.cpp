@@ -404,8 +404,10 @@ constexpr const char* kParameterizeDoc =
     "search2, search3 or exact. keep_better: also parameterize the original field and keep the map with the lower "
     "E_D + E_H. stiffening: re-solves of the final correction against flipped triangles (0 = off). relaxation: "
     "ARAP local/global rounds of the final map (0 = off). field: 'curvature' (the trusted principal curvature "
-    "directions, filled and smoothed, thesis ch. 5) or 'smooth' (the "
-    "smoothest cross field, weakly pulled to them). "
+    "directions, filled and smoothed, thesis ch. 5), 'smooth' (the "
+    "smoothest cross field, weakly pulled to them) or 'auto' (smooth on a closed surface, curvature on one with a "
+    "boundary; when the smooth field's result is not valid the curvature field's is made too and the more valid "
+    "kept; the report's options.field says which ran). "
     "fill: frames of the untrusted faces, 'smooth' (power-field solve) or 'propagate' (the thesis's trusted "
     "propagation, 5.1.2). "
     "feature_angle: interior edges whose dihedral angle exceeds this many degrees (on curves of at least 8 such "
@@ -494,9 +496,9 @@ void def_jobs(py::module_& m) {
       py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
       py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
-      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "auto", py::arg("fill") = "smooth",
+      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
+      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
       py::arg("validity_retries") = PipelineOptions{}.validity_retries,
       py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
@@ -525,9 +527,9 @@ void def_jobs(py::module_& m) {
       py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
       py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
       py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "curvature",
-      py::arg("fill") = "smooth", py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees),
-      py::arg("align_curves") = true, py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "auto", py::arg("fill") = "smooth",
+      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
+      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
       py::arg("validity_retries") = PipelineOptions{}.validity_retries,
       py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
       py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,

@@ -85,7 +85,9 @@ class QUADCOVER_AP_preferences(bpy.types.AddonPreferences):
 
 # ---- settings ---------------------------------------------------------------------------------------------------
 
-FIELD_STYLES = [("curvature", "Curvature", "Cross field along the principal curvature directions (thesis ch. 5)"),
+FIELD_STYLES = [("auto", "Auto", "Smooth on a closed surface (Curvature where its result is not valid), "
+                 "Curvature on one with a boundary"),
+                ("curvature", "Curvature", "Cross field along the principal curvature directions (thesis ch. 5)"),
                 ("smooth", "Smooth", "Smoothest cross field: lower distortion on organic shapes")]
 SHARP_EDGES = [("ANGLE", "By Angle", "Sharp features: the edges sharper than Feature Angle"),
                ("MARKED", "Marked Sharp", "Sharp features: the edges marked sharp (Edge > Mark Sharp), whatever their "
@@ -109,7 +111,7 @@ def _settings_props():
                                                  "along the sharp features of Feature Angle"),
         "smoothing": bpy.props.IntProperty(name="Smoothing", default=20, min=0, max=200,
                                            description="Rounds of tangential quad smoothing on the surface"),
-        "field_style": bpy.props.EnumProperty(name="Field", items=FIELD_STYLES, default="curvature"),
+        "field_style": bpy.props.EnumProperty(name="Field", items=FIELD_STYLES, default="auto"),
         "output": bpy.props.EnumProperty(name="Output", items=OUTPUTS, default="NEW"),
         "suffix": bpy.props.StringProperty(name="Name Suffix", default="_quadcover"),
         "select_problems": bpy.props.BoolProperty(name="Select Problems", default=False,

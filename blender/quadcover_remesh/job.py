@@ -17,7 +17,7 @@ class Settings:
     feature_angle: float = 35.0  # degrees, 0 = no sharp features: remesh(feature_angle=)
     align_boundary: bool = True  # boundaries and sharp features on quad edges: remesh(align_curves=)
     smoothing: int = 20  # rounds of quad smoothing
-    field_style: str = "curvature"
+    field_style: str = "auto"
     sharp_edges: str = "ANGLE"  # ANGLE: edges above feature_angle; MARKED: the edges marked sharp (remesh(features=))
 
 

@@ -207,9 +207,10 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
     # makes maps injective) keeps E_H and the periods, never adds folds to the map it starts from, says what it did.
     V, F = mesh("couplingdown_genus9")
     # One density and one field for both: no validity retries (which could pick another density for one of them)
-    # and no cone merges, moves or separation (which make the map again when the map is not valid).
+    # and no cone merges, moves or separation (which make the map again when the map is not valid); the curvature-
+    # guided field of the case in tests/param/stiffening_test.cpp.
     same = dict(optimize="none", relaxation=0, validity_retries=0, merge_cones=False, move_cones=False,
-                separate_cones=False)
+                separate_cones=False, field="curvature")
     uv0, plain = quadcover.parameterize(V, F, **same)
     stiffened = quadcover.parameterize(V, F, stiffening=6, **same)
     uv1, stiff = stiffened
@@ -231,19 +232,23 @@ def test_parameterize_stiffening_lowers_flips_and_keeps_energies():
 
 def test_parameterize_relaxation_lowers_arap_and_keeps_the_map_seamless():
     # The ARAP relaxation (param/relaxation.h) keeps E_D, E_H and the seams, lowers the ARAP distortion of the
-    # map, and reports its price E_R > 0; the smooth field preset is accepted and gives another map.
+    # map, and reports its price E_R > 0 (one field for both: with field="auto" a map that is not valid would be made
+    # again from the curvature-guided field); the curvature preset is accepted and gives another map.
     V, F = mesh("fandisk")
-    _, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0)
-    uv, relaxed = quadcover.parameterize(V, F, optimize="none", stiffening=0)
+    _, plain = quadcover.parameterize(V, F, optimize="none", stiffening=0, relaxation=0, field="smooth")
+    relaxed_result = quadcover.parameterize(V, F, optimize="none", stiffening=0, field="smooth")
+    uv, relaxed = relaxed_result
     assert plain["relaxation"]["iterations"] == 0 and relaxed["relaxation"]["iterations"] > 0
     assert relaxed["parameterization"]["energy_harmonic"] == pytest.approx(plain["parameterization"]["energy_harmonic"], rel=1e-12)
     assert relaxed["relaxation"]["E_R"] > 0
     assert relaxed["relaxation"]["arap_after"] < relaxed["relaxation"]["arap_before"]
     assert relaxed["parameterization"]["arap"] < plain["parameterization"]["arap"]
-    worst, _ = seam_defect(F, uv)
+    worst, _ = seam_defect(relaxed_result.F, uv)  # the map's triangulation (refined where it folded)
     assert worst < 1e-6 * max(1.0, np.ptp(uv.reshape(-1, 2), axis=0).max())
-    _, smooth = quadcover.parameterize(V, F, optimize="none", field="smooth")
-    assert smooth["parameterization"]["energy_curl"] != pytest.approx(relaxed["parameterization"]["energy_curl"], rel=1e-6)
+    assert relaxed["options"]["field"] == "smooth" and not relaxed["options"]["field_auto"]
+    _, curvature = quadcover.parameterize(V, F, optimize="none", field="curvature")
+    assert curvature["options"]["field"] == "curvature" and not curvature["options"]["field_auto"]
+    assert curvature["parameterization"]["energy_curl"] != pytest.approx(relaxed["parameterization"]["energy_curl"], rel=1e-6)
     with pytest.raises(ValueError):
         quadcover.parameterize(V, F, relaxation=-1)
     with pytest.raises(ValueError):

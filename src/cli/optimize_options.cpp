@@ -75,8 +75,11 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "Guiding cross field: curvature = the principal curvature directions on the faces where they are "
                  "reliable (5.1.2), filled in by --fill and smoothed (5.3) with a pull towards them; smooth = the "
                  "smoothest cross field with a weak pull to them (as MIQ), "
-                 "lower distortion on organic shapes (Table 7.1 in BENCHMARKS.md). Features are followed by both")
-      ->check(CLI::IsMember({"curvature", "smooth"}))
+                 "lower distortion on organic shapes (Table 7.1 in BENCHMARKS.md); auto = smooth on a closed surface, "
+                 "curvature on one with a boundary, and when the smooth field's result is not valid the map is "
+                 "made from the curvature field too and the more valid kept (the report's options.field says "
+                 "which ran, options.field_auto that it was chosen). Features are followed by all")
+      ->check(CLI::IsMember({"auto", "curvature", "smooth"}))
       ->capture_default_str();
   cmd.add_option("--fill", options.fill, kFillHelp)
       ->check(CLI::IsMember({"smooth", "propagate"}))

@@ -36,7 +36,7 @@ struct OptimizeCliOptions {
   bool separate_cones = true;         ///< PipelineOptions::separate_coincident_cones
   int refine_folds = 6;               ///< PipelineOptions::fold_refinement_rounds
   int validity_retries = PipelineOptions{}.validity_retries;  ///< PipelineOptions::validity_retries
-  std::string field = "curvature";    ///< field stage preset (field/compute_frame_field.h, FieldStyle)
+  std::string field = "auto";         ///< field stage preset (field/compute_frame_field.h, FieldStyle)
   std::string fill = "smooth";        ///< FieldOptions::fill: smooth or propagate (thesis 5.1.2)
   int split_min_quarters = PipelineOptions{}.split_min_quarters;  ///< PipelineOptions::split_min_quarters
   int relaxation = RelaxationOptions{}.iterations;      ///< see param/relaxation.h

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <stdexcept>
 
 #include "common/errors.h"
 #include "field/indices.h"
@@ -18,10 +19,25 @@ namespace quadcover {
 FieldStyle parse_field_style(std::string_view name) {
   if (name == "curvature") return FieldStyle::Curvature;
   if (name == "smooth") return FieldStyle::Smooth;
-  throw InputError("field", 0, "unknown field style '" + std::string(name) + "' (expected curvature or smooth)");
+  if (name == "auto") return FieldStyle::Auto;
+  throw InputError("field", 0, "unknown field style '" + std::string(name) + "' (expected auto, curvature or smooth)");
 }
 
-std::string to_string(FieldStyle style) { return style == FieldStyle::Smooth ? "smooth" : "curvature"; }
+std::string to_string(FieldStyle style) {
+  switch (style) {
+    case FieldStyle::Smooth:
+      return "smooth";
+    case FieldStyle::Auto:
+      return "auto";
+    default:
+      return "curvature";
+  }
+}
+
+FieldStyle resolved_field_style(FieldStyle style, const Mesh& mesh) {
+  if (style != FieldStyle::Auto) return style;
+  return mesh.num_boundary_loops() > 0 ? FieldStyle::Curvature : FieldStyle::Smooth;
+}
 
 Fill parse_fill(std::string_view name) {
   if (name == "propagate") return Fill::Propagate;
@@ -32,6 +48,7 @@ Fill parse_fill(std::string_view name) {
 std::string to_string(Fill fill) { return fill == Fill::Propagate ? "propagate" : "smooth"; }
 
 FieldOptions field_options(FieldStyle style) {
+  if (style == FieldStyle::Auto) throw std::logic_error("field_options: resolve FieldStyle::Auto first");
   FieldOptions o;
   if (style == FieldStyle::Smooth) {
     o.lambda = 1.0;

@@ -71,12 +71,20 @@ enum class FieldStyle {
   /// The smoothest cross field with a weak pull to the curvature directions (λ = 1, fill_alignment = 0.1), as
   /// MIQ / Directional users know it; features stay fixed. Lower distortion on organic shapes.
   Smooth,
+  /// Chosen per surface by resolved_field_style: Smooth on a closed surface, Curvature on one with a boundary.
+  Auto,
 };
-/// Parses "curvature|smooth". \throw InputError otherwise.
+/// Parses "auto|curvature|smooth". \throw InputError otherwise.
 FieldStyle parse_field_style(std::string_view name);
 std::string to_string(FieldStyle style);  ///< \pre none
-/// The FieldOptions of a preset. \pre none
+/// The FieldOptions of a preset. \pre style is not Auto (resolved_field_style) \throw std::logic_error for Auto
 FieldOptions field_options(FieldStyle style);
+/// `style`, with Auto resolved for `mesh`: Smooth when the mesh has no boundary, else Curvature. On closed shapes
+/// the smoothest field has less distortion (lower ARAP on 13 of the 14 closed shipped meshes); along boundaries the
+/// curvature-guided one leaves fewer non-quads at holes (BENCHMARKS.md, "Field chosen per surface"). The jobs make
+/// the map from the Curvature field too when the Smooth one's is not valid (pipeline/retry_until_valid.h).
+/// \pre none
+FieldStyle resolved_field_style(FieldStyle style, const Mesh& mesh);
 
 /// The frame field and what it was made from.
 struct FrameFieldResult {

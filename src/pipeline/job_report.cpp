@@ -145,6 +145,7 @@ nlohmann::json validity_retries_json(const ParamJob& job) {
   nlohmann::json attempts = nlohmann::json::array();
   for (const ValidityAttempt& a : job.validity_attempts)
     attempts.push_back({{"quads_factor", a.quads_factor},
+                        {"field", to_string(a.field_style)},
                         {"edge_length", a.edge_length},
                         {"valid", a.validity.valid()},
                         {"topology_changes", a.validity.topology_changes},
@@ -191,6 +192,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["fold_refinement"] = fold_refinement_json(job.fold_refinement);
   r["validity_retries"] = validity_retries_json(job);
   r["options"] = options_json(job.options);
+  r["options"]["field_auto"] = job.field_style_auto;
   r["edge_length"] = map.edge_length;
   r["density"] = {{"target_quads", job.density.target_quads},
                   {"first_quads", job.density.first_quads},

@@ -455,6 +455,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   check_memory_budget(input, options.param, available_bytes(options.max_memory_bytes));
   ParamJob job;
   job.options = options;
+  job.options.field_style = resolved_field_style(options.field_style, input);
+  job.field_style_auto = options.field_style == FieldStyle::Auto;
   ParamOptions& param = job.options.param;
   StageMeter meter;
   if (options.refine_curve_triangles && param.alignment.enabled) {
@@ -462,12 +464,12 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
   const Mesh& mesh = job.mesh(input);
-  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(options), progress);
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(job.options), progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
   fix_default_density(mesh, field.field, param.density);  // one scale for the optimization, keep-better and the map
-  OptimizeOptions oo = optimize_stage_options(options, param);
+  OptimizeOptions oo = optimize_stage_options(job.options, param);
   const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
   const std::string mode = to_string(options.optimize);
   if (oo.mode != OptimizeMode::None) progress.report("optimize", 0, "Algorithm 6.1 (" + mode + ")");

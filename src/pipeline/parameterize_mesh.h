@@ -34,7 +34,10 @@ inline constexpr double kDensityTolerance = 0.02;
 inline constexpr int kDensityResolves = 4;
 
 struct ParamJob {
-  PipelineOptions options;      ///< as given, with the default density fixed to an explicit edge length
+  /// As given, with the default density fixed to an explicit edge length and FieldStyle::Auto resolved for the
+  /// input (resolved_field_style; field_style_auto says it was).
+  PipelineOptions options;
+  bool field_style_auto = false;
   /// The triangulation the map lives on: the input's, or a refinement of it (more triangles, the input's vertices
   /// first) when the curve constraints or the fold refinement needed one; `split` lists the curve refinement's
   /// splits, then the fold refinement's. Use mesh(input) for it.

@@ -13,8 +13,9 @@
 namespace quadcover {
 
 struct PipelineOptions {
-  /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5) or smoothest.
-  FieldStyle field_style = FieldStyle::Curvature;
+  /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5), smoothest, or chosen per
+  /// surface (Auto: smoothest on closed surfaces without sharp features).
+  FieldStyle field_style = FieldStyle::Auto;
   /// The field stage splits its singularities of |quarter index| >= this into quarter-index ones (>= 2;
   /// FieldOptions::split_min_quarters).
   int split_min_quarters = FieldOptions{}.split_min_quarters;

@@ -67,7 +67,18 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
   }
 }
 
-/// Attempt 0 = first_attempt(given minus its retries), then, while the best so far is worth_retrying, up to
+/// FieldStyle::Auto's fallback: when the first attempt ran with the Smooth field (a closed surface) and is not valid
+/// (wrong windings too), the job runs once more with the Curvature field, whose cones sit elsewhere (on CAD parts
+/// such as couplingdown_genus9 the smoothest field leaves 8 wrong windings, the curvature-guided one 2). Retries
+/// on (validity_retries > 0) and no time limit or Ctrl-C reached. \pre none
+inline bool fall_back_to_curvature(const PipelineOptions& given, FieldStyle first_style, const Validity& first,
+                                   ProgressSink& progress) {
+  return given.field_style == FieldStyle::Auto && first_style == FieldStyle::Smooth && !first.valid() &&
+         given.validity_retries > 0 && !progress.skip_improvements();
+}
+
+/// Attempt 0 = first_attempt(given minus its retries), then FieldStyle::Auto's fallback (fall_back_to_curvature),
+/// kept when more valid, then, while the best so far is worth_retrying, up to
 /// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The
 /// kept job's ParamJob (param_job(job)) records the attempts; a warning says when the kept one is not the first or
 /// is not valid. A time limit or Ctrl-C ends the retries (recorded as cut short).
@@ -79,22 +90,36 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   once.validity_retries = 0;
   auto [first, best_validity] = first_attempt(once, given.validity_retries, run, judge, progress);
   using Job = decltype(first);
-  std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity}};
-  const double h0 = param_job(first).options.param.density.edge_length;
+  const FieldStyle first_style = param_job(first).options.field_style;
+  std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity, first_style}};
   int used = 0;
   Job best = std::move(first);
+  if (fall_back_to_curvature(given, first_style, best_validity, progress)) {
+    progress.report("retry", -1, "result not valid: the map made again from the curvature-guided field");
+    PipelineOptions curvature = once;
+    curvature.field_style = FieldStyle::Curvature;
+    auto [next, v] = first_attempt(curvature, given.validity_retries, run, judge, progress);
+    attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature});
+    if (v < best_validity) best = std::move(next), best_validity = v, used = 1;
+  }
+  PipelineOptions retried = given;  // the density retries keep the field of the best so far
+  retried.field_style = param_job(best).options.field_style;
+  const double h0 = param_job(best).options.param.density.edge_length;
+  const int field_attempts = static_cast<int>(attempts.size()) - 1;
   for (int k = 1; k <= given.validity_retries && best_validity.worth_retrying(); ++k) {
     if (progress.skip_improvements()) {
       record_cut_short(param_job(best), "validity retries");
       break;
     }
     progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
-    Job next = run(attempt_options(given, h0, k));
+    Job next = run(attempt_options(retried, h0, k));
     const Validity v = judge(next);
-    attempts.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v});
-    if (v < best_validity) best = std::move(next), best_validity = v, used = k;
+    attempts.push_back(
+        {attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v, retried.field_style});
+    if (v < best_validity) best = std::move(next), best_validity = v, used = k + field_attempts;
   }
   ParamJob& kept = param_job(best);
+  kept.field_style_auto = given.field_style == FieldStyle::Auto;
   kept.validity_attempts = attempts;
   kept.validity_attempt_used = used;
   kept.options.validity_retries = given.validity_retries;  // the attempts ran without; the job had these

@@ -71,12 +71,20 @@ std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int u
     return "the result is not valid: " + describe(kept.validity) +
            (kept.validity.worth_retrying() ? " (retries off)" : " (wrong windings alone are not retried)") +
            "; see the report's parameterization.wrong_winding_vertices and flipped_faces";
+  // An attempt with another field than the first's is named by its field (FieldStyle::Auto's fallback).
+  const auto name = [&](const ValidityAttempt& a) {
+    const std::string field =
+        a.field_style == attempts[0].field_style
+            ? ""
+            : "using the " + to_string(a.field_style) + " field" + (a.quads_factor == 1 ? "" : " ");
+    return field + (field.empty() || a.quads_factor != 1 ? "at " + percent(a.quads_factor) + " quads" : "");
+  };
   std::string tried;
-  for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + percent(attempts[k].quads_factor);
+  for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + name(attempts[k]);
   const std::string first = "the result at the requested density was not valid (" + describe(attempts[0].validity) +
-                            "); retried at " + tried + " quads and kept ";
+                            "); retried " + tried + " and kept ";
   const std::string which = kept.validity.valid() ? "a valid result" : "the best, with " + describe(kept.validity);
-  return first + which + " at " + percent(kept.quads_factor) + " quads (see the report's validity_retries)";
+  return first + which + ", " + name(kept) + " (see the report's validity_retries)";
 }
 
 }  // namespace quadcover

@@ -42,6 +42,7 @@ struct ValidityAttempt {
   double quads_factor = 1;  ///< quad count asked for, relative to the first attempt's
   double edge_length = 0;   ///< h of its map (model units)
   Validity validity;
+  FieldStyle field_style = FieldStyle::Curvature;  ///< the field stage's preset it ran with (resolved)
 };
 
 /// The interior vertices around which φ winds other than the field's cross-field index says (param/ring_winding.h

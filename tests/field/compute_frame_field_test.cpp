@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/errors.h"
 #include "field/indices.h"
 #include "field/matching.h"
 #include "support/test_meshes.h"
@@ -116,6 +117,25 @@ TEST(Pipeline, OptionsAreHonoured) {
   EXPECT_EQ(r.energy_smooth, r.energy_smooth_initial);
   const FrameFieldResult with_features = compute_frame_field_detailed(mesh);
   EXPECT_GT(std::count(with_features.constrained.begin(), with_features.constrained.end(), 1), 500);
+}
+
+// FieldStyle::Auto: the smoothest field on a closed surface (with or without sharp features), the curvature-guided
+// one on a surface with a boundary (one open mesh in a file of two: the file has a boundary); an explicit style is
+// never changed.
+TEST(FieldStyleChoice, AutoFollowsTheBoundary) {
+  const Mesh torus = testing::make_torus(60, 24);
+  const Mesh cylinder = testing::make_cylinder(40, 12);
+  const Mesh fandisk = testing::load_test_mesh("fandisk");
+  const Mesh both = testing::make_torus_and_cylinder();
+  EXPECT_EQ(resolved_field_style(FieldStyle::Auto, torus), FieldStyle::Smooth);
+  EXPECT_EQ(resolved_field_style(FieldStyle::Auto, fandisk), FieldStyle::Smooth);
+  EXPECT_EQ(resolved_field_style(FieldStyle::Auto, cylinder), FieldStyle::Curvature);
+  EXPECT_EQ(resolved_field_style(FieldStyle::Auto, both), FieldStyle::Curvature);
+  for (const FieldStyle style : {FieldStyle::Curvature, FieldStyle::Smooth})
+    for (const Mesh* mesh : {&torus, &cylinder, &fandisk}) EXPECT_EQ(resolved_field_style(style, *mesh), style);
+  for (const FieldStyle style : {FieldStyle::Curvature, FieldStyle::Smooth, FieldStyle::Auto})
+    EXPECT_EQ(parse_field_style(to_string(style)), style);
+  EXPECT_THROW(parse_field_style("smoothest"), InputError);
 }
 
 }  // namespace

@@ -160,8 +160,10 @@ TEST(FoldRefinement, ShippedMeshesEndWithoutNonPositiveTriangles) {
 /// triangle.
 TEST(FoldRefinement, ConesWithAShortRingEndWithoutANonPositiveTriangle) {
   const Mesh mesh = testing::load_test_mesh("couplingdown_genus9");
-  // The rewinding alone: no cone moves or merges (they take the short-ring cones away first) and one density.
+  // The rewinding alone: no cone moves or merges (they take the short-ring cones away first) and one density; the
+  // curvature-guided field, whose map has these cones.
   PipelineOptions on;
+  on.field_style = FieldStyle::Curvature;
   on.move_wound_cones = false;
   on.merge_coincident_cones = false;
   on.validity_retries = 0;

@@ -74,7 +74,9 @@ TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
   const Mesh mesh = testing::load_test_mesh("bunny_3k");
   // The fold refinement and the cone merges off: they remove these faces too (fold_refinement_test.cpp; merged
   // cones change the field there).
+  // The curvature-guided field, whose map holds faces on one iso-line here.
   PipelineOptions plain;
+  plain.field_style = FieldStyle::Curvature;
   plain.refine_curve_triangles = false;
   plain.fold_refinement_rounds = 0;
   plain.merge_coincident_cones = false;
@@ -82,6 +84,7 @@ TEST(CurveRefinement, RemovesTheFacesTheCurveConstraintsHoldOnOneIsoLine) {
   ASSERT_GT(faces_on_one_iso_line(without.map), 0) << "the case this test is about no longer occurs on bunny_3k";
   EXPECT_EQ(without.map.uv.rows(), mesh.num_faces());
   PipelineOptions refine;
+  refine.field_style = FieldStyle::Curvature;
   refine.refine_curve_triangles = true;
   refine.fold_refinement_rounds = 0;
   refine.merge_coincident_cones = false;
@@ -314,9 +317,11 @@ TEST(ConeSeparation, TheJobSetsApartTheConesItsRoundingPutOnOnePointWhenTheMapWi
 
 TEST(RingRewinding, TheReportNamesTheConesWhoseDiskWasLaidOutAgain) {
   // fandisk: a branch point wound a turn short during the untangling whose disk (param/cone_disk_layout.h) is laid
-  // out again; the final map winds there as the field says.
+  // out again; the final map winds there as the field says (the curvature-guided field's map).
   const Mesh mesh = testing::load_test_mesh("fandisk");
-  const ParamJob job = parameterize_mesh(mesh, PipelineOptions{});
+  PipelineOptions options;
+  options.field_style = FieldStyle::Curvature;
+  const ParamJob job = parameterize_mesh(mesh, options);
   const Mesh& m0 = job.mesh(mesh);
   const ParamDiagnostics::Untangling& u = job.map.diagnostics.untangling;
   ASSERT_FALSE(u.cone_disk_vertices.empty()) << "the case this test is about no longer occurs";
@@ -366,6 +371,7 @@ TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage
 TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) {
   const Mesh mesh = testing::load_test_mesh("couplingdown_genus9");
   PipelineOptions plain;  // one density for both jobs, the moves alone (no merges of coincident cones)
+  plain.field_style = FieldStyle::Curvature;  // the field whose map has the fake pairs
   plain.validity_retries = 0;
   plain.move_wound_cones = false;
   plain.merge_coincident_cones = false;
@@ -459,7 +465,7 @@ TEST(CloseOppositeCones, TheJobCancelsThemBeforeTheMapAndReportsHowMany) {
   o.merge_coincident_cones = o.move_wound_cones = o.separate_coincident_cones = false;
   o.fold_refinement_rounds = o.validity_retries = 0;
   const ParamJob on = parameterize_mesh(mesh, o);
-  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(o));
+  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(on.options));  // resolved
   const double h = on.map.edge_length;
   const std::size_t close = close_opposite_cone_merges(mesh, field.branch_points, h).size();
   ASSERT_GT(close, 0u) << "the case this test is about no longer occurs on cow";

@@ -116,7 +116,8 @@ TEST(ValidityRetries, StopsAtTheFirstValidAttemptAndSaysWhichWasKept) {
   EXPECT_NEAR(job.param.map.edge_length, 0.2 / std::sqrt(0.98), 1e-12);
   ASSERT_EQ(job.param.warnings.size(), 1u);
   EXPECT_NE(job.param.warnings[0].find("3 non-positive triangles"), std::string::npos) << job.param.warnings[0];
-  EXPECT_NE(job.param.warnings[0].find("kept a valid result at -2% quads"), std::string::npos)
+  EXPECT_NE(job.param.warnings[0].find("retried at +2% quads, at -2% quads and kept a valid result, at -2% quads"),
+            std::string::npos)
       << job.param.warnings[0];
 }
 
@@ -152,6 +153,62 @@ TEST(ValidityRetries, WrongWindingsAloneAreSaidButNotRetried) {
   EXPECT_NE(job.param.warnings[0].find("not retried"), std::string::npos);
 }
 
+/// A job whose validity depends only on its field: FieldStyle::Auto resolves to Smooth (a closed surface).
+struct FieldStub {
+  Validity smooth, curvature;
+  std::vector<FieldStyle> runs;
+  StubJob run(const PipelineOptions& o) {
+    StubJob job;
+    job.param.options = o;
+    if (o.field_style == FieldStyle::Auto) job.param.options.field_style = FieldStyle::Smooth;
+    job.param.map.edge_length = 0.2;
+    runs.push_back(job.param.options.field_style);
+    return job;
+  }
+  StubJob kept(FieldStyle given_style) {
+    PipelineOptions given;
+    given.field_style = given_style;
+    given.param.density.edge_length = 0.2;
+    return retry_until_valid(
+        given, [&](const PipelineOptions& o) { return run(o); },
+        [&](const StubJob& job) { return job.param.options.field_style == FieldStyle::Smooth ? smooth : curvature; },
+        null_progress());
+  }
+};
+
+Validity wound(int n) {
+  Validity v;
+  v.wrong_windings = n;
+  return v;
+}
+
+TEST(ValidityRetries, AutoFallsBackToTheCurvatureFieldOnlyWhenTheSmoothOneIsNotValid) {
+  FieldStub stub{wound(8), wound(2), {}};  // wrong windings: no density retry after the field's
+  StubJob job = stub.kept(FieldStyle::Auto);
+  EXPECT_EQ(stub.runs, (std::vector{FieldStyle::Smooth, FieldStyle::Curvature}));
+  EXPECT_EQ(job.param.validity_attempt_used, 1);
+  EXPECT_EQ(job.param.options.field_style, FieldStyle::Curvature);
+  EXPECT_TRUE(job.param.field_style_auto);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("retried using the curvature field and kept the best, with 0 non-positive "
+                                       "triangles, 2 vertices wound other than the field, using the curvature field"),
+            std::string::npos)
+      << job.param.warnings[0];
+  FieldStub tie{wound(2), wound(2), {}};  // not more valid: the smoothest field's map stays
+  job = tie.kept(FieldStyle::Auto);
+  EXPECT_EQ(tie.runs.size(), 2u);
+  EXPECT_EQ(job.param.validity_attempt_used, 0);
+  EXPECT_EQ(job.param.options.field_style, FieldStyle::Smooth);
+  FieldStub valid{Validity{}, wound(2), {}};
+  job = valid.kept(FieldStyle::Auto);
+  EXPECT_EQ(valid.runs, (std::vector{FieldStyle::Smooth}));
+  EXPECT_TRUE(job.param.warnings.empty());
+  FieldStub chosen{wound(8), wound(2), {}};  // a style the user chose is kept
+  job = chosen.kept(FieldStyle::Smooth);
+  EXPECT_EQ(chosen.runs, (std::vector{FieldStyle::Smooth}));
+  EXPECT_FALSE(job.param.field_style_auto);
+}
+
 /// A sink past its time limit: the improving stages are skipped.
 struct PastLimit : ProgressSink {
   void report(std::string_view, double, std::string_view) override {}
@@ -176,7 +233,15 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
   options.validity_retries = 2;
   const RemeshJob job = remesh_mesh(torus, options);
   const auto& attempts = job.param.validity_attempts;
-  ASSERT_EQ(attempts.size(), 3u);
+  // The default field style on a closed surface: the smoothest field first, then its fallback to the curvature-
+  // guided one (fall_back_to_curvature), then the two density retries with the field of the better of those.
+  ASSERT_EQ(attempts.size(), 4u);
+  EXPECT_EQ(attempts[0].field_style, FieldStyle::Smooth);
+  EXPECT_EQ(attempts[1].field_style, FieldStyle::Curvature);
+  EXPECT_EQ(attempts[2].field_style, attempts[3].field_style);
+  EXPECT_TRUE(job.param.field_style_auto);
+  EXPECT_EQ(job.param.options.field_style,
+            attempts[static_cast<std::size_t>(job.param.validity_attempt_used)].field_style);
   for (const ValidityAttempt& a : attempts) EXPECT_EQ(a.validity.topology_changes, 1);
   EXPECT_FALSE(job.surface.same_topology);
   // The kept attempt's numbers are the job's own, recounted.
@@ -250,6 +315,7 @@ TEST(CurveRoundingFallback, FreesTheCurvesAtWrongWindingsAndFallsBackOnlyWhenSti
     SCOPED_TRACE(name);
     const Mesh mesh = testing::load_test_mesh(name);
     PipelineOptions plain;
+    plain.field_style = FieldStyle::Curvature;  // the field of the cases above
     plain.validity_retries = 0;
     plain.cancel_close_cones = false;
     PipelineOptions rounding = plain;
