@@ -80,7 +80,7 @@ std::string to_string(FieldStyle style);  ///< \pre none
 /// The FieldOptions of a preset. \pre style is not Auto (resolved_field_style) \throw std::logic_error for Auto
 FieldOptions field_options(FieldStyle style);
 /// `style`, with Auto resolved for `mesh`: Smooth when the mesh has no boundary, else Curvature. On closed shapes
-/// the smoothest field has less distortion (lower ARAP on 13 of the 14 closed shipped meshes); along boundaries the
+/// the smoothest field has less distortion (lower ARAP on 11 of the 14 closed shipped meshes); along boundaries the
 /// curvature-guided one leaves fewer non-quads at holes (BENCHMARKS.md, "Field chosen per surface"). The jobs make
 /// the map from the Curvature field too when the Smooth one's is not valid (pipeline/retry_until_valid.h).
 /// \pre none

@@ -14,7 +14,7 @@ namespace quadcover {
 
 struct PipelineOptions {
   /// Field stage preset (field/compute_frame_field.h): curvature-guided (thesis ch. 5), smoothest, or chosen per
-  /// surface (Auto: smoothest on closed surfaces without sharp features).
+  /// surface (Auto: resolved_field_style, and the fallback of pipeline/retry_until_valid.h).
   FieldStyle field_style = FieldStyle::Auto;
   /// The field stage splits its singularities of |quarter index| >= this into quarter-index ones (>= 2;
   /// FieldOptions::split_min_quarters).

@@ -98,9 +98,14 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     progress.report("retry", -1, "result not valid: the map made again from the curvature-guided field");
     PipelineOptions curvature = once;
     curvature.field_style = FieldStyle::Curvature;
-    auto [next, v] = first_attempt(curvature, given.validity_retries, run, judge, progress);
-    attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature});
-    if (v < best_validity) best = std::move(next), best_validity = v, used = 1;
+    try {
+      auto [next, v] = first_attempt(curvature, given.validity_retries, run, judge, progress);
+      attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature});
+      if (v < best_validity) best = std::move(next), best_validity = v, used = 1;
+    } catch (const InputError& e) {  // e.g. too coarse a density for that field: the smooth field's result stays
+      param_job(best).warnings.push_back(std::string("the map from the curvature-guided field, tried because this ") +
+                                         "one is not valid, could not be made: " + e.what());
+    }
   }
   PipelineOptions retried = given;  // the density retries keep the field of the best so far
   retried.field_style = param_job(best).options.field_style;

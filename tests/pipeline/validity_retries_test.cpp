@@ -157,7 +157,9 @@ TEST(ValidityRetries, WrongWindingsAloneAreSaidButNotRetried) {
 struct FieldStub {
   Validity smooth, curvature;
   std::vector<FieldStyle> runs;
+  bool curvature_refused = false;  // its run throws, as for a density too coarse for that field
   StubJob run(const PipelineOptions& o) {
+    if (curvature_refused && o.field_style == FieldStyle::Curvature) throw InputError("density", 0, "refused");
     StubJob job;
     job.param.options = o;
     if (o.field_style == FieldStyle::Auto) job.param.options.field_style = FieldStyle::Smooth;
@@ -183,7 +185,7 @@ Validity wound(int n) {
 }
 
 TEST(ValidityRetries, AutoFallsBackToTheCurvatureFieldOnlyWhenTheSmoothOneIsNotValid) {
-  FieldStub stub{wound(8), wound(2), {}};  // wrong windings: no density retry after the field's
+  FieldStub stub{wound(8), wound(2), {}, false};  // wrong windings: no density retry after the field's
   StubJob job = stub.kept(FieldStyle::Auto);
   EXPECT_EQ(stub.runs, (std::vector{FieldStyle::Smooth, FieldStyle::Curvature}));
   EXPECT_EQ(job.param.validity_attempt_used, 1);
@@ -194,16 +196,25 @@ TEST(ValidityRetries, AutoFallsBackToTheCurvatureFieldOnlyWhenTheSmoothOneIsNotV
                                        "triangles, 2 vertices wound other than the field, using the curvature field"),
             std::string::npos)
       << job.param.warnings[0];
-  FieldStub tie{wound(2), wound(2), {}};  // not more valid: the smoothest field's map stays
+  FieldStub tie{wound(2), wound(2), {}, false};  // not more valid: the smoothest field's map stays
   job = tie.kept(FieldStyle::Auto);
   EXPECT_EQ(tie.runs.size(), 2u);
   EXPECT_EQ(job.param.validity_attempt_used, 0);
   EXPECT_EQ(job.param.options.field_style, FieldStyle::Smooth);
-  FieldStub valid{Validity{}, wound(2), {}};
+  FieldStub valid{Validity{}, wound(2), {}, false};
   job = valid.kept(FieldStyle::Auto);
   EXPECT_EQ(valid.runs, (std::vector{FieldStyle::Smooth}));
   EXPECT_TRUE(job.param.warnings.empty());
-  FieldStub chosen{wound(8), wound(2), {}};  // a style the user chose is kept
+  FieldStub refused{wound(8), wound(2), {}, true};  // the fallback fails: the smooth result stays, and it is said
+  job = refused.kept(FieldStyle::Auto);
+  EXPECT_EQ(job.param.options.field_style, FieldStyle::Smooth);
+  EXPECT_EQ(job.param.validity_attempts.size(), 1u);
+  ASSERT_EQ(job.param.warnings.size(), 2u);
+  EXPECT_NE(job.param.warnings[0].find("curvature-guided field, tried because this one is not valid, could not be "
+                                       "made: "),
+            std::string::npos)
+      << job.param.warnings[0];
+  FieldStub chosen{wound(8), wound(2), {}, false};  // a style the user chose is kept
   job = chosen.kept(FieldStyle::Smooth);
   EXPECT_EQ(chosen.runs, (std::vector{FieldStyle::Smooth}));
   EXPECT_FALSE(job.param.field_style_auto);
