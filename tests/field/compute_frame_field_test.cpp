@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/errors.h"
 #include "field/indices.h"
@@ -136,6 +137,7 @@ TEST(FieldStyleChoice, AutoFollowsTheBoundary) {
   for (const FieldStyle style : {FieldStyle::Curvature, FieldStyle::Smooth, FieldStyle::Auto})
     EXPECT_EQ(parse_field_style(to_string(style)), style);
   EXPECT_THROW(parse_field_style("smoothest"), InputError);
+  EXPECT_THROW(field_options(FieldStyle::Auto), std::logic_error);  // resolved first, never run as it is
 }
 
 }  // namespace
