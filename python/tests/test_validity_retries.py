@@ -21,6 +21,7 @@ def test_validity_retries_reach_the_job_and_every_attempt_is_reported():
     assert report["options"]["field"] == attempts[report["validity_retries"]["used"]]["field"]
     assert report["options"]["field_auto"]
     assert all(a["topology_changes"] == 1 and not a["valid"] for a in attempts)
+    assert all(a["seconds"] > 0 for a in attempts)
     kept = attempts[report["validity_retries"]["used"]]
     assert kept["non_quads"] == report["surface_check"]["output"]["non_quads"]
     assert kept["edge_length"] == pytest.approx(report["edge_length"])

@@ -151,7 +151,8 @@ nlohmann::json validity_retries_json(const ParamJob& job) {
                         {"topology_changes", a.validity.topology_changes},
                         {"non_positive_triangles", a.validity.non_positive},
                         {"wrong_windings", a.validity.wrong_windings},
-                        {"non_quads", a.validity.non_quads}});
+                        {"non_quads", a.validity.non_quads},
+                        {"seconds", a.seconds}});
   return {{"attempts", attempts}, {"used", job.validity_attempt_used}};
 }
 

@@ -7,6 +7,7 @@
 
 #include "common/errors.h"
 #include "common/progress.h"
+#include "common/seconds_since.h"
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/validity_retries.h"
 
@@ -88,10 +89,12 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   validate(given);
   PipelineOptions once = given;
   once.validity_retries = 0;
+  SteadyClock::time_point start = SteadyClock::now();
   auto [first, best_validity] = first_attempt(once, given.validity_retries, run, judge, progress);
   using Job = decltype(first);
   const FieldStyle first_style = param_job(first).options.field_style;
-  std::vector<ValidityAttempt> attempts{{1.0, param_job(first).map.edge_length, best_validity, first_style}};
+  std::vector<ValidityAttempt> attempts{
+      {1.0, param_job(first).map.edge_length, best_validity, first_style, seconds_since(start)}};
   int used = 0;
   Job best = std::move(first);
   if (fall_back_to_curvature(given, first_style, best_validity, progress)) {
@@ -99,8 +102,9 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     PipelineOptions curvature = once;
     curvature.field_style = FieldStyle::Curvature;
     try {
+      start = SteadyClock::now();
       auto [next, v] = first_attempt(curvature, given.validity_retries, run, judge, progress);
-      attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature});
+      attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature, seconds_since(start)});
       if (v < best_validity) best = std::move(next), best_validity = v, used = 1;
     } catch (const InputError& e) {  // e.g. too coarse a density for that field: the smooth field's result stays
       param_job(best).warnings.push_back(std::string("the map from the curvature-guided field, tried because this ") +
@@ -117,10 +121,11 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
       break;
     }
     progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
+    start = SteadyClock::now();
     Job next = run(attempt_options(retried, h0, k));
     const Validity v = judge(next);
-    attempts.push_back(
-        {attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v, retried.field_style});
+    attempts.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v,
+                        retried.field_style, seconds_since(start)});
     if (v < best_validity) best = std::move(next), best_validity = v, used = k + field_attempts;
   }
   ParamJob& kept = param_job(best);

@@ -43,6 +43,7 @@ struct ValidityAttempt {
   double edge_length = 0;   ///< h of its map (model units)
   Validity validity;
   FieldStyle field_style = FieldStyle::Curvature;  ///< the field stage's preset it ran with (resolved)
+  double seconds = 0;  ///< wall time of its job: the attempts not kept cost time too, outside the kept job's stages
 };
 
 /// The interior vertices around which φ winds other than the field's cross-field index says (param/ring_winding.h

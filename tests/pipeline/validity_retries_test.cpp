@@ -254,6 +254,7 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
   EXPECT_EQ(job.param.options.field_style,
             attempts[static_cast<std::size_t>(job.param.validity_attempt_used)].field_style);
   for (const ValidityAttempt& a : attempts) EXPECT_EQ(a.validity.topology_changes, 1);
+  for (const ValidityAttempt& a : attempts) EXPECT_GT(a.seconds, 0.0);  // each attempt's own wall time
   EXPECT_FALSE(job.surface.same_topology);
   // The kept attempt's numbers are the job's own, recounted.
   const Validity& kept = attempts[static_cast<std::size_t>(job.param.validity_attempt_used)].validity;
