@@ -12,18 +12,13 @@
 #include "pipeline/parameterize_mesh.h"
 #include "pipeline/remesh_mesh.h"
 #include "pipeline/validity_retries.h"
+#include "support/report_timings.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
 namespace {
 
-/// The report without its timings and memory peaks (the only keys that may differ between two runs).
-nlohmann::json without_costs(nlohmann::json r) {
-  r.erase("seconds");
-  r.erase("memory");
-  r["optimize"].erase("seconds");
-  return r;
-}
+using testing::without_costs;  // the only keys that may differ between two runs: timings and memory peaks
 
 TEST(PipelineOptions, EveryContradictoryOrOutOfRangeOptionIsNamed) {
   const std::vector<std::pair<std::function<void(PipelineOptions&)>, std::string>> cases = {
