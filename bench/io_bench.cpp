@@ -122,8 +122,31 @@ void BM_GeneratedTorus(benchmark::State& state) {
   state.counters["peak_rss_mb"] = peak_rss_mb();
 }
 
+/// A closed bipyramid whose two apexes have valence n: the connectivity must stay linear in the valence
+/// (tests/mesh/adversarial_test.cpp checks the result; this measures the cost, with the complexity fit).
+void BM_HighValenceFan(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Eigen::MatrixX3d V(n + 2, 3);
+  Eigen::MatrixX3i F(2 * n, 3);
+  V.row(0) << 0, 0, 0.3;
+  V.row(n + 1) << 0, 0, -0.3;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    V.row(k + 1) << std::cos(a), std::sin(a), 0;
+    const int next = (k + 1) % n + 1;
+    F.row(2 * k) << 0, k + 1, next;
+    F.row(2 * k + 1) << n + 1, next, k + 1;
+  }
+  for (auto _ : state) {
+    const Mesh mesh = Mesh::from_triangles(V, F);
+    benchmark::DoNotOptimize(mesh.valence(0));
+  }
+  state.SetComplexityN(n);
+}
+
 }  // namespace
 
+BENCHMARK(BM_HighValenceFan)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Read)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Validate)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BuildMesh)->Unit(benchmark::kMillisecond);

@@ -3,7 +3,6 @@
 // boundary loops) and finite geometry satisfying discrete Gauss–Bonnet (Def. 1.8), or fail with a clear message.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -16,11 +15,6 @@ namespace quadcover {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-#if defined(__SANITIZE_ADDRESS__)
-constexpr double kSlowdown = 5;  // ASan build (scripts/tests.d/10_sanitizers.sh)
-#else
-constexpr double kSlowdown = 1;
-#endif
 
 // Geometry must be finite everywhere and the angle defects must sum to 2πχ (discrete Gauss–Bonnet).
 void expect_sane_geometry(const Mesh& m) {
@@ -88,14 +82,13 @@ TEST(Adversarial, ValenceOneThousand) {
   expect_sane_geometry(bipyramid);
 }
 
-TEST(Adversarial, ValenceOneHundredThousandStaysFast) {
-  // Validation and connectivity must not be quadratic in the valence.
-  const auto t0 = std::chrono::steady_clock::now();
+// Connectivity at a vertex of valence 100000. Its cost (linear in the valence, not quadratic) is measured by
+// bench_io's BM_HighValenceFan, not asserted here: no timed assertions in tests.
+TEST(Adversarial, ValenceOneHundredThousand) {
   const Mesh bipyramid = testing::make_fan(100000, true);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(bipyramid.valence(0), 100000);
+  EXPECT_EQ(bipyramid.fan(0).size(), 100000u);
   EXPECT_EQ(bipyramid.euler_characteristic(), 2);
-  EXPECT_LT(seconds, kSlowdown * 3.0);  // a quadratic step would take minutes here
 }
 
 TEST(Adversarial, SliversAndNearDegenerateTriangles) {
