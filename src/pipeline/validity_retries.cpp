@@ -73,11 +73,10 @@ std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int u
            "; see the report's parameterization.wrong_winding_vertices and flipped_faces";
   // An attempt with another field than the first's is named by its field (FieldStyle::Auto's fallback).
   const auto name = [&](const ValidityAttempt& a) {
-    const std::string field =
-        a.field_style == attempts[0].field_style
-            ? ""
-            : "using the " + to_string(a.field_style) + " field" + (a.quads_factor == 1 ? "" : " ");
-    return field + (field.empty() || a.quads_factor != 1 ? "at " + percent(a.quads_factor) + " quads" : "");
+    const std::string at = "at " + percent(a.quads_factor) + " quads";
+    if (a.field_style == attempts[0].field_style) return at;
+    const std::string field = "using the " + to_string(a.field_style) + " field";
+    return a.quads_factor == 1 ? field : field + " " + at;
   };
   std::string tried;
   for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + name(attempts[k]);
