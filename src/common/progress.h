@@ -1,6 +1,7 @@
 #pragma once
 // Progress and cancellation for long-running stages. The library never prints; the CLI implements a sink.
 #include <limits>
+#include <mutex>
 #include <string_view>
 
 namespace quadcover {
@@ -36,6 +37,32 @@ class FinishingProgress final : public ProgressSink {
 
  private:
   ProgressSink& inner_;
+};
+
+/// Forwards everything to `inner` one call at a time: for two stages that run at once and share a sink.
+class SerializedProgress final : public ProgressSink {
+ public:
+  explicit SerializedProgress(ProgressSink& inner) : inner_(inner) {}  ///< \pre inner outlives this sink.
+  void report(std::string_view stage, double fraction, std::string_view message) override {
+    const std::lock_guard lock(mutex_);
+    inner_.report(stage, fraction, message);
+  }
+  bool cancelled() const override {
+    const std::lock_guard lock(mutex_);
+    return inner_.cancelled();
+  }
+  bool skip_improvements() const override {
+    const std::lock_guard lock(mutex_);
+    return inner_.skip_improvements();
+  }
+  double seconds_left() const override {
+    const std::lock_guard lock(mutex_);
+    return inner_.seconds_left();
+  }
+
+ private:
+  ProgressSink& inner_;
+  mutable std::mutex mutex_;
 };
 
 /// A sink that ignores everything; the default for library calls.

@@ -1,11 +1,14 @@
 #include "optimize/optimize_field.h"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
+#include <optional>
 
 #include "common/errors.h"
+#include "common/progress.h"
 #include "common/seconds_since.h"
+#include "common/side_by_side.h"
 
 namespace quadcover {
 
@@ -163,26 +166,57 @@ nlohmann::json to_json(const OptimizeResult& r, OptimizeMode mode) {
   return j;
 }
 
+namespace {
+
+double energy_curl_plus_harmonic(const SolvedMap& s) { return s.energy_curl() + s.energy_harmonic(); }
+
+/// Records the comparison in `report`; true if the original field's map wins (strictly lower E_D + E_H).
+bool original_wins(double total_original, double total_optimized, ProgressSink& progress, nlohmann::json& report) {
+  report["E_D_plus_E_H_optimized"] = total_optimized;
+  report["E_D_plus_E_H_original"] = total_original;
+  if (total_original >= total_optimized) return false;
+  report["kept"] = "original";
+  progress.report("optimize", 1,
+                  "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
+                      std::to_string(total_optimized) + " of the optimized one");
+  return true;
+}
+
+/// Both maps solved at once, one per core (common/side_by_side.h), and the kept one finished.
+Parameterization keep_better_side_by_side(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
+                                          const ParamOptions& param, ProgressSink& progress, nlohmann::json& report) {
+  SerializedProgress shared(progress);
+  std::optional<SolvedMap> from_original, from_optimized;
+  run_side_by_side(
+      mesh.num_faces(), [&] { from_original.emplace(mesh, original, param, shared); },
+      [&] { from_optimized.emplace(mesh, optimized, param, shared); });
+  if (original_wins(energy_curl_plus_harmonic(*from_original), energy_curl_plus_harmonic(*from_optimized), progress,
+                    report)) {
+    from_optimized.reset();
+    return std::move(*from_original).finish();
+  }
+  from_original.reset();
+  return std::move(*from_optimized).finish();
+}
+
+}  // namespace
+
 Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                           const ParamOptions& param, OptimizeMode mode, bool keep_better,
                                           ProgressSink& progress, nlohmann::json& report) {
   if (mode == OptimizeMode::None) return parameterize(mesh, optimized, param, progress);
   report["kept"] = "optimized";
   if (!keep_better || progress.skip_improvements()) return parameterize(mesh, optimized, param, progress);
+  progress.report("optimize", -1, "parameterizing the original field for comparison (keep better)");
+  if (side_by_side(mesh.num_faces()))
+    return keep_better_side_by_side(mesh, original, optimized, param, progress, report);
   // E_D + E_H are fixed by steps 1-5 (param/parameterize.h SolvedMap): only the kept map is finished, and the
   // original one, solved first and dropped, is solved again only if it wins (two solves are never held at once).
-  progress.report("optimize", -1, "parameterizing the original field for comparison (keep better)");
-  const auto total = [](const SolvedMap& s) { return s.energy_curl() + s.energy_harmonic(); };
-  const double total_original = total(SolvedMap(mesh, original, param, progress));
+  const double total_original = energy_curl_plus_harmonic(SolvedMap(mesh, original, param, progress));
   {
     SolvedMap solved(mesh, optimized, param, progress);
-    report["E_D_plus_E_H_optimized"] = total(solved);
-    report["E_D_plus_E_H_original"] = total_original;
-    if (total_original >= total(solved)) return std::move(solved).finish();
-    report["kept"] = "original";
-    progress.report("optimize", 1,
-                    "kept the original field: E_D + E_H " + std::to_string(total_original) + " < " +
-                        std::to_string(total(solved)) + " of the optimized one");
+    if (!original_wins(total_original, energy_curl_plus_harmonic(solved), progress, report))
+      return std::move(solved).finish();
   }
   return parameterize(mesh, original, param, progress);
 }

@@ -86,7 +86,8 @@ nlohmann::json to_json(const OptimizeResult& result, OptimizeMode mode);
 /// parameterize() of the optimized field; when `mode` optimized and `keep_better` is set, also of the original
 /// field, keeping the map with the lower total distortion E_D + E_H = ½‖X̃ − ∇φ̃‖² (6.1.1): Algorithm 6.1 lowers
 /// the field's E_D, which need not lower the map's. Adds "kept" ("optimized" or "original") and, when compared,
-/// both totals to `report`. Only the kept map is finished (param/parameterize.h SolvedMap). \pre original and
+/// both totals to `report`. Only the kept map is finished (param/parameterize.h SolvedMap); the two are solved side
+/// by side on small meshes (common/side_by_side.h), one after the other on large ones. \pre original and
 /// optimized belong to mesh. \throw as parameterize().
 Parameterization parameterize_keep_better(const Mesh& mesh, const FrameField& original, const FrameField& optimized,
                                           const ParamOptions& param, OptimizeMode mode, bool keep_better,

@@ -1,8 +1,6 @@
 // The QuadCover pipeline on the covering (thesis 2.4, 4.1-4.2).
 #include "param/parameterize.h"
 
-#include <tbb/parallel_invoke.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -13,6 +11,7 @@
 #include "calculus/sparse_cholesky.h"
 #include "common/errors.h"
 #include "common/quarter_turn.h"
+#include "common/side_by_side.h"
 #include "cover/complex_stiffness.h"
 #include "field/feature_alignment.h"
 #include "field/indices.h"
@@ -244,10 +243,8 @@ FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<c
     }
     pin_rows(Ls, pinned);
   }
-  // The two factorizations are independent (each sequential: the result does not depend on the thread count).
-  // On large meshes one after the other, 𝔏̄*'s factor freed after its one solve before 𝔏̄ is factored: side by
-  // side they raised the stage's peak by 40 % (BENCHMARKS.md, "Under 3 KB per face"); on smaller ones, where that
-  // is a few hundred MB at most, one per core (1.4× faster).
+  // The two factorizations are independent (each sequential: the result does not depend on the thread count). On
+  // large meshes one after the other, 𝔏̄*'s factor freed after its one solve before 𝔏̄ is factored.
   Eigen::VectorXcd v;
   const auto curl_removal = [&] {
     SparseCholesky<Complex> chol_s;
@@ -255,13 +252,7 @@ FramePairs remove_curl(const Mesh& mesh, const CoverCut& cc, const std::vector<c
     Ls = Eigen::SparseMatrix<Complex>();  // not needed for the solve
     v = chol_s.solve(rhs);
   };
-  constexpr int kSideBySideFaces = 100000;
-  if (mesh.num_faces() < kSideBySideFaces) {
-    tbb::parallel_invoke(curl_removal, [&] { harmonic.emplace(mesh, cc, trivial); });
-  } else {
-    curl_removal();
-    harmonic.emplace(mesh, cc, trivial);
-  }
+  run_side_by_side(mesh.num_faces(), curl_removal, [&] { harmonic.emplace(mesh, cc, trivial); });
   return rotated_gradient(mesh, edge_layers(mesh, cc.matching), v);
 }
 
