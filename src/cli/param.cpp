@@ -174,7 +174,7 @@ const CommandRegistrar registrar{
     "Seamless QuadCover parameterization (thesis ch. 2-4) guided by the curvature cross field: OBJ with v, "
     "per-corner vt in grid units (integer iso-lines = quad edges) and f v/vt. Density: --edge-length h or "
     "--faces N; default h = 2 x the mean edge length (about #faces/9 quads), or finer so that there are at least "
-    "30 quads per branch point of the field"};
+    "30 quads per branch point of the field and every boundary loop is at least 4 quad edges around"};
 
 }  // namespace
 

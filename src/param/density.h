@@ -16,7 +16,25 @@ struct DensityOptions {
   /// integer points: a grid with a few quads per cone must fold (BENCHMARKS.md, "Default density").
   double default_edge_factor = 2.0;
   double min_quads_per_branch_point = 30.0;
+  /// The default density is also made finer so that every boundary loop is at least min_loop_grid_units quad edges
+  /// around (its length / h): a shorter hole has no ring of quads and the quad mesh closes over it (issue 14 item 4,
+  /// 15 item 3). Only for the loops that reach it within max_loop_quads_factor times the quads and at most one quad
+  /// per input triangle (the memory stays that of the input's resolution); 0 = off.
+  double min_loop_grid_units = 4.0;
+  double max_loop_quads_factor = 16.0;
 };
+
+/// The boundary loop that made the default density finer (DensityOptions::min_loop_grid_units).
+struct LoopResolution {
+  int loop = -1;            ///< index into mesh.boundary_loops(), -1 when no loop made it finer
+  int lowest_vertex = -1;   ///< that loop's lowest vertex number (0-based)
+  double length = 0;        ///< its length in model units
+  double quads_factor = 1;  ///< the quads of the finer density over those of the coarser one (1: not finer)
+};
+
+/// The loop of `mesh` that needs the finest density within the bounds of DensityOptions::min_loop_grid_units from the
+/// default edge length `h`, and its factor in quads. \pre h > 0
+LoopResolution loop_resolution(const Mesh& mesh, const DensityOptions& options, double h);
 
 /// The quad edge length h that `options` asks for on `mesh` with a field of `branch_points` branch points.
 /// \throw InputError if the edge length or the quad count is negative.
@@ -25,7 +43,8 @@ double target_edge_length(const Mesh& mesh, const DensityOptions& options, int b
 /// Fixes the default density of `options` (neither edge_length nor target_quads given) to an explicit edge_length
 /// from the branch point count of `field`, so that every later stage (Algorithm 6.1's E_H, keep-better's comparison
 /// of two fields) works at one scale. Explicit densities are left as they are.
+/// \return the loop that made it finer (LoopResolution::loop -1: none, or an explicit density).
 /// \pre field belongs to mesh. \throw InputError as target_edge_length.
-void fix_default_density(const Mesh& mesh, const FrameField& field, DensityOptions& options);
+LoopResolution fix_default_density(const Mesh& mesh, const FrameField& field, DensityOptions& options);
 
 }  // namespace quadcover

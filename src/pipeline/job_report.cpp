@@ -198,7 +198,9 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
   r["density"] = {{"target_quads", job.density.target_quads},
                   {"first_quads", job.density.first_quads},
                   {"quads", job.density.quads},
-                  {"resolves", job.density.resolves}};
+                  {"resolves", job.density.resolves},
+                  {"raised_for_loop", job.density.raised_for_loop},
+                  {"raised_quads_factor", job.density.raised_quads_factor}};
   r["field"] = field_json(job);
   // The input's sharp edges and the faces they constrain: a refinement's split halves are not new features.
   r["field"]["features"] = features_json(input_mesh, job.options);

@@ -19,7 +19,7 @@ inline constexpr int kReportSchemaVersion = 1;
 /// The report of the parameterization job. `uv` is the map as written (#F by 3 per-corner coordinates); `input`
 /// names the source ("" from Python). Keys:
 ///   schema_version, job ("param"), input, mesh {vertices, faces, genus, boundary_loops, components}, options,
-///   edge_length, density {target_quads, first_quads, quads, resolves},
+///   edge_length, density {target_quads, first_quads, quads, resolves, raised_for_loop, raised_quads_factor},
 ///   field {branch_points_initial, singularity_moves, cancelled_close_pairs {original, optimized},
 ///          branch_points [{vertex, quarter_index, index}], b_odd, b_even, unfixed_even_branch_points, features
 ///          {sharp_angle_degrees, boundaries, sharp_edges, constrained_faces}},

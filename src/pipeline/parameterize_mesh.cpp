@@ -45,6 +45,26 @@ void record_comparison_solve(const StageCost& both, ParamJob& job) {
   job.peak_bytes.emplace_back("keep_better", both.peak_bytes);
 }
 
+/// The report and warning of a default density made finer for a boundary loop (param/density.h LoopResolution). The
+/// loop is numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
+void note_loop_density(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density, ParamJob& job) {
+  if (r.loop < 0) return;
+  int number = 1;
+  for (const auto& loop : mesh.boundary_loops())
+    number += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
+  job.density.raised_for_loop = number;
+  job.density.raised_quads_factor = r.quads_factor;
+  const Eigen::Vector3d at = mesh.V().row(r.lowest_vertex);
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the default density was made %.1f times finer (quads) so that boundary loop %d (through vertex %d at "
+                "(%.6g, %.6g, %.6g), length %.6g) is %g quad edges around and keeps a ring of quads (pass --faces or "
+                "--edge-length to choose)",
+                r.quads_factor, number, r.lowest_vertex + 1, at.x(), at.y(), at.z(), r.length,
+                density.min_loop_grid_units);
+  job.warnings.push_back(text);
+}
+
 /// The one-line summary of Algorithm 6.1 for the progress sink.
 std::string optimize_summary(const nlohmann::json& r, double evaluations_per_second, long budget) {
   const std::string by = r["stopped_by"].get<std::string>();
@@ -223,6 +243,8 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t cu
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress, int target_quads) {
   ParamOptions& param = job.options.param;
   DensityReport d;
+  d.raised_for_loop = job.density.raised_for_loop;  // how the default density was fixed stays
+  d.raised_quads_factor = job.density.raised_quads_factor;
   d.target_quads = target_quads;
   d.quads = d.first_quads = expected_face_count(mesh, job.map.uv);
   if (target_quads <= 0 || d.first_quads <= 0) return d;
@@ -468,7 +490,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
-  fix_default_density(mesh, field.field, param.density);  // one scale for the optimization, keep-better and the map
+  // One scale for the optimization, keep-better and the map.
+  note_loop_density(mesh, fix_default_density(mesh, field.field, param.density), param.density, job);
   OptimizeOptions oo = optimize_stage_options(job.options, param);
   const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
   const std::string mode = to_string(options.optimize);

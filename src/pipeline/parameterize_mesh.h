@@ -29,6 +29,10 @@ struct DensityReport {
   double first_quads = 0;  ///< expected face count of the first map
   double quads = 0;        ///< expected face count of the final map
   int resolves = 0;        ///< maps solved again at a corrected edge length
+  /// The default density made finer for a short boundary loop (param/density.h LoopResolution): the loop's number
+  /// (as in the report's boundary_loops; 0: not made finer) and the factor in quads.
+  int raised_for_loop = 0;
+  double raised_quads_factor = 1;
 };
 inline constexpr double kDensityTolerance = 0.02;
 inline constexpr int kDensityResolves = 4;

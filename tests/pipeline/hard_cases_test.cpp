@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "param/seams.h"
@@ -103,6 +105,30 @@ TEST(HardCases, CoarseSurfacesWithBoundary) {
   expect_valid_remesh(Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, 10)), 400,
                       "plate with 16 holes");
   expect_valid_remesh(testing::make_torus_and_cylinder(), 300, "torus and open cylinder");
+}
+
+// Holes shorter than 4 default quad edges: the default density is made finer for them (param/density.h), so the
+// quads keep every hole; at the coarser density the quads close over them, and the job says so.
+TEST(HardCases, SmallHolesKeptAtTheDefaultDensity) {
+  const Mesh grid = testing::make_grid(10);
+  const Mesh plate = Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, 10));
+  const RemeshJob job = remesh_mesh(plate, PipelineOptions{});
+  EXPECT_TRUE(job.surface.same_topology);
+  EXPECT_EQ(job.surface.output.boundary_loops, 17);
+  EXPECT_GT(job.param.density.raised_for_loop, 1);  // a hole, not the outer loop (number 1)
+  EXPECT_GT(job.param.density.raised_quads_factor, 4.0);
+  for (const BoundaryLoopCheck& loop : job.boundary_loops) EXPECT_FALSE(loop.closed_over) << loop.loop;
+  const auto said = [&](const RemeshJob& j, const std::string& what) {
+    return std::any_of(j.param.warnings.begin(), j.param.warnings.end(),
+                       [&](const std::string& w) { return w.find(what) != std::string::npos; });
+  };
+  EXPECT_TRUE(said(job, "boundary loop " + std::to_string(job.param.density.raised_for_loop) + " (through vertex"));
+  PipelineOptions coarser;  // the default h without the rule
+  coarser.param.density.edge_length = job.param.map.edge_length * std::sqrt(job.param.density.raised_quads_factor);
+  const RemeshJob closed = remesh_mesh(plate, coarser);
+  EXPECT_FALSE(closed.surface.same_topology);
+  EXPECT_EQ(closed.param.density.raised_for_loop, 0);
+  EXPECT_TRUE(said(closed, "closed over by the quads"));
 }
 
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned

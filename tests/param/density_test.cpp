@@ -1,0 +1,87 @@
+// The default density (param/density.h): made finer for short boundary loops, so that a small hole keeps a ring of
+// quads (issue 14 item 4, issue 15 item 3), within a cap, and never when the user gave a density.
+#include "param/density.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "support/test_meshes.h"
+
+namespace quadcover {
+namespace {
+
+/// make_grid(n) with its ((n − 2) / 2)² square holes of one cell (perimeter 4 / n).
+Mesh plate_with_holes(int n) {
+  const Mesh grid = testing::make_grid(n);
+  return Mesh::from_triangles(grid.V(), testing::grid_faces_with_holes(grid, n));
+}
+
+/// The default h without the loop rule.
+double unraised_edge_length(const Mesh& mesh) {
+  DensityOptions o;
+  o.min_loop_grid_units = 0;
+  return target_edge_length(mesh, o);
+}
+
+TEST(DefaultDensity, IsMadeFinerUntilTheShortestHoleIsFourQuadEdgesAround) {
+  const Mesh plate = plate_with_holes(10);
+  ASSERT_EQ(plate.num_boundary_loops(), 17);
+  const double h = unraised_edge_length(plate);
+  ASSERT_LT(0.4 / h, 4.0);  // the holes are shorter than 4 h: without the rule the quads close over them
+  const LoopResolution r = loop_resolution(plate, DensityOptions{}, h);
+  ASSERT_GE(r.loop, 0);
+  EXPECT_NEAR(r.length, 0.4, 1e-12);
+  EXPECT_NEAR(r.quads_factor, std::pow(h / 0.1, 2), 1e-9);
+  const auto& loop = plate.boundary_loops()[r.loop];
+  EXPECT_EQ(loop.size(), 4u);  // a hole, not the outer loop
+  EXPECT_EQ(r.lowest_vertex, *std::min_element(loop.begin(), loop.end()));
+  EXPECT_NEAR(target_edge_length(plate, DensityOptions{}), 0.1, 1e-12);  // 0.4 long = 4 h
+}
+
+TEST(DefaultDensity, StaysWhereTheLoopsAreLongOrTooShortForTheCap) {
+  const Mesh grid = testing::make_grid(10);  // one loop of length 4, about 17 h
+  EXPECT_EQ(loop_resolution(grid, DensityOptions{}, unraised_edge_length(grid)).loop, -1);
+  EXPECT_DOUBLE_EQ(target_edge_length(grid, DensityOptions{}), unraised_edge_length(grid));
+  const Mesh plate = plate_with_holes(10);
+  const double h = unraised_edge_length(plate);
+  DensityOptions capped;
+  capped.max_loop_quads_factor = 0.5 * std::pow(h / 0.1, 2);  // the holes would need twice that
+  const LoopResolution r = loop_resolution(plate, capped, h);
+  EXPECT_EQ(r.loop, -1);
+  EXPECT_EQ(r.quads_factor, 1.0);
+  EXPECT_DOUBLE_EQ(target_edge_length(plate, capped), h);
+  // 6 quad edges around a hole: within the factor cap, but more quads than the plate has triangles.
+  DensityOptions six;
+  six.min_loop_grid_units = 6;
+  ASSERT_LT(std::pow(h / (0.4 / 6), 2), six.max_loop_quads_factor);
+  ASSERT_GT(plate.total_area() / std::pow(0.4 / 6, 2), plate.num_faces());
+  EXPECT_EQ(loop_resolution(plate, six, h).loop, -1);
+  six.min_loop_grid_units = 5;  // 0.08: fewer quads than triangles
+  ASSERT_LT(plate.total_area() / std::pow(0.08, 2), plate.num_faces());
+  EXPECT_NEAR(target_edge_length(plate, six), 0.08, 1e-12);
+  DensityOptions off;
+  off.min_loop_grid_units = 0;
+  EXPECT_EQ(loop_resolution(plate, off, h).loop, -1);
+}
+
+TEST(DefaultDensity, AGivenDensityIsNeverChanged) {
+  const Mesh plate = plate_with_holes(10);
+  const FrameField none;  // not read for an explicit density
+  for (const bool by_count : {true, false}) {
+    DensityOptions o;
+    if (by_count)
+      o.target_quads = 20;
+    else
+      o.edge_length = 0.3;
+    const DensityOptions given = o;
+    EXPECT_EQ(fix_default_density(plate, none, o).loop, -1);
+    EXPECT_EQ(o.edge_length, given.edge_length);
+    EXPECT_EQ(o.target_quads, given.target_quads);
+    EXPECT_NEAR(target_edge_length(plate, o), by_count ? std::sqrt(plate.total_area() / 20) : 0.3, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace quadcover
