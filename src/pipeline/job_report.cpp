@@ -199,8 +199,8 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
                   {"first_quads", job.density.first_quads},
                   {"quads", job.density.quads},
                   {"resolves", job.density.resolves},
-                  {"raised_for_loop", job.density.raised_for_loop},
-                  {"raised_quads_factor", job.density.raised_quads_factor}};
+                  {"raised_for_loop", job.density.raised.loop},
+                  {"raised_quads_factor", job.density.raised.quads_factor}};
   r["field"] = field_json(job);
   // The input's sharp edges and the faces they constrain: a refinement's split halves are not new features.
   r["field"]["features"] = features_json(input_mesh, job.options);

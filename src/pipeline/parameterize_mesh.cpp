@@ -45,24 +45,19 @@ void record_comparison_solve(const StageCost& both, ParamJob& job) {
   job.peak_bytes.emplace_back("keep_better", both.peak_bytes);
 }
 
-/// The report and warning of a default density made finer for a boundary loop (param/density.h LoopResolution). The
-/// loop is numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
+/// The default density made finer for a boundary loop (param/density.h LoopResolution) into job.density.raised, the
+/// loop numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
 void note_loop_density(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density, ParamJob& job) {
   if (r.loop < 0) return;
-  int number = 1;
+  LoopDensityRaise& raise = job.density.raised;
+  raise.loop = 1;
   for (const auto& loop : mesh.boundary_loops())
-    number += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
-  job.density.raised_for_loop = number;
-  job.density.raised_quads_factor = r.quads_factor;
-  const Eigen::Vector3d at = mesh.V().row(r.lowest_vertex);
-  char text[400];
-  std::snprintf(text, sizeof text,
-                "the default density was made %.1f times finer (quads) so that boundary loop %d (through vertex %d at "
-                "(%.6g, %.6g, %.6g), length %.6g) is %g quad edges around and keeps a ring of quads (pass --faces or "
-                "--edge-length to choose)",
-                r.quads_factor, number, r.lowest_vertex + 1, at.x(), at.y(), at.z(), r.length,
-                density.min_loop_grid_units);
-  job.warnings.push_back(text);
+    raise.loop += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
+  raise.vertex = r.lowest_vertex + 1;
+  raise.at = mesh.V().row(r.lowest_vertex);
+  raise.length = r.length;
+  raise.quads_factor = r.quads_factor;
+  raise.grid_units = density.min_loop_grid_units;
 }
 
 /// The one-line summary of Algorithm 6.1 for the progress sink.
@@ -240,11 +235,21 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t cu
 
 }  // namespace
 
+std::string loop_density_warning(const LoopDensityRaise& raise) {
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the default density was made %.1f times finer (quads) so that boundary loop %d (through vertex %d at "
+                "(%.6g, %.6g, %.6g), length %.6g) is %g quad edges around and keeps a ring of quads (pass --faces or "
+                "--edge-length to choose)",
+                raise.quads_factor, raise.loop, raise.vertex, raise.at.x(), raise.at.y(), raise.at.z(), raise.length,
+                raise.grid_units);
+  return text;
+}
+
 DensityReport hit_target_count(const Mesh& mesh, ParamJob& job, ProgressSink& progress, int target_quads) {
   ParamOptions& param = job.options.param;
   DensityReport d;
-  d.raised_for_loop = job.density.raised_for_loop;  // how the default density was fixed stays
-  d.raised_quads_factor = job.density.raised_quads_factor;
+  d.raised = job.density.raised;  // how the default density was fixed stays
   d.target_quads = target_quads;
   d.quads = d.first_quads = expected_face_count(mesh, job.map.uv);
   if (target_quads <= 0 || d.first_quads <= 0) return d;

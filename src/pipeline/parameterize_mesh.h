@@ -24,15 +24,26 @@ namespace quadcover {
 /// units on surfaces with boundary) is off by the field's non-uniform scale; while the count is off by more than
 /// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
 /// above N), at most kDensityResolves times, keeping the closest.
+/// The default density made finer for a short boundary loop (param/density.h LoopResolution), as the report and the
+/// warning name it.
+struct LoopDensityRaise {
+  int loop = 0;    ///< the loop's number as in the report's boundary_loops (0: the density was not made finer)
+  int vertex = 0;  ///< its lowest vertex, 1-based as in the file
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();  ///< that vertex's position
+  double length = 0;                             ///< the loop's length in model units
+  double quads_factor = 1;                       ///< the quads of the finer density over the coarser one's
+  double grid_units = 0;                         ///< the quad edges around the loop asked for
+};
+
+/// The warning for a raised density (raise.loop > 0). \pre none
+std::string loop_density_warning(const LoopDensityRaise& raise);
+
 struct DensityReport {
   int target_quads = 0;    ///< N asked for (0: an edge length or the default density)
   double first_quads = 0;  ///< expected face count of the first map
   double quads = 0;        ///< expected face count of the final map
   int resolves = 0;        ///< maps solved again at a corrected edge length
-  /// The default density made finer for a short boundary loop (param/density.h LoopResolution): the loop's number
-  /// (as in the report's boundary_loops; 0: not made finer) and the factor in quads.
-  int raised_for_loop = 0;
-  double raised_quads_factor = 1;
+  LoopDensityRaise raised;  ///< the default density made finer for a boundary loop; kept by the density retries
 };
 inline constexpr double kDensityTolerance = 0.02;
 inline constexpr int kDensityResolves = 4;

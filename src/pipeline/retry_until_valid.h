@@ -111,7 +111,10 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
                                          "one is not valid, could not be made: " + e.what());
     }
   }
-  PipelineOptions retried = given;  // the density retries keep the field of the best so far
+  // The density retries keep the field of the best so far, and its density made finer for a loop (their h is
+  // explicit: the job would not say why).
+  const LoopDensityRaise raised = param_job(best).density.raised;
+  PipelineOptions retried = given;
   retried.field_style = param_job(best).options.field_style;
   const double h0 = param_job(best).options.param.density.edge_length;
   const int field_attempts = static_cast<int>(attempts.size()) - 1;
@@ -123,6 +126,7 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
     start = SteadyClock::now();
     Job next = run(attempt_options(retried, h0, k));
+    param_job(next).density.raised = raised;
     const Validity v = judge(next);
     attempts.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v,
                         retried.field_style, seconds_since(start)});
@@ -133,6 +137,8 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   kept.validity_attempts = attempts;
   kept.validity_attempt_used = used;
   kept.options.validity_retries = given.validity_retries;  // the attempts ran without; the job had these
+  if (kept.density.raised.loop > 0)
+    kept.warnings.insert(kept.warnings.begin(), loop_density_warning(kept.density.raised));
   if (used > 0 || !best_validity.valid()) kept.warnings.push_back(validity_warning(attempts, used));
   return best;
 }

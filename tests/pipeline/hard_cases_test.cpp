@@ -115,19 +115,19 @@ TEST(HardCases, SmallHolesKeptAtTheDefaultDensity) {
   const RemeshJob job = remesh_mesh(plate, PipelineOptions{});
   EXPECT_TRUE(job.surface.same_topology);
   EXPECT_EQ(job.surface.output.boundary_loops, 17);
-  EXPECT_GT(job.param.density.raised_for_loop, 1);  // a hole, not the outer loop (number 1)
-  EXPECT_GT(job.param.density.raised_quads_factor, 4.0);
+  EXPECT_GT(job.param.density.raised.loop, 1);  // a hole, not the outer loop (number 1)
+  EXPECT_GT(job.param.density.raised.quads_factor, 4.0);
   for (const BoundaryLoopCheck& loop : job.boundary_loops) EXPECT_FALSE(loop.closed_over) << loop.loop;
   const auto said = [&](const RemeshJob& j, const std::string& what) {
     return std::any_of(j.param.warnings.begin(), j.param.warnings.end(),
                        [&](const std::string& w) { return w.find(what) != std::string::npos; });
   };
-  EXPECT_TRUE(said(job, "boundary loop " + std::to_string(job.param.density.raised_for_loop) + " (through vertex"));
+  EXPECT_TRUE(said(job, "boundary loop " + std::to_string(job.param.density.raised.loop) + " (through vertex"));
   PipelineOptions coarser;  // the default h without the rule
-  coarser.param.density.edge_length = job.param.map.edge_length * std::sqrt(job.param.density.raised_quads_factor);
+  coarser.param.density.edge_length = job.param.map.edge_length * std::sqrt(job.param.density.raised.quads_factor);
   const RemeshJob closed = remesh_mesh(plate, coarser);
   EXPECT_FALSE(closed.surface.same_topology);
-  EXPECT_EQ(closed.param.density.raised_for_loop, 0);
+  EXPECT_EQ(closed.param.density.raised.loop, 0);
   EXPECT_TRUE(said(closed, "closed over by the quads"));
 }
 

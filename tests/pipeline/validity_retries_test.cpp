@@ -132,6 +132,35 @@ TEST(ValidityRetries, WithoutAValidAttemptTheBestIsKeptAndItsDefectsAreSaid) {
       << job.param.warnings[0];
 }
 
+// A first attempt whose default density was made finer for a short loop (param/density.h): the retries run at
+// explicit densities around it, and the one kept still says why its density is that fine.
+TEST(ValidityRetries, ADensityMadeFinerForALoopIsKeptAndSaidByTheRetries) {
+  StubRuns stub;
+  stub.by_factor = {{1000, folds(3)}, {1020, folds(0)}};
+  PipelineOptions given;
+  given.validity_retries = 2;
+  given.param.density.edge_length = 0.2;
+  LoopDensityRaise raise;
+  raise.loop = 3, raise.vertex = 17, raise.length = 0.4, raise.quads_factor = 5.0, raise.grid_units = 4;
+  const StubJob job = retry_until_valid(
+      given,
+      [&](const PipelineOptions& o) {
+        StubJob j = stub.run(o);
+        if (stub.runs == 1) j.param.density.raised = raise;  // only the first attempt fixes the default density
+        return j;
+      },
+      [&](const StubJob& j) { return stub.judge(j, 0.2); }, null_progress());
+  ASSERT_EQ(job.param.validity_attempt_used, 1);
+  EXPECT_EQ(job.param.density.raised.loop, 3);
+  EXPECT_EQ(job.param.density.raised.quads_factor, 5.0);
+  ASSERT_EQ(job.param.warnings.size(), 2u);
+  EXPECT_EQ(job.param.warnings[0], loop_density_warning(raise));
+  EXPECT_NE(job.param.warnings[0].find("made 5.0 times finer (quads) so that boundary loop 3 (through vertex 17 at"),
+            std::string::npos)
+      << job.param.warnings[0];
+  EXPECT_NE(job.param.warnings[1].find("kept a valid result"), std::string::npos) << job.param.warnings[1];
+}
+
 TEST(ValidityRetries, AValidFirstAttemptRunsOnceWithoutAWarning) {
   StubRuns stub;
   stub.by_factor = {{1000, folds(0)}};
