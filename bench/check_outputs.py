@@ -119,7 +119,7 @@ def row(d, name, run):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) != 3 or any(a.startswith("-") for a in sys.argv[1:]):  # --help, or an option: the usage
         sys.exit(__doc__)
     d, runs = sys.argv[1], sys.argv[2]
     head = ["mesh", "input F", "input c/g/b", "param exit", "param s", "param stderr", "param tris", "flipped",

@@ -402,7 +402,7 @@ def write_obj(path, V, F):
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) != 2 or any(a.startswith("-") for a in sys.argv[1:]):  # --help, or an option: the usage
         sys.exit(__doc__)
     outdir = sys.argv[1]
     os.makedirs(outdir, exist_ok=True)

@@ -7,6 +7,8 @@ import sys
 
 
 def main():
+    if len(sys.argv) != 3 or not sys.argv[2].isdigit() or sys.argv[1].startswith("-"):
+        sys.exit(__doc__)
     path, faces = sys.argv[1], int(sys.argv[2])
     m = max(4, int(round(math.sqrt(faces / 4))))
     n = 2 * m
