@@ -27,12 +27,16 @@ std::int64_t available_bytes(std::int64_t limit_bytes) {
   return 0;
 }
 
+bool fits_memory_budget(const Mesh& mesh, double quads, std::int64_t available) {
+  return available <= 0 ||
+         kBytesPerInputFace * mesh.num_faces() + kBytesPerQuad * quads <= static_cast<double>(available);
+}
+
 void check_memory_budget(const Mesh& mesh, const ParamOptions& options, std::int64_t available) {
-  if (available <= 0) return;
   const double quads = requested_quads(mesh, options);
+  if (fits_memory_budget(mesh, quads, available)) return;
   const double faces_bytes = kBytesPerInputFace * mesh.num_faces();
   const double need = faces_bytes + kBytesPerQuad * quads;
-  if (need <= static_cast<double>(available)) return;
   const double fits = std::max(0.0, (static_cast<double>(available) - faces_bytes) / kBytesPerQuad);
   const double h = fits > 0 ? std::sqrt(mesh.total_area() / fits) : 0;
   char msg[400];

@@ -21,6 +21,9 @@ double requested_quads(const Mesh& mesh, const ParamOptions& options);
 /// unknown, then nothing is refused). \pre none
 std::int64_t available_bytes(std::int64_t limit_bytes = 0);
 
+/// Whether a job of `quads` quads on `mesh` fits in `available` bytes (always when available ≤ 0). \pre none
+bool fits_memory_budget(const Mesh& mesh, double quads, std::int64_t available);
+
 /// \throw InputError (file "density") naming the estimate, the memory available and the largest quad count that fits,
 /// if the job's estimated peak exceeds `available`. Nothing is checked when available ≤ 0.
 void check_memory_budget(const Mesh& mesh, const ParamOptions& options, std::int64_t available);

@@ -45,11 +45,10 @@ void record_comparison_solve(const StageCost& both, ParamJob& job) {
   job.peak_bytes.emplace_back("keep_better", both.peak_bytes);
 }
 
-/// The default density made finer for a boundary loop (param/density.h LoopResolution) into job.density.raised, the
-/// loop numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
-void note_loop_density(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density, ParamJob& job) {
-  if (r.loop < 0) return;
-  LoopDensityRaise& raise = job.density.raised;
+/// The default density made finer for a boundary loop (param/density.h LoopResolution; r.loop ≥ 0), the loop
+/// numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
+LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density) {
+  LoopDensityRaise raise;
   raise.loop = 1;
   for (const auto& loop : mesh.boundary_loops())
     raise.loop += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
@@ -58,6 +57,33 @@ void note_loop_density(const Mesh& mesh, const LoopResolution& r, const DensityO
   raise.length = r.length;
   raise.quads_factor = r.quads_factor;
   raise.grid_units = density.min_loop_grid_units;
+  return raise;
+}
+
+/// Fixes the default density of job.options (param/density.h fix_default_density): one scale for the optimization,
+/// keep-better and the map. Made finer for a short boundary loop (job.density.raised) only when the memory holds
+/// it; else the job says that it was not.
+void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t available, ParamJob& job) {
+  DensityOptions& density = job.options.param.density;
+  const DensityOptions given = density;
+  const LoopResolution r = fix_default_density(mesh, field, density);
+  if (r.loop < 0) return;
+  const LoopDensityRaise raise = loop_density_raise(mesh, r, density);
+  const double quads = mesh.total_area() / (density.edge_length * density.edge_length);
+  if (fits_memory_budget(mesh, quads, available)) {
+    job.density.raised = raise;
+    return;
+  }
+  density = given;
+  density.min_loop_grid_units = 0;
+  fix_default_density(mesh, field, density);
+  density.min_loop_grid_units = given.min_loop_grid_units;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the default density was not made finer for boundary loop %d (through vertex %d): about %.3g quads "
+                "would not fit in the memory available",
+                raise.loop, raise.vertex, quads);
+  job.warnings.push_back(text);
 }
 
 /// The one-line summary of Algorithm 6.1 for the progress sink.
@@ -495,8 +521,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
-  // One scale for the optimization, keep-better and the map.
-  note_loop_density(mesh, fix_default_density(mesh, field.field, param.density), param.density, job);
+  fix_density(mesh, field.field, available_bytes(options.max_memory_bytes), job);
   OptimizeOptions oo = optimize_stage_options(job.options, param);
   const bool limited = leave_time_for_later_stages(mesh, job.seconds.back().second, progress.seconds_left(), oo);
   const std::string mode = to_string(options.optimize);

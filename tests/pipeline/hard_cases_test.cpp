@@ -10,6 +10,7 @@
 #include <string>
 
 #include "param/seams.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/remesh_mesh.h"
 #include "pipeline/validity_retries.h"
 #include "support/test_meshes.h"
@@ -129,6 +130,17 @@ TEST(HardCases, SmallHolesKeptAtTheDefaultDensity) {
   EXPECT_FALSE(closed.surface.same_topology);
   EXPECT_EQ(closed.param.density.raised.loop, 0);
   EXPECT_TRUE(said(closed, "closed over by the quads"));
+  // Memory for the coarser density but not for the finer one: the job keeps the coarser and says why.
+  PipelineOptions tight;
+  const double finer_quads = plate.total_area() / std::pow(job.param.map.edge_length, 2);
+  tight.max_memory_bytes =
+      static_cast<std::int64_t>(kBytesPerInputFace * plate.num_faces() + kBytesPerQuad * finer_quads / 2);
+  const RemeshJob held = remesh_mesh(plate, tight);
+  EXPECT_EQ(held.param.density.raised.loop, 0);
+  EXPECT_NEAR(held.param.map.edge_length, coarser.param.density.edge_length, 1e-9 * coarser.param.density.edge_length);
+  EXPECT_TRUE(said(held, "the default density was not made finer for boundary loop " +
+                             std::to_string(job.param.density.raised.loop)));
+  EXPECT_FALSE(held.surface.same_topology);
 }
 
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned
