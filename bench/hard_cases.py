@@ -227,6 +227,21 @@ def noisy_sphere():
     return V * np.random.default_rng(7).uniform(0.97, 1.03, len(V))[:, None], F
 
 
+def sphere_tiny_holes():
+    # Hard: a scan's holes: 8 single triangles, two rings apart or more, removed from an icosphere (holes of 3 edges,
+    # about 0.6 default quad edges around each).
+    V, F = icosphere(4)
+    rng, removed, near = np.random.default_rng(11), [], set()
+    for f in rng.permutation(len(F)):
+        if len(removed) == 8:
+            break
+        if not set(F[f]) & near:
+            removed.append(f)
+            ring = {v for t in F if set(t) & set(F[f]) for v in t}
+            near |= {v for t in F if set(t) & ring for v in t}
+    return V, np.delete(F, removed, axis=0)
+
+
 def sharp_bracket():
     # Hard: CAD block: L profile extruded, a drilled hole (radius 0.15) through one leg, 90-degree creases.
     h = 1 / 16  # grid step; the L: x in [0, 2] x y in [0, 0.5] plus x in [0, 0.5] x y in [0.5, 2], z in [0, 1]
@@ -302,6 +317,7 @@ CASES = {
     "plate_tiny_holes": (plate_tiny_holes, (13, 0, 1), "open"),
     "jagged_disk": (jagged_disk, (1, 0, 1), "open"),
     "noisy_sphere": (noisy_sphere, (0, 0, 1), "outward"),
+    "sphere_tiny_holes": (sphere_tiny_holes, (8, 0, 1), "open"),
     "sharp_bracket": (sharp_bracket, (0, 1, 1), "outward"),
     "inverted_torus": (inverted_torus, (0, 1, 1), "inward"),
     "needle_triangles": (needle_triangles, (0, 0, 1), "outward"),
