@@ -1,6 +1,7 @@
 #pragma once
 // The parameterization job: frame field (thesis ch. 5) → default density → Algorithm 6.1 (ch. 6) → keep-better →
 // QuadCover parameterization (ch. 2-4). One call for the CLI's `param`, the Python module and the benches.
+#include <Eigen/Core>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -19,11 +20,6 @@
 
 namespace quadcover {
 
-/// How the job met a requested quad count N (DensityOptions::target_quads): h = sqrt(area / N) gives a map whose
-/// face count (quad/extract_quads.h expected_face_count: Σ|area(φ(t))|, plus half the boundary's length in grid
-/// units on surfaces with boundary) is off by the field's non-uniform scale; while the count is off by more than
-/// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
-/// above N), at most kDensityResolves times, keeping the closest.
 /// The default density made finer for a short boundary loop (param/density.h LoopResolution), as the report and the
 /// warning name it.
 struct LoopDensityRaise {
@@ -38,6 +34,11 @@ struct LoopDensityRaise {
 /// The warning for a raised density (raise.loop > 0). \pre none
 std::string loop_density_warning(const LoopDensityRaise& raise);
 
+/// How the job met a requested quad count N (DensityOptions::target_quads): h = sqrt(area / N) gives a map whose
+/// face count (quad/extract_quads.h expected_face_count: Σ|area(φ(t))|, plus half the boundary's length in grid
+/// units on surfaces with boundary) is off by the field's non-uniform scale; while the count is off by more than
+/// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
+/// above N), at most kDensityResolves times, keeping the closest.
 struct DensityReport {
   int target_quads = 0;    ///< N asked for (0: an edge length or the default density)
   double first_quads = 0;  ///< expected face count of the first map
