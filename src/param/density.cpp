@@ -10,6 +10,7 @@ namespace quadcover {
 
 LoopResolution loop_resolution(const Mesh& mesh, const DensityOptions& options, double h) {
   LoopResolution r;
+  r.edge_length = h;
   if (options.min_loop_grid_units <= 0) return r;
   const double finest = std::max(h / std::sqrt(options.max_loop_quads_factor),
                                  std::sqrt(mesh.total_area() / std::max(mesh.num_faces(), 1)));
@@ -17,8 +18,7 @@ LoopResolution loop_resolution(const Mesh& mesh, const DensityOptions& options, 
   const auto& loops = mesh.boundary_loops();
   for (std::size_t l = 0; l < loops.size(); ++l) {
     double length = 0;
-    for (std::size_t i = 0; i < loops[l].size(); ++i)
-      length += (mesh.V().row(loops[l][(i + 1) % loops[l].size()]) - mesh.V().row(loops[l][i])).norm();
+    for (const int e : mesh.boundary_loop_edges()[l]) length += mesh.edge_lengths()[e];
     const double needed = length / options.min_loop_grid_units;
     if (needed < resolving && needed >= finest) {
       resolving = needed;
@@ -46,9 +46,10 @@ LoopResolution fix_default_density(const Mesh& mesh, const FrameField& field, De
   if (options.edge_length > 0 || options.target_quads > 0) return {};
   DensityOptions unraised = options;
   unraised.min_loop_grid_units = 0;
-  const int bps = static_cast<int>(branch_points(mesh, field).size());
-  options.edge_length = target_edge_length(mesh, options, bps);
-  return loop_resolution(mesh, options, target_edge_length(mesh, unraised, bps));
+  const double h = target_edge_length(mesh, unraised, static_cast<int>(branch_points(mesh, field).size()));
+  const LoopResolution r = loop_resolution(mesh, options, h);
+  options.edge_length = h / std::sqrt(r.quads_factor);  // = target_edge_length(mesh, options, …)
+  return r;
 }
 
 }  // namespace quadcover

@@ -30,6 +30,7 @@ struct LoopResolution {
   int lowest_vertex = -1;   ///< that loop's lowest vertex number (0-based)
   double length = 0;        ///< its length in model units
   double quads_factor = 1;  ///< the quads of the finer density over those of the coarser one (1: not finer)
+  double edge_length = 0;   ///< the coarser default h that quads_factor is relative to
 };
 
 /// The loop of `mesh` that needs the finest density within the bounds of DensityOptions::min_loop_grid_units from the

@@ -65,7 +65,6 @@ LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, c
 /// it; else the job says that it was not.
 void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t available, ParamJob& job) {
   DensityOptions& density = job.options.param.density;
-  const DensityOptions given = density;
   const LoopResolution r = fix_default_density(mesh, field, density);
   if (r.loop < 0) return;
   const LoopDensityRaise raise = loop_density_raise(mesh, r, density);
@@ -74,10 +73,7 @@ void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t availab
     job.density.raised = raise;
     return;
   }
-  density = given;
-  density.min_loop_grid_units = 0;
-  fix_default_density(mesh, field, density);
-  density.min_loop_grid_units = given.min_loop_grid_units;
+  density.edge_length = r.edge_length;  // the coarser default
   char text[200];
   std::snprintf(text, sizeof text,
                 "the default density was not made finer for boundary loop %d (through vertex %d): about %.3g quads "
