@@ -13,11 +13,11 @@
 #include "mesh/vertex_rings.h"
 #include "optimize/optimize_field.h"
 #include "param/density.h"
+#include "param/face_count.h"
 #include "param/seams.h"
 #include "pipeline/cone_merging.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/retry_until_valid.h"
-#include "quad/extract_quads.h"
 
 namespace quadcover {
 

@@ -75,14 +75,4 @@ struct ExtractionResult {
 ExtractionResult extract_quads(const Mesh& mesh, const Parameterization& param, const ExtractOptions& options = {},
                                ProgressSink& progress = null_progress());
 
-/// Total parameter-space area Σ_t |area(φ(t))|: for a valid seamless map of a closed surface it equals the
-/// number of quads of the extracted mesh. \pre uv is #F by 3.
-double parameter_area(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
-
-/// The face count the extraction is expected to give: parameter_area plus half the length in grid units of the
-/// boundary edges that are not on an integer iso-line, Σ |Δφ| / 2 (such a boundary cuts about one cell per grid unit
-/// of its length, and each cut cell is a face of about half a cell's area). Equal to parameter_area on closed
-/// surfaces and where the boundary is aligned to the grid. \pre uv is #F by 3.
-double expected_face_count(const Mesh& mesh, const Eigen::MatrixX3cd& uv);
-
 }  // namespace quadcover

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "param/face_count.h"
 #include "quad/extract_quads.h"
 #include "quad/integer_grid_map.h"
 #include "quad/polygon_check.h"

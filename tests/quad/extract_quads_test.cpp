@@ -8,6 +8,7 @@
 #include "common/errors.h"
 #include "quad/integer_grid_map.h"
 #include "mesh/surface_counts.h"
+#include "param/face_count.h"
 #include "quad/polygon_check.h"
 #include "quad/quad_test_maps.h"
 #include "quad/repair_folds.h"

@@ -6,6 +6,7 @@
 
 #include "field/compute_frame_field.h"
 #include "mesh/surface_counts.h"
+#include "param/face_count.h"
 #include "param/parameterize.h"
 #include "quad/doublets.h"
 #include "quad/extract_quads.h"
