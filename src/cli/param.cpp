@@ -147,8 +147,8 @@ void register_param(CLI::App* cmd, GlobalOptions& global, int& exit_code) {
   auto* h = cmd->add_option("--edge-length", opt->optimize.edge_length, "Target quad edge length h in model units")
                 ->check(CLI::PositiveNumber);
   cmd->add_option("--faces,--quads", opt->optimize.quads,
-                  "Target number of quads N, hit within 2 % of the map's quad count (h = sqrt(area / N), solved once "
-                  "more at the corrected h when missed); --quads is its old name")
+                  "Target number of quads N, hit within 2 % of the map's quad count (h set so that the map before "
+                  "its rounding has N quads, solved once more at a corrected h when missed); --quads is its old name")
       ->check(CLI::PositiveNumber)
       ->excludes(h);
   cmd->add_option("--lattice", opt->optimize.lattice,

@@ -8,7 +8,8 @@ namespace quadcover {
 struct DensityOptions {
   /// Target quad edge length h in model units (> 0 to use). One grid unit = h along the (RMS-normalized) field.
   double edge_length = 0;
-  /// Target number of quads N (> 0 to use, when edge_length is 0): h = sqrt(area / N).
+  /// Target number of quads N (> 0 to use, when edge_length is 0): h = sqrt(area / N), then rescaled in
+  /// parameterize() so that the free map has N expected faces (param/face_count.h).
   int target_quads = 0;
   /// Default density when neither is given: h = default_edge_factor × mean mesh edge length (≈ #F / 9 quads on
   /// a regular mesh), or finer so that there are at least min_quads_per_branch_point quads per branch point of the

@@ -1,5 +1,6 @@
 #include "param/face_count.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace quadcover {
@@ -24,18 +25,32 @@ bool on_one_iso_line(Complex a, Complex b) {
   return same_integer(a.real(), b.real()) || same_integer(a.imag(), b.imag());
 }
 
-}  // namespace
-
-double cut_boundary_length(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+/// Σ |b − a| over the boundary edges a → b of the map for which `counts(a, b)` holds.
+template <class Counts>
+double boundary_length_where(const Mesh& mesh, const Eigen::MatrixX3cd& uv, Counts counts) {
   double length = 0;
   for (int e = 0; e < mesh.num_edges(); ++e) {
     if (!mesh.is_boundary_edge(e)) continue;
     const int side = mesh.EF()(e, 0) >= 0 ? 0 : 1;
     const int f = mesh.EF()(e, side), k = mesh.EF_corner()(e, side);
     const Complex a = uv(f, (k + 1) % 3), b = uv(f, (k + 2) % 3);
-    if (!on_one_iso_line(a, b)) length += std::abs(b - a);
+    if (counts(a, b)) length += std::abs(b - a);
   }
   return length;
+}
+
+}  // namespace
+
+double cut_boundary_length(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {
+  return boundary_length_where(mesh, uv, [](Complex a, Complex b) { return !on_one_iso_line(a, b); });
+}
+
+double slanted_boundary_length(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double max_turn_radians) {
+  const double tolerance = std::sin(max_turn_radians);
+  return boundary_length_where(mesh, uv, [tolerance](Complex a, Complex b) {
+    const Complex d = b - a;
+    return std::min(std::abs(d.real()), std::abs(d.imag())) > tolerance * std::abs(d);
+  });
 }
 
 double expected_face_count(const Mesh& mesh, const Eigen::MatrixX3cd& uv) {

@@ -34,11 +34,11 @@ struct LoopDensityRaise {
 /// The warning for a raised density (raise.loop > 0). \pre none
 std::string loop_density_warning(const LoopDensityRaise& raise);
 
-/// How the job met a requested quad count N (DensityOptions::target_quads): h = sqrt(area / N) gives a map whose
-/// face count (quad/extract_quads.h expected_face_count: Σ|area(φ(t))|, plus half the boundary's length in grid
-/// units on surfaces with boundary) is off by the field's non-uniform scale; while the count is off by more than
-/// kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries below and
-/// above N), at most kDensityResolves times, keeping the closest.
+/// How the job met a requested quad count N (DensityOptions::target_quads): the map's h is set so that its free map
+/// (before rounding) has N expected faces (param/face_count.h expected_face_count: Σ|area(φ(t))|, plus half the
+/// boundary's length in grid units where it cuts cells); the rounding moves that count a little, and while it is off
+/// by more than kDensityTolerance the map is solved again at a corrected h (count ≈ c / h², interpolated between tries
+/// below and above N), at most kDensityResolves times, keeping the closest.
 struct DensityReport {
   int target_quads = 0;    ///< N asked for (0: an edge length or the default density)
   double first_quads = 0;  ///< expected face count of the first map

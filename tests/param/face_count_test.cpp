@@ -43,6 +43,20 @@ TEST(FaceCount, AShiftedOrTurnedBoundaryCountsHalfItsLength) {
   EXPECT_NEAR(cut_boundary_length(grid, turned), 20.0, 1e-9);
 }
 
+// Before the rounding the translations are not integers: a side along an axis counts as one that will be on an
+// iso-line, a slanted one as cutting cells.
+TEST(FaceCount, SlantedBoundaryIgnoresTheTranslation) {
+  const Mesh grid = testing::make_grid(6);
+  const Eigen::MatrixX3cd shifted = square_map(grid, 5.0, 1.0, Complex(0.3, 0.7));
+  EXPECT_NEAR(cut_boundary_length(grid, shifted), 20.0, 1e-12);
+  EXPECT_NEAR(slanted_boundary_length(grid, shifted, 0.05), 0.0, 1e-12);
+  const Eigen::MatrixX3cd slightly = square_map(grid, 5.0, std::polar(1.0, 0.03), Complex(0.3, 0.7));
+  EXPECT_NEAR(slanted_boundary_length(grid, slightly, 0.05), 0.0, 1e-12);  // within the tolerance
+  EXPECT_NEAR(slanted_boundary_length(grid, slightly, 0.02), 20.0, 1e-9);
+  const Eigen::MatrixX3cd turned = square_map(grid, 5.0, std::polar(1.0, 0.25 * std::numbers::pi), 0.0);
+  EXPECT_NEAR(slanted_boundary_length(grid, turned, 0.05), 20.0, 1e-9);
+}
+
 TEST(FaceCount, AFoldedTriangleCountsItsAreaOnce) {
   const Mesh grid = testing::make_grid(2);
   Eigen::MatrixX3cd uv = square_map(grid, 2.0, 1.0, 0.0);

@@ -9,6 +9,7 @@
 #include "field/compute_frame_field.h"
 #include "map_checks.h"
 #include "param/cover_cut.h"
+#include "param/face_count.h"
 #include "param/seams.h"
 #include "support/test_meshes.h"
 
@@ -119,6 +120,37 @@ TEST_P(OnTestMeshes, DensityFollowsTargetQuadCount) {
   EXPECT_GT(flips.parameter_area, 0.5 * 500);
   EXPECT_LT(flips.parameter_area, 1.5 * 500);
   EXPECT_LT(flips.flipped, mesh.num_faces() / 20);
+}
+
+// With a requested count N the free map is scaled to N expected faces before the rounding: its expected face count
+// is then N up to what the rounding moves (h = sqrt(area / N) alone missed by up to 12 %: the curl removal takes
+// area off the free map), and the map is the one made at the edge length it reports. That identity is checked
+// without the untangling: on faces the constraints hold at zero area, a round-off difference may send it another way.
+TEST_P(OnTestMeshes, RequestedCountScalesTheFreeMap) {
+  ParamOptions by_count;
+  by_count.density.target_quads = 2000;
+  const Parameterization P = parameterize(mesh, field, by_count);
+  EXPECT_NEAR(expected_face_count(mesh, P.uv) / 2000, 1.0, 0.03);
+  by_count.untangle.enabled = false;
+  ParamOptions by_length = by_count;
+  by_length.density.target_quads = 0;
+  by_length.density.edge_length = P.edge_length;
+  const Parameterization A = parameterize(mesh, field, by_count), B = parameterize(mesh, field, by_length);
+  EXPECT_EQ(A.edge_length, P.edge_length);
+  EXPECT_LT((A.uv - B.uv).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_NEAR(A.energy_curl, B.energy_curl, 1e-9 * B.energy_curl);
+  EXPECT_NEAR(A.scale, B.scale, 1e-12 * B.scale);
+}
+
+// A disk of a dozen triangles around one cone: its free map has no area (the rounded periods make the whole map),
+// so it is no guide to the count and h stays sqrt(area / N).
+TEST(Parameterize, AFreeMapWithoutAreaKeepsTheAreaDensity) {
+  const Mesh disk = testing::make_fan(12, false);
+  ParamOptions by_count;
+  by_count.density.target_quads = 100;
+  const Parameterization P = parameterize(disk, compute_frame_field(disk), by_count);
+  EXPECT_DOUBLE_EQ(P.edge_length, std::sqrt(disk.total_area() / 100));
+  EXPECT_GT(flipped_triangles(disk, P.uv).parameter_area, 50);
 }
 
 INSTANTIATE_TEST_SUITE_P(Meshes, OnTestMeshes,

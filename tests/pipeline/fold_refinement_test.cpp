@@ -131,7 +131,7 @@ TEST_P(FoldRefinementHardCases, LeavesNoNonPositiveTriangle) {
 
 INSTANTIATE_TEST_SUITE_P(Tori, FoldRefinementHardCases,
                          ::testing::Values(HardCase{"torus_12x6", 12, 6, 2.0, 0.7, 0},
-                                           HardCase{"fat_torus_10x5", 10, 5, 1.5, 1.0, 24}),
+                                           HardCase{"fat_torus_10x5", 10, 5, 1.5, 1.0, 28}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // A thin handle (minor radius 0.1 of the major one, 4 faces around it): valid without and with the refinement.

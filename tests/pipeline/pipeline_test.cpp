@@ -145,7 +145,8 @@ TEST(RemeshMesh, ThreeQuarterConesLeaveNoVertexOfValenceOne) {
 }
 
 // A requested quad count is met within 3 % on meshes of different shapes (sphere, torus, the bunny), where h =
-// sqrt(area / N) alone misses by up to 10 % (the field's scale varies over the surface), and on meshes with
+// sqrt(area / N) alone misses by up to 10 % (the curl removal takes area off the free map: parameterize() scales
+// it to the count, and the density stage re-solves what the rounding moves), and on meshes with
 // boundary, where the cells the boundary cuts are faces too (lilium_disk at 400 quads: 438 faces when only the
 // parameter area was counted).
 TEST(RemeshMesh, HitsTheRequestedQuadCount) {
