@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <tuple>
 
 #include "common/quarter_turn.h"
@@ -10,6 +11,7 @@
 #include "field/smoothing.h"
 #include "param/map_development.h"
 #include "param/ring_winding.h"
+#include "param/seams.h"
 
 namespace quadcover {
 
@@ -36,6 +38,16 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
 
 namespace {
 
+/// The vertices sharing an edge with v (the other corners of its fan's faces), ascending.
+std::vector<int> sorted_neighbours(const Mesh& mesh, int v) {
+  std::vector<int> out;
+  for (const Mesh::FanCorner& c : mesh.fan(v))
+    for (int k = 1; k < 3; ++k) out.push_back(mesh.F()(c.face, (c.corner + k) % 3));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 /// The first branch point q ≠ p in `around` (developed_around p) on p's point that `used` leaves free, or -1.
 int coincident_partner(const Mesh& mesh, const Eigen::VectorXi& quarter, const std::vector<char>& used,
                        const std::vector<std::pair<int, Complex>>& around, int p) {
@@ -51,7 +63,8 @@ int coincident_partner(const Mesh& mesh, const Eigen::VectorXi& quarter, const s
 
 }  // namespace
 
-std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map, CoincidentReach reach) {
+std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map, CoincidentReach reach,
+                                               CoincidentCause cause) {
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), map.branch_points);
   const VertexLayers layers{map.subspace.layer, map.subspace.branch};
   const Eigen::VectorXcd zero = Eigen::VectorXcd::Zero(mesh.num_vertices());
@@ -59,6 +72,18 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   std::vector<ConeMerge> merges;
   const auto wound_wrong = [&](int q) { return !mesh.is_boundary_vertex(q) && wound[q] != quarter[q]; };
+  std::vector<char> folded(static_cast<std::size_t>(mesh.num_vertices()), 0);  // corners of non-positive triangles
+  if (cause == CoincidentCause::AlsoFolds)
+    for (const int f : flipped_triangles(mesh, map.uv).flipped_faces)
+      for (int c = 0; c < 3; ++c) folded[mesh.F()(f, c)] = 1;
+  // A common neighbour of p and q that is no cone and a corner of a non-positive triangle (see the header).
+  const auto folded_between = [&](int p, int q) {
+    const std::vector<int> a = sorted_neighbours(mesh, p), b = sorted_neighbours(mesh, q);
+    std::vector<int> common;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+    return std::any_of(common.begin(), common.end(),
+                       [&](int n) { return folded[n] && quarter[n] == 0 && !mesh.is_boundary_vertex(n); });
+  };
   const auto merge = [&](int p, int q) {
     merges.push_back({std::max(p, q), std::min(p, q), mod4(quarter[std::max(p, q)])});
     used[p] = used[q] = 1;
@@ -66,12 +91,14 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
   const auto candidate = [&](int p) {
     return quarter[p] % 4 != 0 && !used[p] && !mesh.is_boundary_vertex(p) && !mesh.fan(p).empty();
   };
-  // Near: a pair within kNearRings of a wrongly wound vertex.
+  // Near: a pair within kNearRings of a wrongly wound vertex, or with a folded common neighbour.
   for (int p = 0; p < mesh.num_vertices(); ++p) {
     if (!candidate(p)) continue;
     const auto near = developed_around(mesh, layers, map.uv, zero, p, kNearRings);
-    if (std::none_of(near.begin(), near.end(), [&](const auto& qz) { return wound_wrong(qz.first); })) continue;
-    if (const int q = coincident_partner(mesh, quarter, used, near, p); q >= 0) merge(p, q);
+    const bool wound_near =
+        std::any_of(near.begin(), near.end(), [&](const auto& qz) { return wound_wrong(qz.first); });
+    if (const int q = coincident_partner(mesh, quarter, used, near, p); q >= 0 && (wound_near || folded_between(p, q)))
+      merge(p, q);
   }
   if (reach == CoincidentReach::Near) return merges;
   for (int p = 0; p < mesh.num_vertices(); ++p) {
@@ -83,16 +110,6 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
 }
 
 namespace {
-
-/// The vertices sharing an edge with v (the other corners of its fan's faces), ascending.
-std::vector<int> sorted_neighbours(const Mesh& mesh, int v) {
-  std::vector<int> out;
-  for (const Mesh::FanCorner& c : mesh.fan(v))
-    for (int k = 1; k < 3; ++k) out.push_back(mesh.F()(c.face, (c.corner + k) % 3));
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
 
 /// The first vertex within kWoundRings rings of c (breadth first, neighbours ascending) for which `fits` holds, or -1.
 template <class Fits>

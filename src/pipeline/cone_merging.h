@@ -28,19 +28,27 @@ std::vector<ConeMerge> coincident_cone_merges(const Mesh& mesh, const Parameteri
 
 /// How far close_coincident_merges looks for a branch point's partner: kNearRings, or also kFarRings.
 enum class CoincidentReach { Near, Far };
+/// Which near pairs close_coincident_merges takes: those beside a wrong winding, or also those with a folded common
+/// neighbour (for a settled map: the untangling and the fold refinement have had their turn).
+enum class CoincidentCause { WrongWindings, AlsoFolds };
 inline constexpr int kNearRings = 3, kFarRings = 12;
 
 /// Branch points a few edges apart on one lattice point (seen along a walk over the faces between them,
 /// param/map_development.h): Near, within kNearRings of a branch point with a vertex within kNearRings that the map
 /// winds a turn off (a cone's ring, or a regular vertex between them at 4π): the edge path between them closes on
 /// itself in the map, and the turn stays off whatever untangling or edge split follows (seen on camelhead_boundary
-/// and armadillo_86k: two +1/4 cones two edges apart; on bunny_20k_holes: a +1/4 and a −1/4 cone two edges apart).
+/// and armadillo_86k: two +1/4 cones two edges apart; on bunny_20k_holes: a +1/4 and a −1/4 cone two edges apart),
+/// or, with CoincidentCause::AlsoFolds, a pair with a common neighbour n that is no cone and a corner of a
+/// non-positive triangle: the edges from n to
+/// both map onto one segment, so the two parts of n's fan between them each turn by a multiple of 2π, and as they sum
+/// to 2π one part has a triangle that is not positive, whatever the untangling does (seen on mech_holes_shark).
 /// Far adds, for a branch point the map winds a turn off that has no near partner, a partner within kFarRings (seen
 /// on camelhead_boundary: two −1/4 cones 7-8 rings apart on one point, one at π/2 with a vertex at 4π beside it).
 /// Per such branch point in vertex order the first partner, `from` the higher number, each vertex in at most one
 /// merge. \pre map was made on mesh (map.subspace filled).
 std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameterization& map,
-                                               CoincidentReach reach = CoincidentReach::Near);
+                                               CoincidentReach reach = CoincidentReach::Near,
+                                               CoincidentCause cause = CoincidentCause::WrongWindings);
 
 /// The moves that follow the map's winding (issue 14): a branch point c around which φ winds one turn too few or too
 /// many gives its index modulo 4 to the nearest interior vertex n within 3 rings that is no branch point and carries

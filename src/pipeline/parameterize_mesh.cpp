@@ -379,12 +379,12 @@ ParamJob remade_with_merges(const Mesh& mesh, const FrameFieldResult& stage, dou
 
 namespace {
 
-/// Appends to `merges` the pairs of close_coincident_merges(map, reach) whose vertices `used` leaves free (and are
-/// vertices of `mesh`: no midpoint of the fold refinement is a cone), marking them used. \return how many.
+/// Appends to `merges` the pairs of close_coincident_merges(map, reach, AlsoFolds) whose vertices `used` leaves free
+/// (and are vertices of `mesh`: no midpoint of the fold refinement is a cone), marking them used. \return how many.
 std::size_t add_close_merges(const Mesh& mesh, const Mesh& map_mesh, const Parameterization& map, CoincidentReach reach,
                              std::vector<char>& used, std::vector<ConeMerge>& merges) {
   const std::size_t known = merges.size();
-  for (const ConeMerge& m : close_coincident_merges(map_mesh, map, reach))
+  for (const ConeMerge& m : close_coincident_merges(map_mesh, map, reach, CoincidentCause::AlsoFolds))
     if (m.from < mesh.num_vertices() && m.into < mesh.num_vertices() && !used[m.from] && !used[m.into]) {
       merges.push_back(m);
       used[m.from] = used[m.into] = 1;

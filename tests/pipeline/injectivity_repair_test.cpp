@@ -283,6 +283,46 @@ TEST(ConeMerging, MergesConesOnOnePointSeveralRingsApartWhenOneIsWoundATurnOff) 
   expect_merged_and_valid_at_the_defaults(mesh);
 }
 
+/// The vertices sharing an edge with both a and b.
+std::vector<int> common_neighbours(const Mesh& mesh, int a, int b) {
+  std::vector<int> out;
+  for (const Mesh::FanCorner& c : mesh.fan(a))
+    for (int k = 1; k < 3; ++k) {
+      const int n = mesh.F()(c.face, (c.corner + k) % 3);
+      if (n != b && adjacent(mesh, n, b) && std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+    }
+  return out;
+}
+
+TEST(ConeMerging, MergesConesOnOnePointWithACommonNeighbourBesideANonPositiveTriangle) {
+  // mech_holes_shark at this h: two branch points with a common neighbour n rounded onto one lattice point. The edges
+  // from n to both map onto one segment, so each of the two parts of n's fan between them turns by a multiple of 2π:
+  // with n regular, one part has a triangle that is not positive whatever the untangling does, and no vertex beside
+  // it winds wrong.
+  const Mesh mesh = testing::load_test_mesh("mech_holes_shark");
+  PipelineOptions plain;
+  plain.param.density.edge_length = 0.02467533322728964;
+  plain.merge_coincident_cones = false;
+  plain.validity_retries = 0;
+  const ParamJob without = parameterize_mesh(mesh, plain);
+  const Mesh& m0 = without.mesh(mesh);
+  ASSERT_GT(non_positive_triangles(without.map), 0) << "the case this test is about no longer occurs";
+  ASSERT_EQ(wrongly_wound(m0, without.map), 0) << "the case this test is about no longer occurs";
+  EXPECT_TRUE(close_coincident_merges(m0, without.map, CoincidentReach::Near).empty());  // no wrong winding near
+  const std::vector<ConeMerge> merges =
+      close_coincident_merges(m0, without.map, CoincidentReach::Near, CoincidentCause::AlsoFolds);
+  ASSERT_FALSE(merges.empty());
+  const bool shares_a_neighbour = std::any_of(merges.begin(), merges.end(), [&](const ConeMerge& m) {
+    return !adjacent(m0, m.from, m.into) && !common_neighbours(m0, m.from, m.into).empty();
+  });
+  EXPECT_TRUE(shares_a_neighbour);
+  PipelineOptions merging = plain;
+  merging.merge_coincident_cones = true;
+  const ParamJob with = parameterize_mesh(mesh, merging);
+  EXPECT_GT(with.merged_cone_pairs, 0);
+  EXPECT_EQ(non_positive_triangles(with.map), 0);  // recounted from the written corners
+}
+
 TEST(ConeSeparation, TheJobSetsApartTheConesItsRoundingPutOnOnePointWhenTheMapWindsWrongBesideThem) {
   // cow: two −1/4 branch points two edges apart rounded onto one lattice point; merging them leaves wrong windings.
   const Mesh mesh = testing::load_test_mesh("cow");
