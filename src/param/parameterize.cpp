@@ -227,12 +227,10 @@ FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverC
 /// faces: k²A + k L / 2 = N (A its parameter area, L its slanted boundary length, param/face_count.h). The rounding
 /// then moves the count by about 1 %. Where k would change the area by more than kMaxCountFit, the free map is no
 /// guide (on a disk of a dozen triangles around one cone it has no area: the rounded periods make the whole map)
-/// and h stays. \return k (1 without a requested count). \pre phi from integrate_on_disk
-double count_fitting_scale(const Mesh& mesh, const CoverCut& cc, const Eigen::VectorXcd& phi,
-                           const DensityOptions& density) {
+/// and h stays. \return k (1 without a requested count). \pre free_map #F by 3: the corner values of step 3
+double count_fitting_scale(const Mesh& mesh, const Eigen::MatrixX3cd& free_map, const DensityOptions& density) {
   constexpr double kMaxCountFit = 1.5, kSlantRadians = 0.05;
   if (density.target_quads <= 0 || density.edge_length > 0) return 1.0;
-  const Eigen::MatrixX3cd free_map = corner_values(cc, phi);
   const double area = parameter_area(mesh, free_map);
   const double half_boundary = 0.5 * slanted_boundary_length(mesh, free_map, kSlantRadians);
   const double n = density.target_quads;
@@ -523,8 +521,9 @@ void solve_steps(SolvedMap::State& s) {
 
   // ---- 3. integration over the cut disk and the periods
   Eigen::VectorXcd phi = integrate_on_disk(mesh, cc, Xhat);
-  Eigen::VectorXcd c = cut_translations(mesh, cc, corner_values(cc, phi), &P.diagnostics.integration_mismatch);
-  if (const double k = count_fitting_scale(mesh, cc, phi, options.density); k != 1.0) {
+  const Eigen::MatrixX3cd free_corners = corner_values(cc, phi);
+  Eigen::VectorXcd c = cut_translations(mesh, cc, free_corners, &P.diagnostics.integration_mismatch);
+  if (const double k = count_fitting_scale(mesh, free_corners, options.density); k != 1.0) {
     s.Z *= k, s.XC *= k, phi *= k, c *= k;
     P.edge_length /= k, P.scale *= k, P.energy_curl *= k * k, P.diagnostics.integration_mismatch *= k;
   }

@@ -97,6 +97,7 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
     const auto near = developed_around(mesh, layers, map.uv, zero, p, kNearRings);
     const bool wound_near =
         std::any_of(near.begin(), near.end(), [&](const auto& qz) { return wound_wrong(qz.first); });
+    if (!wound_near && cause == CoincidentCause::WrongWindings) continue;
     if (const int q = coincident_partner(mesh, quarter, used, near, p); q >= 0 && (wound_near || folded_between(p, q)))
       merge(p, q);
   }

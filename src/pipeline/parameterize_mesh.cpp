@@ -68,7 +68,7 @@ void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t availab
   const LoopResolution r = fix_default_density(mesh, field, density);
   if (r.loop < 0) return;
   const LoopDensityRaise raise = loop_density_raise(mesh, r, density);
-  const double quads = mesh.total_area() / (density.edge_length * density.edge_length);
+  const double quads = requested_quads(mesh, job.options.param);
   if (fits_memory_budget(mesh, quads, available)) {
     job.density.raised = raise;
     return;
