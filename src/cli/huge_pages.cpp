@@ -1,5 +1,6 @@
 #include "cli/huge_pages.h"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -32,6 +33,12 @@ void restart_with_huge_pages(char** argv) {
   unsetenv("GLIBC_TUNABLES");  // execv returned: it failed, run on as we are
 #else
   (void)argv;
+#endif
+}
+
+void use_one_heap_arena() {
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+  mallopt(M_ARENA_MAX, 1);
 #endif
 }
 

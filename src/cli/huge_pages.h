@@ -1,9 +1,9 @@
 #pragma once
-// Transparent huge pages for the CLI's heap. glibc gives large blocks fresh pages from the kernel (mmap), and the
-// per-stage memory peaks give freed heap back (common/memory.h): on 10⁵ faces the solves then spend a fifth of their
-// time in page faults. glibc's tunable glibc.malloc.hugetlb=1 makes malloc ask for transparent huge pages, with 5×
-// fewer faults and the same peak (BENCHMARKS.md, "Transparent huge pages"). glibc reads tunables only when a process
-// starts, so the CLI starts itself once more with the tunable set.
+// The CLI's heap: transparent huge pages and one arena. glibc gives large blocks fresh pages from the kernel (mmap):
+// on 10⁵ faces the solves then spend a fifth of their time in page faults. glibc's tunable glibc.malloc.hugetlb=1
+// makes malloc ask for transparent huge pages, with 5× fewer faults and the same peak (BENCHMARKS.md, "Transparent
+// huge pages"). glibc reads tunables only when a process starts, so the CLI starts itself once more with the tunable
+// set. Its threads share one heap (use_one_heap_arena), so that what one stage frees is reused by the next.
 
 namespace quadcover::cli {
 
@@ -16,5 +16,11 @@ inline constexpr const char* kNoHugePagesVariable = "QUADCOVER_NO_HUGE_PAGES";
 /// not set. Returns when it does not restart, or when the restart fails (the environment is then as it was).
 /// \pre called first in main, before any thread, file or signal handler exists.
 void restart_with_huge_pages(char** argv);
+
+/// Makes every thread allocate from glibc's main heap (mallopt M_ARENA_MAX = 1). With an arena per thread, heap a
+/// stage freed in one thread's arena stays resident while the next stage grows another's; one arena reuses it and
+/// lowers the peak without giving memory back between stages (BENCHMARKS.md, "One heap arena"). Nothing without
+/// glibc's malloc (a sanitizer's). \pre called in main before any thread exists.
+void use_one_heap_arena();
 
 }  // namespace quadcover::cli

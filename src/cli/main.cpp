@@ -38,6 +38,7 @@ int run_command_line(int argc, char** argv) {
 int main(int argc, char** argv) {
   using namespace quadcover;
   cli::restart_with_huge_pages(argv);
+  cli::use_one_heap_arena();
   cli::run_start_time();  // --time-limit counts from here
   cli::install_interrupt_handler();
   return cli::run_watching_signals([argc, argv] { return run_command_line(argc, argv); });

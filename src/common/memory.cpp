@@ -1,9 +1,5 @@
 #include "common/memory.h"
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <algorithm>
 #include <cstddef>
 #include <cstdlib>
@@ -28,12 +24,6 @@ struct OpenStages {
     const std::int64_t peak = peak_resident_bytes();
     process_peak = std::max(process_peak, peak);
     for (StagePeakMemory* s : stages) s->kept_ = std::max(s->kept_, peak);
-#ifdef __GLIBC__
-    // Give what the last stage freed back to the system when it is much (glibc keeps freed heap resident): the next
-    // stage's peak is then its own. Small amounts stay: trimming them costs page faults for nothing.
-    constexpr std::size_t kTrimBytes = std::size_t{32} << 20;
-    if (mallinfo2().fordblks > kTrimBytes) malloc_trim(0);
-#endif
     std::ofstream out("/proc/self/clear_refs");
     out << "5";
     out.flush();

@@ -46,10 +46,11 @@ bool malloc_asks_for_huge_pages();
 /// Peak resident bytes since the process started, across resets; 0 if unknown. \pre none
 std::int64_t process_peak_resident_bytes();
 
-/// Peak resident bytes of one stage: construct before the stage (resets the peak, after giving the heap that earlier
-/// stages freed back to the system with glibc's malloc_trim, so that it does not count in the peak), read peak()
-/// after it. Stages may nest or run in parallel threads: a reset by one keeps the peak so far for all others, so
-/// each sees the process's peak over its own interval (parallel ones therefore include each other's memory).
+/// Peak resident bytes of one stage: construct before the stage (resets the peak), read peak() after it. The peak
+/// is the process's: it includes what earlier stages left resident, and the heap they freed that malloc kept (giving
+/// it back at every stage, malloc_trim, cost a fifth of the time on 10⁴-10⁵ faces in page faults; BENCHMARKS.md,
+/// "One heap arena"). Stages may nest or run in parallel threads: a reset by one keeps the peak so far for all others,
+/// so each sees the process's peak over its own interval (parallel ones therefore include each other's memory).
 class StagePeakMemory {
  public:
   StagePeakMemory();
