@@ -1,6 +1,5 @@
 #include "cli/huge_pages.h"
 
-#include <malloc.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -8,6 +7,12 @@
 #include <fstream>
 #include <string>
 #include <system_error>
+
+#include "common/memory.h"
+
+#ifdef QUADCOVER_GLIBC_MALLOC
+#include <malloc.h>
+#endif
 
 namespace quadcover::cli {
 namespace {
@@ -23,7 +28,7 @@ namespace {
 }  // namespace
 
 void restart_with_huge_pages(char** argv) {
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#ifdef QUADCOVER_GLIBC_MALLOC
   if (std::getenv("GLIBC_TUNABLES") || std::getenv(kNoHugePagesVariable) || !huge_pages_on_request()) return;
   // The program's own path, not /proc/self/exe: the process keeps its name (ps, top, pkill quadcover).
   std::error_code error;
@@ -37,7 +42,7 @@ void restart_with_huge_pages(char** argv) {
 }
 
 void use_one_heap_arena() {
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#ifdef QUADCOVER_GLIBC_MALLOC
   mallopt(M_ARENA_MAX, 1);
 #endif
 }

@@ -67,7 +67,7 @@ std::int64_t process_peak_resident_bytes() {
 }
 
 bool malloc_asks_for_huge_pages() {
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)  // else not glibc's malloc
+#ifdef QUADCOVER_GLIBC_MALLOC
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   if (!tunables) return false;
   const std::string t = tunables;

@@ -4,6 +4,12 @@
 #include <fstream>
 #include <string>
 
+/// Defined when this build allocates with glibc's malloc (no sanitizer replaces it): its tunables, mallopt and
+/// malloc_info apply.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#define QUADCOVER_GLIBC_MALLOC 1
+#endif
+
 namespace quadcover {
 
 namespace detail {

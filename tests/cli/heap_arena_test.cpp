@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "cli/huge_pages.h"
+#include "common/memory.h"
 
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#ifdef QUADCOVER_GLIBC_MALLOC
 #include <malloc.h>
-#define QUADCOVER_GLIBC_MALLOC 1
 #endif
 
 namespace quadcover::cli {
