@@ -19,7 +19,8 @@ struct Variables {
 };
 
 /// The jump function σ of variable `col` (a unit change of one period) or of the base (col == count()).
-Eigen::MatrixX3cd jump_of(const Mesh& mesh, const CurveRoundingInputs& in, const Variables& vars, int col) {
+Eigen::MatrixX3cd jump_of(const Mesh& mesh, const CurveRoundingInputs& in, const CutFans& fans, const Variables& vars,
+                          int col) {
   const int m = static_cast<int>(vars.paths.size());
   Eigen::VectorXcd d = Eigen::VectorXcd::Zero(mesh.num_edges());
   if (col == vars.count()) {
@@ -27,8 +28,8 @@ Eigen::MatrixX3cd jump_of(const Mesh& mesh, const CurveRoundingInputs& in, const
   } else {
     d[in.cut.path_edge[vars.paths[col % m]]] = col < m ? Complex(1) : Complex(0, 1);
   }
-  complete_translations(mesh, in.cut, d);
-  return jump_function(mesh, in.cut, d);
+  complete_translations(mesh, in.cut, fans, d);
+  return jump_function(mesh, in.cut, fans, d);
 }
 
 /// One column: the jump function (zero for a line), the map's corner values at u = 0 and the lines' integers.
@@ -37,11 +38,12 @@ struct Column {
   Eigen::VectorXd n;
 };
 
-Column column(const Mesh& mesh, const CurveRoundingInputs& in, const Variables& vars, int col) {
+Column column(const Mesh& mesh, const CurveRoundingInputs& in, const CutFans& fans, const Variables& vars, int col) {
   Column c{Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3), Eigen::MatrixX3cd(),
            Eigen::VectorXd::Zero(in.aligned.num_lines())};
   const int m2 = static_cast<int>(2 * vars.paths.size());
-  if (col < m2 || col == vars.count()) c.sigma = jump_of(mesh, in, vars, col);
+  if (col < m2 || col == vars.count())
+    c.sigma = jump_of(mesh, in, fans, vars, col);
   else c.n[vars.lines[col - m2]] = 1;
   c.known = col == vars.count() ? Eigen::MatrixX3cd(in.known_free + c.sigma) : c.sigma;
   return c;
@@ -74,8 +76,9 @@ Responses responses(const Mesh& mesh, const CurveRoundingInputs& in, const Varia
   Eigen::MatrixXd V(2 * nv, cols);
   Responses r;
   r.G = Eigen::MatrixXd::Zero(4 * nf, cols);
+  const CutFans fans = cut_fans(mesh, in.cut);
   for (int col = 0; col < cols; ++col) {  // the Σ part of R now, the ∇u part after the solve
-    const Column c = column(mesh, in, vars, col);
+    const Column c = column(mesh, in, fans, vars, col);
     const FramePairs Sigma = corner_gradient(mesh, c.sigma);
     add_weighted(mesh, Sigma, 1, col, r.G);
     B.col(col) = in.correction.rhs(Sigma);

@@ -22,22 +22,6 @@ int crossing_rotation(const Mesh& mesh, const CoverCut& cut, const FanCrossing& 
   return mesh.EF()(cr.edge, 0) == cr.from ? cut.rotation[cr.edge] : -cut.rotation[cr.edge];
 }
 
-namespace {
-
-/// Non-source vertices on the cut, from the leaves of the shortest-path forest to the roots.
-std::vector<int> elimination_order(const Mesh& mesh, const CoverCut& cut) {
-  std::vector<int> order;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const int pe = cut.graph.parent_edge[v];
-    if (pe >= 0 && cut.graph.cut[pe]) order.push_back(v);
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return cut.graph.distance[a] > cut.graph.distance[b]; });
-  return order;
-}
-
-}  // namespace
-
 Eigen::VectorXcd integrate_on_disk(const Mesh& mesh, const CoverCut& cut, const FramePairs& Z) {
   const CutMesh& disk = cut.disk;
   Eigen::VectorXcd u = Eigen::VectorXcd::Zero(disk.num_vertices());
@@ -121,9 +105,13 @@ Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const E
 }
 
 void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorXcd& c) {
-  for (const int v : elimination_order(mesh, cut)) {
-    const int pe = cut.graph.parent_edge[v];
-    const auto crossings = fan_crossings(mesh, v);
+  complete_translations(mesh, cut, cut_fans(mesh, cut), c);
+}
+
+void complete_translations(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, Eigen::VectorXcd& c) {
+  for (const int k : fans.elimination) {
+    const int pe = cut.graph.parent_edge[fans.vertices[k]];
+    const auto crossings = fans.crossings_of(k);
     const int d = static_cast<int>(crossings.size());
     int ip = 0;
     while (crossings[ip].edge != pe) ++ip;
@@ -139,10 +127,11 @@ std::vector<std::vector<std::uint64_t>> path_parities(const Mesh& mesh, const Co
   const std::size_t words = (static_cast<std::size_t>(cut.num_paths()) + 63) / 64;
   std::vector<std::vector<std::uint64_t>> bits(mesh.num_edges(), std::vector<std::uint64_t>(words, 0));
   for (int j = 0; j < cut.num_paths(); ++j) bits[cut.path_edge[j]][j / 64] |= std::uint64_t{1} << (j % 64);
-  for (const int v : elimination_order(mesh, cut)) {
-    const int pe = cut.graph.parent_edge[v];
+  const CutFans fans = cut_fans(mesh, cut);
+  for (const int k : fans.elimination) {
+    const int pe = cut.graph.parent_edge[fans.vertices[k]];
     std::vector<std::uint64_t> acc(words, 0);
-    for (const FanCrossing& cr : fan_crossings(mesh, v))
+    for (const FanCrossing& cr : fans.crossings_of(k))
       if (cut.graph.cut[cr.edge] && cr.edge != pe)
         for (std::size_t w = 0; w < words; ++w) acc[w] ^= bits[cr.edge][w];
     bits[pe] = acc;
@@ -150,38 +139,64 @@ std::vector<std::vector<std::uint64_t>> path_parities(const Mesh& mesh, const Co
   return bits;
 }
 
-std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, int v) {
+namespace {
+
+/// z ↦ i^K z + D composed over `crossings` (a vertex's fan, in order). \pre as carry_across for each crossing.
+std::pair<int, Complex> compose_transitions(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c,
+                                            std::span<const FanCrossing> crossings) {
   int K = 0;
   Complex D = 0;
-  for (const FanCrossing& cr : fan_crossings(mesh, v)) {
+  for (const FanCrossing& cr : crossings) {
     D = carry_across(mesh, cut, c, cr, D);
     K += crossing_rotation(mesh, cut, cr);
   }
   return {mod4(K), D};
 }
 
-Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v) {
-  const auto [K, D] = transition_around(mesh, cut, T, v);
+/// The fixed point D / (1 − i^K) of a composed transition, 0 where K = 0.
+Complex fixed_point(const std::pair<int, Complex>& transition) {
+  const auto [K, D] = transition;
   return K == 0 ? Complex(0) : D / (Complex(1) - ipow(K));
 }
 
-Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c) {
-  Eigen::MatrixX3cd sigma = Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3);
-  std::vector<char> on_cut(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (int e = 0; e < mesh.num_edges(); ++e)
-    if (cut.graph.cut[e]) on_cut[mesh.E()(e, 0)] = on_cut[mesh.E()(e, 1)] = 1;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (!on_cut[v]) continue;
-    const auto fan = mesh.fan(v);
-    const auto crossings = fan_crossings(mesh, v);
-    // At a branch point the value is pinned by the rotation around v: x = i^K x + D.
-    Complex x = cut.branch[v] ? branch_point_image(mesh, cut, c, v) : Complex(0);
-    sigma(fan[0].face, fan[0].corner) = x;
-    for (std::size_t i = 0; i + 1 < fan.size(); ++i) {
-      x = carry_across(mesh, cut, c, crossings[i], x);
-      sigma(fan[i + 1].face, fan[i + 1].corner) = x;
-    }
+}  // namespace
+
+std::pair<int, Complex> transition_around(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c, int v) {
+  return compose_transitions(mesh, cut, c, fan_crossings(mesh, v));
+}
+
+Complex branch_point_image(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& T, int v) {
+  return fixed_point(transition_around(mesh, cut, T, v));
+}
+
+bool moves_fan(const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c, int k) {
+  for (const FanCrossing& cr : fans.crossings_of(k))
+    if (cut.graph.cut[cr.edge] && c[cr.edge] != Complex(0)) return true;
+  return false;
+}
+
+void write_fan_jump(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c, int k,
+                    Eigen::MatrixX3cd& sigma) {
+  const int v = fans.vertices[k];
+  const auto fan = mesh.fan(v);
+  const auto crossings = fans.crossings_of(k);
+  // At a branch point the value is pinned by the rotation around v: x = i^K x + D.
+  Complex x = cut.branch[v] ? fixed_point(compose_transitions(mesh, cut, c, crossings)) : Complex(0);
+  sigma(fan[0].face, fan[0].corner) = x;
+  for (std::size_t i = 0; i + 1 < fan.size(); ++i) {
+    x = carry_across(mesh, cut, c, crossings[i], x);
+    sigma(fan[i + 1].face, fan[i + 1].corner) = x;
   }
+}
+
+Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c) {
+  return jump_function(mesh, cut, cut_fans(mesh, cut), c);
+}
+
+Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c) {
+  Eigen::MatrixX3cd sigma = Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3);
+  for (int k = 0; k < static_cast<int>(fans.vertices.size()); ++k)
+    if (moves_fan(cut, fans, c, k)) write_fan_jump(mesh, cut, fans, c, k, sigma);
   return sigma;
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "param/cover_cut.h"
+#include "param/cut_fans.h"
 
 namespace quadcover {
 
@@ -49,6 +50,8 @@ Eigen::VectorXcd cut_translations(const Mesh& mesh, const CoverCut& cut, const E
 /// compose to the identity around every vertex off B (processed from the leaves of the shortest-path forest to the
 /// roots). Entries of c on tree cut edges are overwritten. \pre c has #E entries. \throw only std::bad_alloc.
 void complete_translations(const Mesh& mesh, const CoverCut& cut, Eigen::VectorXcd& c);
+/// The same with the cut's fans made once (param/cut_fans.h). \pre fans = cut_fans(mesh, cut); c has #E entries.
+void complete_translations(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, Eigen::VectorXcd& c);
 
 /// The same relations over GF(2) for lattice parities: bit j of edge e is the parity of the coefficient of path j
 /// in c_e (i ≡ 1 mod 1+i). \return per edge a bitset of num_paths bits (words of 64).
@@ -59,6 +62,14 @@ std::vector<std::vector<std::uint64_t>> path_parities(const Mesh& mesh, const Co
 /// a branch point the value is the fixed point c/(1 - i^K) of the composed transition, elsewhere on the cut the first
 /// wedge of the fan has value 0. \pre cut = build_cover_cut(mesh, …); c has #E entries.
 Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const Eigen::VectorXcd& c);
+/// The same with the cut's fans made once. \pre fans = cut_fans(mesh, cut); c has #E entries.
+Eigen::MatrixX3cd jump_function(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c);
+/// Whether c is non-zero on a cut edge around fans.vertices[k]: only then is the jump function non-zero in its fan.
+/// \pre fans = cut_fans(mesh, cut); c has #E entries; 0 <= k < fans.vertices.size().
+bool moves_fan(const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c, int k);
+/// Writes the jump function's values at the corners of fans.vertices[k] into sigma (#F by 3). \pre as moves_fan.
+void write_fan_jump(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, const Eigen::VectorXcd& c, int k,
+                    Eigen::MatrixX3cd& sigma);
 
 /// Composition of the transitions around vertex v (counter-clockwise, from its first fan face): the rotation power
 /// K and translation D of z ↦ i^K z + D. \pre cut = build_cover_cut(mesh, …); c has #E entries; 0 <= v < #V.

@@ -1,5 +1,6 @@
 #include "param/period_matrix.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -9,19 +10,40 @@
 namespace quadcover {
 
 SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path) {
-  Eigen::VectorXcd c = Eigen::VectorXcd::Zero(mesh.num_edges());
+  JumpScratch scratch;
+  return unit_jump_field(mesh, cut, cut_fans(mesh, cut), path, scratch);
+}
+
+SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, int path,
+                                JumpScratch& scratch) {
+  Eigen::VectorXcd& c = scratch.c;
+  Eigen::MatrixX3cd& sigma = scratch.sigma;
+  if (c.size() != mesh.num_edges()) c = Eigen::VectorXcd::Zero(mesh.num_edges());
+  if (sigma.rows() != mesh.num_faces()) sigma = Eigen::MatrixX3cd::Zero(mesh.num_faces(), 3);
   c[cut.path_edge[path]] = 1;
-  complete_translations(mesh, cut, c);
-  const Eigen::MatrixX3cd sigma = jump_function(mesh, cut, c);
+  complete_translations(mesh, cut, fans, c);
   SparseJumpField s;
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    if (sigma(f, 0) == Complex(0) && sigma(f, 1) == Complex(0) && sigma(f, 2) == Complex(0)) continue;
-    s.support.push_back(f);
+  std::vector<int> moved;  // the fans written
+  for (int k = 0; k < static_cast<int>(fans.vertices.size()); ++k) {
+    if (!moves_fan(cut, fans, c, k)) continue;  // 0 on the whole fan
+    write_fan_jump(mesh, cut, fans, c, k, sigma);
+    moved.push_back(k);
+    for (const auto& corner : mesh.fan(fans.vertices[k])) s.support.push_back(corner.face);
   }
+  std::sort(s.support.begin(), s.support.end());
+  s.support.erase(std::unique(s.support.begin(), s.support.end()), s.support.end());
+  std::erase_if(s.support, [&](int f) {
+    return sigma(f, 0) == Complex(0) && sigma(f, 1) == Complex(0) && sigma(f, 2) == Complex(0);
+  });
   // ∇σ on the support only.
   s.X.resize(s.support.size());
   s.Y.resize(s.support.size());
   for (std::size_t k = 0; k < s.support.size(); ++k) std::tie(s.X[k], s.Y[k]) = face_gradient(mesh, sigma, s.support[k]);
+  // Back to zero for the next path: the translations written and the fans' faces.
+  c[cut.path_edge[path]] = 0;
+  for (const int k : fans.elimination) c[cut.graph.parent_edge[fans.vertices[k]]] = 0;
+  for (const int k : moved)
+    for (const auto& corner : mesh.fan(fans.vertices[k])) sigma(corner.face, corner.corner) = 0;
   return s;
 }
 
@@ -73,8 +95,10 @@ PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const Harmonic
   // Σ_j sparse, and b_j = ⟨∇φ_p, Σ_j⟩ sparse (the vertices of supp Σ_j).
   std::vector<SparseJumpField> sigma(static_cast<std::size_t>(m));
   std::vector<SparseRhs> rhs(static_cast<std::size_t>(m));
+  const CutFans fans = cut_fans(mesh, cut);
+  tbb::enumerable_thread_specific<JumpScratch> scratch;
   tbb::parallel_for(0, m, [&](int a) {
-    sigma[a] = unit_jump_field(mesh, cut, pm.paths[a]);
+    sigma[a] = unit_jump_field(mesh, cut, fans, pm.paths[a], scratch.local());
     const Eigen::VectorXcd b = correction.rhs(sigma[a].support, sigma[a].X, sigma[a].Y);
     SparseRhs& r = rhs[a];
     for (int f : sigma[a].support)

@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "param/cut_fans.h"
 #include "param/harmonic_correction.h"
 
 namespace quadcover {
@@ -30,6 +31,16 @@ struct SparseJumpField {
 };
 /// \pre cut = build_cover_cut(mesh, …); 0 <= path < cut.num_paths().
 SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, int path);
+
+/// Memory unit_jump_field reuses from path to path: all zero between calls, so a call costs the walk of the cut
+/// and the support, not #E + 3·#F values.
+struct JumpScratch {
+  Eigen::VectorXcd c;       ///< #E translations
+  Eigen::MatrixX3cd sigma;  ///< #F by 3 jump values
+};
+/// The same with the cut's fans made once. \pre fans = cut_fans(mesh, cut); 0 <= path < cut.num_paths().
+SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, const CutFans& fans, int path,
+                                JumpScratch& scratch);
 
 /// Right-hand sides per block of period_matrix() on a mesh of `num_vertices`: 32, fewer on large meshes so that one
 /// dense #V block of them stays within 8 MB (a solve holds a few such blocks besides the factor), at least 4.
