@@ -159,8 +159,20 @@ KeptOrderings& kept_orderings(OrderingKind kind) {
 /// large patterns out).
 constexpr Eigen::Index kKeptChoiceRows = 10000;
 
-// CHOLMOD state: one cholmod_common per factorization (CHOLMOD keeps workspace and status in it, so solves are
-// serialized with a mutex), the factor L, and a copy of the lower triangle it was computed from.
+/// A cholmod_common for one solve: CHOLMOD keeps workspace and status in it, and only reads the factor.
+struct SolveCommon {
+  cholmod_common common;
+  SolveCommon() {
+    cholmod_start(&common);
+    common.print = 0;
+  }
+  ~SolveCommon() { cholmod_finish(&common); }
+  SolveCommon(const SolveCommon&) = delete;
+  SolveCommon& operator=(const SolveCommon&) = delete;
+};
+
+// CHOLMOD state: one cholmod_common for the analysis and factorization (each solve has its own, so solves with the
+// factor may run at once), the factor L, and a copy of the lower triangle it was computed from.
 template <class Scalar>
 class CholmodBackend {
  public:
@@ -220,7 +232,9 @@ class CholmodBackend {
 
   /// sys = CHOLMOD_A (full solve), or CHOLMOD_P then CHOLMOD_L for the forward half.
   Dense solve(const Dense& B, bool forward_only) const {
-    std::lock_guard lock(mutex_);
+    single_threaded_libraries();
+    SolveCommon local;  // the call's own workspace and status: solves with one factor can run at once
+    cholmod_common& common = local.common;
     Dense X = B;
     const int systems_full[] = {CHOLMOD_A};
     const int systems_forward[] = {CHOLMOD_P, CHOLMOD_L};
@@ -228,11 +242,10 @@ class CholmodBackend {
     const int count = forward_only ? 2 : 1;
     for (int s = 0; s < count; ++s) {
       cholmod_dense in = view(X);
-      cholmod_dense* out = cholmod_solve(systems[s], factor_, &in, &common_);
-      if (!out)
-        throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")");
+      cholmod_dense* out = cholmod_solve(systems[s], factor_, &in, &common);
+      if (!out) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common.status) + ")");
       std::copy_n(static_cast<const Scalar*>(out->x), X.size(), X.data());
-      cholmod_free_dense(&out, &common_);
+      cholmod_free_dense(&out, &common);
     }
     return X;
   }
@@ -254,9 +267,8 @@ class CholmodBackend {
     return B;
   }
 
-  mutable cholmod_common common_{};
+  cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
-  mutable std::mutex mutex_;
 };
 #endif
 

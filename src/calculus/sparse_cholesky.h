@@ -57,7 +57,8 @@ class SparseCholesky {
   /// x with A x = b.  b: rows() entries.
   /// \throw NumericalError if nothing was factored, b has the wrong size, or CHOLMOD fails.
   Vector solve(const Vector& b) const;
-  /// X with A X = B, all columns at once.  B: rows() by k.
+  /// X with A X = B, all columns at once.  B: rows() by k. The solves (and forward_solve) only read the factor:
+  /// several threads may solve with one factorization at once.
   /// \throw NumericalError if nothing was factored, B has the wrong rows, or CHOLMOD fails.
   Dense solve(const Dense& B) const;
   /// y = L⁻¹ P b for the factorization Pᵀ L Lᴴ P = A, so that bᴴ A⁻¹ b = ‖y‖² (forward substitution only; the

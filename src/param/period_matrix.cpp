@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -74,6 +75,36 @@ struct SparseRhs {
   std::vector<Complex> value;
 };
 
+/// Rows a0..a1 − 1 of P and their Im rows m + a: one solve for the block's right-hand sides.
+void add_period_rows(const Mesh& mesh, const HarmonicCorrection& correction, const std::vector<SparseJumpField>& sigma,
+                     const std::vector<SparseRhs>& rhs, int a0, int a1, Eigen::MatrixXd& P) {
+  const int m = static_cast<int>(sigma.size());
+  const Eigen::VectorXd& A = mesh.face_areas();
+  // 𝔏̄ u_a = b_a for the paths of the block (kernel pins: u_p = 0).
+  Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(mesh.num_vertices(), a1 - a0);
+  for (int a = a0; a < a1; ++a)
+    for (std::size_t k = 0; k < rhs[a].vertex.size(); ++k) B(rhs[a].vertex[k], a - a0) = rhs[a].value[k];
+  const Eigen::MatrixXcd U = correction.solve(std::move(B));
+  // P_ab = ⟨H_a, Σ_b⟩ with H_a = Σ_a − ∇u_a and ⟨∇u_a, Σ_b⟩ = Re(u_aᴴ b_b) (b_b is ⟨∇φ_p, Σ_b⟩ per vertex, the
+  // gauge factors i^λ cancel): no dense field per path, only the sparse supports. The Im rows use
+  // i·H_a = (−H¹, H⁰) and b(iΣ) = i·b(Σ).
+  tbb::parallel_for(a0, a1, [&](int a) {
+    const auto u = U.col(a - a0);
+    for (int b = 0; b < m; ++b) {
+      auto [same, turned] = sparse_inner(A, sigma[a], sigma[b]);  // ⟨Σ_a, Σ_b⟩, ⟨Σ_a, iΣ_b⟩
+      Complex ub = 0;                                             // u_aᴴ b_b
+      const SparseRhs& r = rhs[b];
+      for (std::size_t k = 0; k < r.vertex.size(); ++k) ub += std::conj(u[r.vertex[k]]) * r.value[k];
+      same -= ub.real();    // − Re(u_aᴴ b_b)
+      turned += ub.imag();  // − Re(u_aᴴ i b_b) = + Im(u_aᴴ b_b)
+      P(a, b) = same;
+      P(m + a, m + b) = same;  // ⟨iH_a, iΣ_b⟩ = ⟨H_a, Σ_b⟩
+      P(a, m + b) = turned;    // ⟨H_a, iΣ_b⟩
+      P(m + a, b) = -turned;   // ⟨iH_a, Σ_b⟩ = −⟨H_a, iΣ_b⟩
+    }
+  });
+}
+
 }  // namespace
 
 int period_block_columns(int num_vertices) {
@@ -110,33 +141,15 @@ PeriodMatrix period_matrix(const Mesh& mesh, const CoverCut& cut, const Harmonic
   });
   for (const SparseJumpField& s : sigma) pm.sigma_support += static_cast<long long>(s.support.size());
 
-  const int nv = mesh.num_vertices();
-  const Eigen::VectorXd& A = mesh.face_areas();
-  for (int a0 = 0; a0 < m; a0 += block_size) {
+  // The blocks as many at once as there are threads (each solve has its own workspace, calculus/sparse_cholesky.h),
+  // the stop asked on this thread between rounds.
+  const int blocks = (m + block_size - 1) / block_size;
+  const int at_once = std::max(1, tbb::this_task_arena::max_concurrency());
+  for (int first = 0; first < blocks; first += at_once) {
     if (stop && stop()) return PeriodMatrix{};
-    const int a1 = std::min(m, a0 + block_size);
-    // 𝔏̄ u_a = b_a for the paths of the block (kernel pins: u_p = 0).
-    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(nv, a1 - a0);
-    for (int a = a0; a < a1; ++a)
-      for (std::size_t k = 0; k < rhs[a].vertex.size(); ++k) B(rhs[a].vertex[k], a - a0) = rhs[a].value[k];
-    const Eigen::MatrixXcd U = correction.solve(std::move(B));
-    // P_ab = ⟨H_a, Σ_b⟩ with H_a = Σ_a − ∇u_a and ⟨∇u_a, Σ_b⟩ = Re(u_aᴴ b_b) (b_b is ⟨∇φ_p, Σ_b⟩ per vertex, the
-    // gauge factors i^λ cancel): no dense field per path, only the sparse supports. The Im rows use
-    // i·H_a = (−H¹, H⁰) and b(iΣ) = i·b(Σ).
-    tbb::parallel_for(a0, a1, [&](int a) {
-      const auto u = U.col(a - a0);
-      for (int b = 0; b < m; ++b) {
-        auto [same, turned] = sparse_inner(A, sigma[a], sigma[b]);  // ⟨Σ_a, Σ_b⟩, ⟨Σ_a, iΣ_b⟩
-        Complex ub = 0;                                             // u_aᴴ b_b
-        const SparseRhs& r = rhs[b];
-        for (std::size_t k = 0; k < r.vertex.size(); ++k) ub += std::conj(u[r.vertex[k]]) * r.value[k];
-        same -= ub.real();    // − Re(u_aᴴ b_b)
-        turned += ub.imag();  // − Re(u_aᴴ i b_b) = + Im(u_aᴴ b_b)
-        pm.P(a, b) = same;
-        pm.P(m + a, m + b) = same;   // ⟨iH_a, iΣ_b⟩ = ⟨H_a, Σ_b⟩
-        pm.P(a, m + b) = turned;     // ⟨H_a, iΣ_b⟩
-        pm.P(m + a, b) = -turned;    // ⟨iH_a, Σ_b⟩ = −⟨H_a, iΣ_b⟩
-      }
+    tbb::parallel_for(first, std::min(blocks, first + at_once), [&](int block) {
+      const int a0 = block * block_size;
+      add_period_rows(mesh, correction, sigma, rhs, a0, std::min(m, a0 + block_size), pm.P);
     });
   }
   const double scale = std::max(pm.P.diagonal().cwiseAbs().maxCoeff(), 1e-300);

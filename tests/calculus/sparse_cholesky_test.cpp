@@ -142,6 +142,37 @@ TEST(SparseCholesky, DenseRightHandSidesSolvedColumnwise) {
   }
 }
 
+// Solves only read the factor: two threads solving with one factorization at once, over and over, get exactly the
+// solutions of one thread alone (the period matrix solves its blocks so, param/period_matrix.h).
+TEST(SparseCholesky, ConcurrentSolvesWithOneFactorGiveTheSerialSolutions) {
+  const Eigen::SparseMatrix<Complex> H = hpd_matrix(cached_mesh("torus_5k"));
+  std::vector<Eigen::MatrixXcd> B;
+  for (int k = 0; k < 4; ++k) {
+    B.emplace_back(H.rows(), 3);
+    for (int j = 0; j < 3; ++j) B.back().col(j) = complex_rhs(H.rows()) * Complex(k + 1.0, j - 1.0);
+  }
+  for (const CholeskyBackend backend : backends()) {
+    SparseCholesky<Complex> chol(backend);
+    chol.compute(H);
+    std::vector<Eigen::MatrixXcd> alone;
+    for (const auto& b : B) alone.push_back(chol.solve(b));
+    std::vector<int> differ(2, 0);
+    const auto cycle = [&](int first, int& count) {
+      for (int k = 0; k < 20; ++k) {
+        const int i = first + k % 2;
+        count += chol.solve(B[i]) != alone[i];
+        count += chol.forward_solve(Eigen::VectorXcd(B[i].col(0))).norm() <= 0;
+      }
+    };
+    std::thread t([&] { cycle(0, differ[0]); });
+    cycle(2, differ[1]);
+    t.join();
+    EXPECT_EQ(differ[0], 0);
+    EXPECT_EQ(differ[1], 0);
+    EXPECT_LT((H * alone[0] - B[0]).norm(), 1e-12 * B[0].norm());
+  }
+}
+
 // Refactorizing with new values on the same pattern equals a fresh factorization.
 TEST(SparseCholesky, RefactorizeReusesAnalysis) {
   const Mesh& mesh = cached_mesh("bunny_3k");
