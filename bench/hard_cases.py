@@ -308,6 +308,82 @@ def sharp_tetrahedron():
     return orient(V, F, lambda c: c - V.mean(axis=0))
 
 
+def voxel_surface(solid, cells):
+    """Boundary of a set of unit voxels (bool array, padded with empty ones) as triangles, each voxel face split into
+    cells x cells squares of two triangles (diagonals alternating), facing out of the solid."""
+    pts, tris = [], []
+    grid = np.stack(np.meshgrid(np.arange(cells + 1), np.arange(cells + 1), indexing="ij"), -1).reshape(-1, 2) / cells
+    quads = [(i * (cells + 1) + j, (i + 1) * (cells + 1) + j, (i + 1) * (cells + 1) + j + 1, i * (cells + 1) + j + 1)
+             for i in range(cells) for j in range(cells)]
+    for axis in range(3):
+        a1, a2 = [a for a in range(3) if a != axis]
+        for side in (-1, 1):
+            step = np.zeros(3, int)
+            step[axis] = side
+            faces = np.argwhere(solid & ~np.roll(solid, -side, axis=axis))
+            for voxel in faces:
+                base = voxel.astype(float) + (step > 0) * np.eye(3)[axis]
+                e1, e2 = np.eye(3)[a1], np.eye(3)[a2]
+                if np.dot(np.cross(e1, e2), step) < 0:
+                    e1, e2 = e2, e1
+                off = len(pts)
+                pts.extend(base + g[0] * e1 + g[1] * e2 for g in grid)
+                for k, quad in enumerate(quads):
+                    p, q, r, t = (off + v for v in quad)
+                    tris += [(p, q, r), (p, r, t)] if (k // cells + k % cells) % 2 else [(p, q, t), (q, r, t)]
+    return weld(np.array(pts), tris)
+
+
+def lattice_plate(holes, cells, smoothing, tiny_holes, seed=5):
+    """A scan-like plate with holes x holes square through-holes (genus holes²): a voxel plate 2 thick, holes 3 wide
+    between bars 2 wide, faces split cells x cells, Taubin-smoothed `smoothing` times (rounded, no sharp edges when
+    > 0), and `tiny_holes` scan holes (one triangle or the fan of a vertex removed, two rings apart or more)."""
+    width = holes * 5 + 2
+    solid = np.zeros((width + 2, width + 2, 4), bool)
+    solid[1:width + 1, 1:width + 1, 1:3] = True
+    for i in range(holes):
+        for j in range(holes):
+            solid[3 + 5 * i:6 + 5 * i, 3 + 5 * j:6 + 5 * j, 1:3] = False
+    V, F = voxel_surface(solid, cells)
+    neighbours = [set() for _ in V]
+    for a, b, c in F.tolist():
+        neighbours[a] |= {b, c}
+        neighbours[b] |= {a, c}
+        neighbours[c] |= {a, b}
+    rows = np.repeat(np.arange(len(V)), [len(n) for n in neighbours])
+    cols = np.concatenate([sorted(n) for n in neighbours])
+    degree = np.array([len(n) for n in neighbours], float)
+    for _ in range(smoothing):
+        for lam in (0.5, -0.53):
+            mean = np.zeros_like(V)
+            np.add.at(mean, rows, V[cols])
+            V = V + lam * (mean / degree[:, None] - V)
+    rng, removed, near = np.random.default_rng(seed), [], np.zeros(len(V), bool)
+    vertex_faces = [[] for _ in V]
+    for f, t in enumerate(F.tolist()):
+        for v in t:
+            vertex_faces[v].append(f)
+    for f in rng.permutation(len(F)):
+        if len(removed) == tiny_holes:
+            break
+        ring = {v for g in (h for u in F[f] for h in vertex_faces[u]) for v in F[g]}
+        ring2 = {v for u in ring for g in vertex_faces[u] for v in F[g]}
+        if near[list(ring2)].any():
+            continue
+        removed.append(vertex_faces[F[f][0]] if len(removed) % 3 == 2 else [f])
+        near[list(ring2)] = True
+    gone = np.zeros(len(F), bool)
+    for group in removed:
+        gone[group] = True
+    return weld(V, F[~gone])
+
+
+def lattice_scan():
+    # Hard: a scan of a perforated plate: genus 9 (3 x 3 through-holes, bars 2/3 of the holes' width), rounded, with
+    # 6 tiny scan holes (a triangle or a vertex's fan): handles, holes far below the default quad size, no creases.
+    return lattice_plate(3, 3, 8, 6)
+
+
 # name -> (generator, expected (boundary loops, genus, components), expected orientation of a closed surface)
 CASES = {
     "thin_box": (thin_box, (0, 0, 1), "outward"),
@@ -322,6 +398,7 @@ CASES = {
     "inverted_torus": (inverted_torus, (0, 1, 1), "inward"),
     "needle_triangles": (needle_triangles, (0, 0, 1), "outward"),
     "sharp_tetrahedron": (sharp_tetrahedron, (0, 0, 1), "outward"),
+    "lattice_scan": (lattice_scan, (6, 9, 1), "open"),
 }
 
 # ---------------------------------------------------------------- self-check
