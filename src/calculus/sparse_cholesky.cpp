@@ -230,24 +230,26 @@ class CholmodBackend {
       throw NumericalError(stage, "CHOLMOD factorization failed (status " + std::to_string(common_.status) + ")");
   }
 
-  /// sys = CHOLMOD_A (full solve), or CHOLMOD_P then CHOLMOD_L for the forward half.
+  /// sys = CHOLMOD_A (full solve), or CHOLMOD_P then CHOLMOD_L for the forward half. B is read in place (CHOLMOD
+  /// does not write its input) and the result copied out of CHOLMOD's: besides B, two copies are held at a time.
   Dense solve(const Dense& B, bool forward_only) const {
     single_threaded_libraries();
     SolveCommon local;  // the call's own workspace and status: solves with one factor can run at once
     cholmod_common& common = local.common;
-    Dense X = B;
+    const auto free_dense = [&common](cholmod_dense* d) { cholmod_free_dense(&d, &common); };
+    std::unique_ptr<cholmod_dense, decltype(free_dense)> out(nullptr, free_dense);
     const int systems_full[] = {CHOLMOD_A};
     const int systems_forward[] = {CHOLMOD_P, CHOLMOD_L};
     const int* systems = forward_only ? systems_forward : systems_full;
     const int count = forward_only ? 2 : 1;
+    cholmod_dense in = view(const_cast<Dense&>(B));
     for (int s = 0; s < count; ++s) {
-      cholmod_dense in = view(X);
-      cholmod_dense* out = cholmod_solve(systems[s], factor_, &in, &common);
-      if (!out) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common.status) + ")");
-      std::copy_n(static_cast<const Scalar*>(out->x), X.size(), X.data());
-      cholmod_free_dense(&out, &common);
+      cholmod_dense* next = cholmod_solve(systems[s], factor_, out ? out.get() : &in, &common);
+      if (!next) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common.status) + ")");
+      out.reset(next);
     }
-    return X;
+    return Eigen::Map<const Dense, 0, Eigen::OuterStride<>>(static_cast<const Scalar*>(out->x), B.rows(), B.cols(),
+                                                          Eigen::OuterStride<>(static_cast<Eigen::Index>(out->d)));
   }
 
  private:

@@ -108,7 +108,7 @@ void add_period_rows(const Mesh& mesh, const HarmonicCorrection& correction, con
 }  // namespace
 
 int period_block_columns(int num_vertices) {
-  constexpr double kBlockBytes = 8 << 20;
+  constexpr double kBlockBytes = 32 << 20;
   const double fit = kBlockBytes / (static_cast<double>(sizeof(Complex)) * std::max(num_vertices, 1));
   return static_cast<int>(std::clamp(fit, 4.0, 32.0));
 }

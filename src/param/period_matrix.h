@@ -43,7 +43,9 @@ SparseJumpField unit_jump_field(const Mesh& mesh, const CoverCut& cut, const Cut
                                 JumpScratch& scratch);
 
 /// Right-hand sides per block of period_matrix() on a mesh of `num_vertices`: 32, fewer on large meshes so that one
-/// dense #V block of them stays within 8 MB (a solve holds a few such blocks besides the factor), at least 4.
+/// dense #V block of them stays within 32 MB (a solve holds three such blocks besides the factor, and a block is
+/// solved per thread at once), at least 4. Wider blocks amortize the supernodal solve's packing of the factor's
+/// blocks over more columns (BENCHMARKS.md, "Period matrix on many paths").
 /// \pre num_vertices >= 0
 int period_block_columns(int num_vertices);
 

@@ -52,18 +52,19 @@ TEST(PeriodMatrix, EqualsGramMatrixOfHarmonicFields) {
   }
 }
 
-// The default blocks: 32 right-hand sides on small meshes, then as many as fit 8 MB of dense #V columns, never
+// The default blocks: 32 right-hand sides on small meshes, then as many as fit 32 MB of dense #V columns, never
 // fewer than 4; the matrix is the same whatever the block size.
 TEST(PeriodMatrix, BlocksFitTheirMemoryAndGiveTheSameMatrix) {
   EXPECT_EQ(period_block_columns(0), 32);
-  EXPECT_EQ(period_block_columns(10000), 32);
-  for (int nv : {20000, 135000, 500000, 10000000}) {
+  EXPECT_EQ(period_block_columns(60000), 32);
+  for (int nv : {70000, 135000, 500000, 10000000}) {
     const int k = period_block_columns(nv);
     EXPECT_GE(k, 4) << nv;
     EXPECT_LE(k, 32) << nv;
-    if (k > 4) { EXPECT_LE(16.0 * k * nv, 8 << 20) << nv; }
-    if (k < 32) { EXPECT_GT(16.0 * (k + 1) * nv, 8 << 20) << nv; }
+    if (k > 4) { EXPECT_LE(16.0 * k * nv, 32 << 20) << nv; }
+    if (k < 32) { EXPECT_GT(16.0 * (k + 1) * nv, 32 << 20) << nv; }
   }
+  EXPECT_EQ(period_block_columns(135000), 15);
   EXPECT_EQ(period_block_columns(10000000), 4);
   const Mesh mesh = load_test_mesh("eight_genus2");
   const FrameField field = compute_frame_field(mesh);
