@@ -245,11 +245,12 @@ class CholmodBackend {
     cholmod_dense in = view(const_cast<Dense&>(B));
     for (int s = 0; s < count; ++s) {
       cholmod_dense* next = cholmod_solve(systems[s], factor_, out ? out.get() : &in, &common);
-      if (!next) throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common.status) + ")");
+      if (!next)
+        throw NumericalError("cholesky", "CHOLMOD solve failed (status " + std::to_string(common.status) + ")");
       out.reset(next);
     }
     return Eigen::Map<const Dense, 0, Eigen::OuterStride<>>(static_cast<const Scalar*>(out->x), B.rows(), B.cols(),
-                                                          Eigen::OuterStride<>(static_cast<Eigen::Index>(out->d)));
+                                                            Eigen::OuterStride<>(static_cast<Eigen::Index>(out->d)));
   }
 
  private:

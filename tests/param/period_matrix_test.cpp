@@ -61,8 +61,12 @@ TEST(PeriodMatrix, BlocksFitTheirMemoryAndGiveTheSameMatrix) {
     const int k = period_block_columns(nv);
     EXPECT_GE(k, 4) << nv;
     EXPECT_LE(k, 32) << nv;
-    if (k > 4) { EXPECT_LE(16.0 * k * nv, 32 << 20) << nv; }
-    if (k < 32) { EXPECT_GT(16.0 * (k + 1) * nv, 32 << 20) << nv; }
+    if (k > 4) {
+      EXPECT_LE(16.0 * k * nv, 32 << 20) << nv;
+    }
+    if (k < 32) {
+      EXPECT_GT(16.0 * (k + 1) * nv, 32 << 20) << nv;
+    }
   }
   EXPECT_EQ(period_block_columns(135000), 15);
   EXPECT_EQ(period_block_columns(10000000), 4);
