@@ -124,8 +124,8 @@ double CurlEstimator::estimate(std::span<const MatchingChange> changes, Estimate
   auto add_face = [&](int f, double dalpha) {
     if (ws.face_stamp[static_cast<std::size_t>(f)] == ws.stamp) return;
     ws.face_stamp[static_cast<std::size_t>(f)] = ws.stamp;
-    const Complex X = std::polar(1.0, E.alpha_[f]) * E.X0_[f];
-    const Complex Xn = dalpha == 0.0 ? X : std::polar(1.0, E.alpha_[f] + dalpha) * E.X0_[f];
+    const Complex X = product(std::polar(1.0, E.alpha_[f]), E.X0_[f]);
+    const Complex Xn = dalpha == 0.0 ? X : product(std::polar(1.0, E.alpha_[f] + dalpha), E.X0_[f]);
     for (int k = 0; k < 3; ++k) {
       const int e = E.mesh_->FE()(f, k);
       if (E.mesh_->is_boundary_edge(e)) continue;  // pinned: its right-hand side stays 0
