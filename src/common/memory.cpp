@@ -48,9 +48,13 @@ struct OpenStages {
     stages.erase(std::remove(stages.begin(), stages.end(), &s), stages.end());
   }
 
+  /// Also kept as the process's: the kernel's counters behind VmHWM are approximate across CPUs (a later read may
+  /// be a few pages lower), and the process peak reported must not be below a stage's.
   std::int64_t peak_of(const StagePeakMemory& s) {
     std::lock_guard lock(mutex);
-    return std::max(s.kept_, peak_resident_bytes());
+    const std::int64_t peak = std::max(s.kept_, peak_resident_bytes());
+    process_peak = std::max(process_peak, peak);
+    return peak;
   }
 };
 
