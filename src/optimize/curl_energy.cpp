@@ -138,14 +138,14 @@ Complex CurlEnergy::term(int f, int k, Complex X, int mu) const {
 }
 
 Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
-  return term(f, k, product(std::polar(1.0, alpha), X0_[f]), mu);
+  return term(f, k, rotated_frame(f, alpha), mu);
 }
 
 // -curl* of the field e^{iα}X⁰ with the current layers: one rotation per face (not one per face edge).
 Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
   Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
   for (int f = 0; f < mesh_->num_faces(); ++f) {
-    const Complex X = product(std::polar(1.0, alpha[f]), X0_[f]);
+    const Complex X = rotated_frame(f, alpha[f]);
     for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += term(f, k, X, mu_(f, k));
   }
   for (int e = 0; e < mesh_->num_edges(); ++e)

@@ -94,6 +94,8 @@ class CurlEnergy {
   template <class Layer>
   StarChange star_change(int e, int new_matching, Layer mu) const;
   Complex contribution(int f, int k, double alpha, int mu) const;
+  /// Face f's frame turned by α: e^{iα}X⁰_f.
+  Complex rotated_frame(int f, double alpha) const { return product(std::polar(1.0, alpha), X0_[f]); }
   Complex term(int f, int k, Complex rotated, int mu) const;
   friend class CurlEstimator;  // reads the state below to estimate around it (optimize/curl_estimator.h)
   long commits_ = 0, rebuilds_ = 0;  // commit() and recompute_from_scratch() calls: the estimator's clock

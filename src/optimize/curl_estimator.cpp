@@ -63,7 +63,7 @@ void CurlEstimator::prepare() {
   grad_ = Eigen::VectorXd::Zero(E.mesh_->num_faces());
   for (int f = 0; f < E.mesh_->num_faces(); ++f) {
     if (!system_.is_free(f)) continue;
-    const Complex X = std::polar(1.0, E.alpha_[f]) * E.X0_[f];
+    const Complex X = E.rotated_frame(f, E.alpha_[f]);
     double g = 0;
     for (int k = 0; k < 3; ++k)
       g += std::real(std::conj(v[E.mesh_->FE()(f, k)]) * Complex(0, -1) * E.term(f, k, X, E.mu_(f, k)));
@@ -124,8 +124,8 @@ double CurlEstimator::estimate(std::span<const MatchingChange> changes, Estimate
   auto add_face = [&](int f, double dalpha) {
     if (ws.face_stamp[static_cast<std::size_t>(f)] == ws.stamp) return;
     ws.face_stamp[static_cast<std::size_t>(f)] = ws.stamp;
-    const Complex X = product(std::polar(1.0, E.alpha_[f]), E.X0_[f]);
-    const Complex Xn = dalpha == 0.0 ? X : product(std::polar(1.0, E.alpha_[f] + dalpha), E.X0_[f]);
+    const Complex X = E.rotated_frame(f, E.alpha_[f]);
+    const Complex Xn = dalpha == 0.0 ? X : E.rotated_frame(f, E.alpha_[f] + dalpha);
     for (int k = 0; k < 3; ++k) {
       const int e = E.mesh_->FE()(f, k);
       if (E.mesh_->is_boundary_edge(e)) continue;  // pinned: its right-hand side stays 0

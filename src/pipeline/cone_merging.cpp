@@ -73,10 +73,10 @@ std::vector<ConeMerge> close_coincident_merges(const Mesh& mesh, const Parameter
   std::vector<ConeMerge> merges;
   const auto wound_wrong = [&](int q) { return !mesh.is_boundary_vertex(q) && wound[q] != quarter[q]; };
   std::vector<char> folded(static_cast<std::size_t>(mesh.num_vertices()), 0);  // corners of non-positive triangles
-  bool any_folded = false;
   if (cause == CoincidentCause::AlsoFolds)
     for (const int f : flipped_triangles(mesh, map.uv).flipped_faces)
-      for (int c = 0; c < 3; ++c) folded[mesh.F()(f, c)] = 1, any_folded = true;
+      for (int c = 0; c < 3; ++c) folded[mesh.F()(f, c)] = 1;
+  const bool any_folded = std::find(folded.begin(), folded.end(), 1) != folded.end();
   // A common neighbour of p and q that is no cone and a corner of a non-positive triangle (see the header).
   const auto folded_between = [&](int p, int q) {
     const std::vector<int> a = sorted_neighbours(mesh, p), b = sorted_neighbours(mesh, q);
