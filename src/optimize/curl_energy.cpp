@@ -21,19 +21,33 @@ CurlEnergy::CurlEnergy(const Mesh& mesh, FrameSmoother& smoother, const CurlEner
 CurlEnergy::~CurlEnergy() = default;
 CurlEnergy::CurlEnergy(CurlEnergy&&) noexcept = default;
 
+namespace {
+
 // 𝔏̄* + εI with v = 0 on boundary edges (1.2.4), as parameterize() solves it: a boundary edge's row and column keep
-// only their diagonal and its right-hand side is 0 (rhs()), so v_b = 0 and it adds nothing to E_D.
-Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
-  Eigen::SparseMatrix<Complex> A = complex_nonconforming_stiffness(*mesh_, smoother_->matching());
+// only their diagonal and its right-hand side is 0 (rhs()), so v_b = 0 and it adds nothing to E_D. Its pattern
+// depends on the mesh only.
+Eigen::SparseMatrix<Complex> shifted_curl_stiffness(const Mesh& mesh, const Eigen::VectorXi& matching,
+                                                    double diagonal_shift) {
+  Eigen::SparseMatrix<Complex> A = complex_nonconforming_stiffness(mesh, matching);
   A.prune([&](Eigen::Index i, Eigen::Index j, const Complex&) {
-    return i == j || (!mesh_->is_boundary_edge(static_cast<int>(i)) && !mesh_->is_boundary_edge(static_cast<int>(j)));
+    return i == j || (!mesh.is_boundary_edge(static_cast<int>(i)) && !mesh.is_boundary_edge(static_cast<int>(j)));
   });
   double mean = 0;
   for (int i = 0; i < A.rows(); ++i) mean += std::abs(A.coeff(i, i));
   mean /= std::max<Eigen::Index>(1, A.rows());
   Eigen::SparseMatrix<Complex> I(A.rows(), A.cols());
   I.setIdentity();
-  return A + (options_.diagonal_shift * mean) * I;
+  return A + (diagonal_shift * mean) * I;
+}
+
+}  // namespace
+
+std::vector<int> order_curl_energy_ahead(const Mesh& mesh) {
+  return UpdatableCholesky::order_ahead(shifted_curl_stiffness(mesh, Eigen::VectorXi::Zero(mesh.num_edges()), 1.0));
+}
+
+Eigen::SparseMatrix<Complex> CurlEnergy::shifted_stiffness() const {
+  return shifted_curl_stiffness(*mesh_, smoother_->matching(), options_.diagonal_shift);
 }
 
 double CurlEnergy::recompute_from_scratch() {

@@ -123,6 +123,11 @@ class CurlEnergy {
   mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
 
+/// Orders the pattern of CurlEnergy's factor ahead of it (UpdatableCholesky::order_ahead): the pattern depends on the
+/// mesh only, not on the field, so this may run beside the field stage. \return the ordering the factor of every
+/// CurlEnergy on this mesh will have (its perm()), or empty (small meshes, no CHOLMOD). \pre none
+std::vector<int> order_curl_energy_ahead(const Mesh& mesh);
+
 // A template: CurlEstimator calls it with its own layer lookup.
 template <class Layer>
 StarChange CurlEnergy::star_change(int e, int new_matching, Layer mu) const {

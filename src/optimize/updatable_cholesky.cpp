@@ -73,6 +73,10 @@ UpdatableCholesky::~UpdatableCholesky() = default;
 UpdatableCholesky::UpdatableCholesky(UpdatableCholesky&&) noexcept = default;
 UpdatableCholesky& UpdatableCholesky::operator=(UpdatableCholesky&&) noexcept = default;
 
+std::vector<int> UpdatableCholesky::order_ahead(const Eigen::SparseMatrix<Complex>& A) {
+  return nested_dissection_ordering(A, kNestedDissectionMinSize);
+}
+
 UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route) : impl_(std::make_unique<Impl>()) {
   if (A.rows() != A.cols()) throw NumericalError("cholesky", "matrix is not square");
   A.makeCompressed();

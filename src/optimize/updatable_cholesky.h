@@ -51,6 +51,10 @@ class UpdatableCholesky {
   enum class Route { Automatic, UpLooking, Supernodal };
   /// \pre A is Hermitian (full storage). A is taken by value: pass a temporary (or std::move) to spare a copy.
   explicit UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route = Route::Automatic);
+  /// Makes the ordering the factor of a matrix of A's pattern will use, ahead of it (kept with the pattern,
+  /// calculus/sparse_cholesky.h: the factor then finds it made). Same factor either way.
+  /// \return the ordering as perm() will give it, or empty where CXSparse's AMD orders instead. \pre A square.
+  static std::vector<int> order_ahead(const Eigen::SparseMatrix<Complex>& A);
   /// Whether the numbers came from CHOLMOD's supernodal factorization. \pre none
   bool supernodal() const;
 

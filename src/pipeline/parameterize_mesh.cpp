@@ -8,9 +8,11 @@
 #include <optional>
 
 #include "common/seconds_since.h"
+#include "common/side_by_side.h"
 #include "field/compute_frame_field.h"
 #include "field/indices.h"
 #include "mesh/vertex_rings.h"
+#include "optimize/curl_energy.h"
 #include "optimize/optimize_field.h"
 #include "param/density.h"
 #include "param/face_count.h"
@@ -498,6 +500,18 @@ void settle_with_separated_cones(const Mesh& input, const FrameFieldResult& fiel
   job.seconds.emplace_back("cone_separation", seconds_since(start));
 }
 
+/// The field stage, and beside it when the optimization runs (common/side_by_side.h: below 100k faces) the ordering
+/// of the optimization's factor, which depends on the mesh only (optimize/curl_energy.h order_curl_energy_ahead).
+FrameFieldResult field_and_ordering(const Mesh& mesh, const PipelineOptions& options, ProgressSink& progress) {
+  if (options.optimize == OptimizeMode::None)
+    return compute_frame_field_detailed(mesh, field_stage_options(options), progress);
+  std::optional<FrameFieldResult> field;
+  run_side_by_side(
+      mesh.num_faces(), [&] { field = compute_frame_field_detailed(mesh, field_stage_options(options), progress); },
+      [&] { order_curl_energy_ahead(mesh); });
+  return std::move(*field);
+}
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
   validate(options);
@@ -513,7 +527,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
   const Mesh& mesh = job.mesh(input);
-  const FrameFieldResult field = compute_frame_field_detailed(mesh, field_stage_options(job.options), progress);
+  const FrameFieldResult field = field_and_ordering(mesh, job.options, progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
