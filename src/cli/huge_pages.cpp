@@ -34,8 +34,10 @@ void restart_with_huge_pages(char** argv) {
   std::error_code error;
   const std::string self = std::filesystem::read_symlink("/proc/self/exe", error).string();
   if (error || self.empty() || setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
+  const bool set_blas_threads = !std::getenv(kBlasThreadsVariable) && setenv(kBlasThreadsVariable, "1", 0) == 0;
   execv(self.c_str(), argv);
   unsetenv("GLIBC_TUNABLES");  // execv returned: it failed, run on as we are
+  if (set_blas_threads) unsetenv(kBlasThreadsVariable);
 #else
   (void)argv;
 #endif

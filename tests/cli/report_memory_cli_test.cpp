@@ -83,17 +83,20 @@ std::string proc_text(pid_t pid, const char* file) {
   return text;
 }
 
-TEST(ReportMemoryCli, TheRestartedProcessKeepsItsNameAndPid) {
-  if (!cli_restarts_with_huge_pages()) GTEST_SKIP() << "no restart here: glibc's malloc absent or huge pages off";
+/// Starts `quadcover info -` (which waits for the mesh on stdin) with OPENBLAS_NUM_THREADS as given (nullptr: unset),
+/// waits until it has restarted with huge pages, and returns its /proc environ and comm; then lets it exit.
+std::pair<std::string, std::string> restarted_environment_and_name(const char* blas_threads) {
   int to_child[2];
-  ASSERT_EQ(::pipe(to_child), 0);
+  if (::pipe(to_child) != 0) return {};
   const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {  // `quadcover info -` waits for the mesh on stdin
+  if (pid < 0) return {};
+  if (pid == 0) {
     ::dup2(to_child[0], 0);
     ::close(to_child[1]);
     ::unsetenv("GLIBC_TUNABLES");
     ::unsetenv("QUADCOVER_NO_HUGE_PAGES");
+    if (blas_threads) ::setenv("OPENBLAS_NUM_THREADS", blas_threads, 1);
+    else ::unsetenv("OPENBLAS_NUM_THREADS");
     ::execl(QUADCOVER_CLI, QUADCOVER_CLI, "info", "-", static_cast<char*>(nullptr));
     ::_exit(127);
   }
@@ -103,14 +106,30 @@ TEST(ReportMemoryCli, TheRestartedProcessKeepsItsNameAndPid) {
   while (environment.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1") == std::string::npos &&
          std::chrono::steady_clock::now() < give_up) {
     ::usleep(10'000);
-    environment = proc_text(pid, "environ");
+    environment = " " + proc_text(pid, "environ");  // every variable between spaces
   }
-  EXPECT_NE(environment.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1"), std::string::npos);
-  EXPECT_EQ(proc_text(pid, "comm"), "quadcover\n");  // ps, top and pkill still know it
-  ::close(to_child[1]);                              // an empty mesh: info exits with an error
+  const std::string name = proc_text(pid, "comm");
+  ::close(to_child[1]);  // an empty mesh: info exits with an error
   int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_EQ(::waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFEXITED(status)) << status;
+  return {environment, name};
+}
+
+TEST(ReportMemoryCli, TheRestartedProcessKeepsItsNameAndPid) {
+  if (!cli_restarts_with_huge_pages()) GTEST_SKIP() << "no restart here: glibc's malloc absent or huge pages off";
+  const auto [environment, name] = restarted_environment_and_name(nullptr);
+  EXPECT_NE(environment.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1"), std::string::npos);
+  EXPECT_EQ(name, "quadcover\n");  // ps, top and pkill still know it
+}
+
+// The restart starts OpenBLAS without its thread pool (cli/huge_pages.h), unless the user chose a thread count.
+TEST(ReportMemoryCli, TheRestartedProcessStartsBlasOnOneThreadUnlessTold) {
+  if (!cli_restarts_with_huge_pages()) GTEST_SKIP() << "no restart here: glibc's malloc absent or huge pages off";
+  EXPECT_NE(restarted_environment_and_name(nullptr).first.find(" OPENBLAS_NUM_THREADS=1 "), std::string::npos);
+  const std::string told = restarted_environment_and_name("3").first;
+  EXPECT_NE(told.find(" OPENBLAS_NUM_THREADS=3 "), std::string::npos);
+  EXPECT_EQ(told.find("OPENBLAS_NUM_THREADS=1"), std::string::npos);
 }
 
 }  // namespace
