@@ -1,9 +1,10 @@
 #pragma once
-// The CLI's heap: transparent huge pages and one arena (and OpenBLAS started without its thread pool). glibc gives large blocks fresh pages from the kernel (mmap):
-// on 10⁵ faces the solves then spend a fifth of their time in page faults. glibc's tunable glibc.malloc.hugetlb=1
-// makes malloc ask for transparent huge pages, with 5× fewer faults and the same peak (BENCHMARKS.md, "Transparent
-// huge pages"). glibc reads tunables only when a process starts, so the CLI starts itself once more with the tunable
-// set. Its threads share one heap (use_one_heap_arena), so that what one stage frees is reused by the next.
+// The CLI's heap: transparent huge pages and one arena (and OpenBLAS started without its thread pool). glibc gives
+// large blocks fresh pages from the kernel (mmap): on 10⁵ faces the solves then spend a fifth of their time in page
+// faults. glibc's tunable glibc.malloc.hugetlb=1 makes malloc ask for transparent huge pages, with 5× fewer faults and
+// the same peak (BENCHMARKS.md, "Transparent huge pages"). glibc reads tunables only when a process starts, so the CLI
+// starts itself once more with the tunable set. Its threads share one heap (use_one_heap_arena), so that what one stage
+// frees is reused by the next.
 
 namespace quadcover::cli {
 

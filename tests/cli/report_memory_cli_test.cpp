@@ -95,8 +95,10 @@ std::pair<std::string, std::string> restarted_environment_and_name(const char* b
     ::close(to_child[1]);
     ::unsetenv("GLIBC_TUNABLES");
     ::unsetenv("QUADCOVER_NO_HUGE_PAGES");
-    if (blas_threads) ::setenv("OPENBLAS_NUM_THREADS", blas_threads, 1);
-    else ::unsetenv("OPENBLAS_NUM_THREADS");
+    if (blas_threads)
+      ::setenv("OPENBLAS_NUM_THREADS", blas_threads, 1);
+    else
+      ::unsetenv("OPENBLAS_NUM_THREADS");
     ::execl(QUADCOVER_CLI, QUADCOVER_CLI, "info", "-", static_cast<char*>(nullptr));
     ::_exit(127);
   }
