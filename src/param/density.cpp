@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "common/errors.h"
 #include "field/indices.h"
@@ -50,6 +51,55 @@ LoopResolution fix_default_density(const Mesh& mesh, const FrameField& field, De
   const LoopResolution r = loop_resolution(mesh, options, h);
   options.edge_length = h / std::sqrt(r.quads_factor);  // = target_edge_length(mesh, options, …)
   return r;
+}
+
+namespace {
+
+/// Per component of `mesh` (its own numbering), its place in the order of the components' lowest vertex numbers: the
+/// order of DensityOptions::component_density, which the refinements keep (their new vertices come after the input's).
+std::vector<int> rank_by_lowest_vertex(const Mesh& mesh) {
+  const int nc = mesh.num_components();
+  std::vector<int> lowest(static_cast<std::size_t>(nc), mesh.num_vertices()), order(static_cast<std::size_t>(nc));
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    lowest[mesh.vertex_component()[v]] = std::min(lowest[mesh.vertex_component()[v]], v);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return lowest[a] < lowest[b]; });
+  std::vector<int> rank(static_cast<std::size_t>(nc));
+  for (int i = 0; i < nc; ++i) rank[order[i]] = i;
+  return rank;
+}
+
+}  // namespace
+
+bool fix_component_density(const Mesh& mesh, const FrameField& field, double h, DensityOptions& options) {
+  options.component_density.clear();
+  const int nc = mesh.num_components();
+  if (nc < 2 || options.min_quads_per_branch_point <= 0) return false;
+  const std::vector<int> rank = rank_by_lowest_vertex(mesh);
+  std::vector<double> area(static_cast<std::size_t>(nc), 0.0), branch(static_cast<std::size_t>(nc), 0.0);
+  for (int f = 0; f < mesh.num_faces(); ++f) area[rank[mesh.face_component()[f]]] += mesh.face_areas()[f];
+  for (const BranchPoint& bp : branch_points(mesh, field)) branch[rank[mesh.vertex_component()[bp.vertex]]] += 1;
+  std::vector<int> faces(static_cast<std::size_t>(nc), 0);
+  for (int c = 0; c < nc; ++c) faces[rank[c]] = mesh.components()[c].faces;
+  std::vector<double> rho(static_cast<std::size_t>(nc), 1.0);
+  bool finer = false;
+  for (int c = 0; c < nc; ++c) {
+    if (branch[c] == 0 || !(area[c] > 0)) continue;
+    const double wanted = std::sqrt(options.min_quads_per_branch_point * branch[c] / area[c]) * h;
+    const double one_per_triangle = std::sqrt(faces[c] / area[c]) * h;
+    const double factor = std::min(wanted, one_per_triangle);
+    if (factor > 1.0 + 1e-9) rho[c] = factor, finer = true;  // not for round-off where one h suits
+  }
+  if (finer) options.component_density = std::move(rho);
+  return finer;
+}
+
+Eigen::VectorXd face_density(const Mesh& mesh, const std::vector<double>& component_density) {
+  Eigen::VectorXd rho = Eigen::VectorXd::Ones(mesh.num_faces());
+  if (static_cast<int>(component_density.size()) != mesh.num_components()) return rho;
+  const std::vector<int> rank = rank_by_lowest_vertex(mesh);
+  for (int f = 0; f < mesh.num_faces(); ++f) rho[f] = component_density[rank[mesh.face_component()[f]]];
+  return rho;
 }
 
 }  // namespace quadcover

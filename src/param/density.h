@@ -1,5 +1,7 @@
 #pragma once
 // The density of the map: the quad edge length h that one grid unit stands for (ParamOptions::density).
+#include <vector>
+
 #include "field/frame_field.h"
 #include "mesh/mesh.h"
 
@@ -23,6 +25,13 @@ struct DensityOptions {
   /// per input triangle (the memory stays that of the input's resolution); 0 = off.
   double min_loop_grid_units = 4.0;
   double max_loop_quads_factor = 16.0;
+  /// Per connected component, in the order of their lowest vertex numbers, how many times finer than h its quads
+  /// are: component c is meshed at edge length h / component_density[c]. Empty: 1 everywhere. Set by
+  /// fix_component_density.
+  std::vector<double> component_density;
+  /// edge_length is the job's own density made explicit by a validity retry (pipeline/validity_retries.h), not a
+  /// length the user gave: the components still get their own density.
+  bool edge_length_from_default = false;
 };
 
 /// The boundary loop that made the default density finer (DensityOptions::min_loop_grid_units).
@@ -48,5 +57,16 @@ double target_edge_length(const Mesh& mesh, const DensityOptions& options, int b
 /// \return the loop that made it finer (LoopResolution::loop -1: none, or an explicit density).
 /// \pre field belongs to mesh. \throw InputError as target_edge_length.
 LoopResolution fix_default_density(const Mesh& mesh, const FrameField& field, DensityOptions& options);
+
+/// Sets options.component_density for the edge length h on a mesh of several components: one h for all leaves a
+/// small component few quads for its branch points, and its map folds (BENCHMARKS.md, "Components of very different
+/// sizes"). A component with branch points gets at least min_quads_per_branch_point quads per branch point of
+/// `field` (its area / (h / ρ)² ≥ min · its branch points), at most one quad per triangle of it; ρ ≥ 1. Empty when
+/// every ρ is 1. \return whether any ρ > 1. \pre h > 0, field belongs to mesh.
+bool fix_component_density(const Mesh& mesh, const FrameField& field, double h, DensityOptions& options);
+
+/// Per face, the density factor of its component (DensityOptions::component_density, Parameterization's copy; 1 when
+/// empty). \pre none
+Eigen::VectorXd face_density(const Mesh& mesh, const std::vector<double>& component_density);
 
 }  // namespace quadcover

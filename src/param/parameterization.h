@@ -111,6 +111,8 @@ struct Parameterization {
   double scale = 1;
   /// Target quad edge length h in model units (scale = 1 / (h · RMS frame length)).
   double edge_length = 0;
+  /// Per connected component, how many times finer than h its grid is (param/density.h; empty: 1 everywhere).
+  std::vector<double> component_density;
   /// h_sym (4.1): the number of real symmetric periods that were rounded, and the complex periods b_j of the paths
   /// before (after the constant gauge) and after rounding (one per path of the cut graph; the dependent path of each
   /// component is made integral by the constant of φ at no cost).

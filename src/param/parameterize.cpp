@@ -202,7 +202,8 @@ std::vector<int> holonomy_without_branch_points(const Mesh& mesh, const std::vec
 }
 
 /// The gauged frames Z, scaled so that one grid unit is h along the RMS-normalized field (sets P.edge_length
-/// and P.scale). \throw InputError if the field is zero or not finite.
+/// and P.scale), h / ρ on a component of density factor ρ (DensityOptions::component_density). \throw InputError if the
+/// field is zero or not finite.
 FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverCut& cc, const ParamOptions& options,
                          Parameterization& P) {
   const int nf = mesh.num_faces();
@@ -212,11 +213,13 @@ FramePairs scaled_frames(const Mesh& mesh, const FrameField& field, const CoverC
   if (!(rms > 0) || !std::isfinite(rms)) throw InputError("", 0, "parameterize: the frame field is zero or not finite");
   P.edge_length = target_edge_length(mesh, options.density, static_cast<int>(P.branch_points.size()));
   P.scale = 1.0 / (P.edge_length * rms);
+  P.component_density = options.density.component_density;
+  const Eigen::VectorXd rho = face_density(mesh, P.component_density);  // 1 on one component
   FramePairs Z(nf, 2);
   for (int f = 0; f < nf; ++f) {
     const auto [x, y] = turn_frame(field.X[f], field.Y[f], cc.face_rotation[f]);
-    Z(f, 0) = P.scale * x;
-    Z(f, 1) = P.scale * y;
+    Z(f, 0) = rho[f] * P.scale * x;
+    Z(f, 1) = rho[f] * P.scale * y;
   }
   return Z;
 }
@@ -426,8 +429,9 @@ void refine_correction(const Mesh& mesh, const CoverCut& cc, const CorrectionInp
       if (aligned) return aligned->solve(correction.stiffness(), bw, /*refactorize=*/false);
       return correction.solve(bw).col(0);
     };
-    RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, in.known, in.Z, 1.0 / P.edge_length, u,
-                                                 resolve, solve, options.relaxation, progress, P.diagnostics.relaxation);
+    RelaxedCorrection relaxed = relax_correction(mesh, cc.matching, correction, in.known, in.Z, 1.0 / P.edge_length,
+                                                 face_density(mesh, P.component_density), u, resolve, solve,
+                                                 options.relaxation, progress, P.diagnostics.relaxation);
     u = std::move(relaxed.u);
     followed_gradient = std::move(relaxed.gradient_target);
     followed_target = std::move(relaxed.target);

@@ -23,28 +23,37 @@ Complex nearest_rotation_row0(Complex g0, Complex g1) {
 
 }  // namespace
 
-FramePairs nearest_rotations(const FramePairs& gradient, double s) {
+FramePairs nearest_rotations(const FramePairs& gradient, double s, const Eigen::VectorXd& rho) {
   const Eigen::Index nf = gradient.rows();
   FramePairs R(nf, 2);
   for (Eigen::Index f = 0; f < nf; ++f) {
     const Complex r0 = nearest_rotation_row0(gradient(f, 0), gradient(f, 1));
-    R(f, 0) = s * r0;
-    R(f, 1) = s * Complex(0, 1) * r0;
+    const double sf = rho.size() == 0 ? s : rho[f] * s;
+    R(f, 0) = sf * r0;
+    R(f, 1) = sf * Complex(0, 1) * r0;
   }
   return R;
 }
 
-double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s) {
+FramePairs nearest_rotations(const FramePairs& gradient, double s) { return nearest_rotations(gradient, s, {}); }
+
+double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s, const Eigen::VectorXd& rho) {
   const FramePairs G = corner_gradient(mesh, uv);
-  return 0.5 * frame_norm2(mesh, G - nearest_rotations(G, s)) / (s * s * mesh.total_area());
+  const bool uniform = rho.size() == 0 || (rho.array() == 1.0).all();
+  const double area = uniform ? mesh.total_area() : mesh.face_areas().dot(rho.cwiseAbs2());  // Σ_t A_t ρ_t²
+  return 0.5 * frame_norm2(mesh, G - nearest_rotations(G, s, rho)) / (s * s * area);
+}
+
+double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s) {
+  return rigidity_energy(mesh, uv, s, {});
 }
 
 RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                    const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
-                                   const FramePairs& Z, double s, const Eigen::VectorXcd& u0,
-                                   const CorrectionResolve& resolve, const WeightedCorrectionSolve& weighted_solve,
-                                   const RelaxationOptions& options, ProgressSink& progress,
-                                   ParamDiagnostics::Relaxation& result) {
+                                   const FramePairs& Z, double s, const Eigen::VectorXd& rho,
+                                   const Eigen::VectorXcd& u0, const CorrectionResolve& resolve,
+                                   const WeightedCorrectionSolve& weighted_solve, const RelaxationOptions& options,
+                                   ProgressSink& progress, ParamDiagnostics::Relaxation& result) {
   const int nf = mesh.num_faces();
   const double alpha = options.field_weight;
   const FramePairs base_gradient = corner_gradient(mesh, base);
@@ -53,13 +62,13 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
   // G = (1 − α) s R(φ) + α Z and the blended energy at (φ, R(φ)), the quantity each local and global step lowers
   // (for fixed weights).
   auto targets_of = [&](const Eigen::MatrixX3cd& uv, FramePairs& G) {
-    const FramePairs grad = corner_gradient(mesh, uv), R = nearest_rotations(grad, s);
+    const FramePairs grad = corner_gradient(mesh, uv), R = nearest_rotations(grad, s, rho);
     G = (1 - alpha) * R + alpha * Z;
     return 0.5 * ((1 - alpha) * frame_norm2(mesh, grad - R) + alpha * frame_norm2(mesh, grad - Z));
   };
   Eigen::MatrixX3cd uv = map_of(u0);
   result = {};
-  result.rigidity_before = result.rigidity_after = rigidity_energy(mesh, uv, s);
+  result.rigidity_before = result.rigidity_after = rigidity_energy(mesh, uv, s, rho);
   FramePairs G;
   double energy = targets_of(uv, G);
   Eigen::VectorXd w = Eigen::VectorXd::Ones(nf);
@@ -107,7 +116,7 @@ RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matc
     if (settled && (flips.flipped_faces.empty() || refactorizations >= max_refactorizations)) break;
   }
   out.target = base_gradient - out.gradient_target;
-  result.rigidity_after = rigidity_energy(mesh, uv, s);
+  result.rigidity_after = rigidity_energy(mesh, uv, s, rho);
   return out;
 }
 

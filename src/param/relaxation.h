@@ -35,10 +35,15 @@ struct RelaxationOptions {
 /// (R_t = argmin over proper rotations of ‖J_t − R‖_F, J_t rows ∇φ⁰, ∇φ¹ in f's frame), from the map's gradients
 /// (corner_gradient). \pre s > 0
 FramePairs nearest_rotations(const FramePairs& gradient, double s);
+/// The same at scale s·ρ_t on face t (ρ: #F, or empty for 1). \pre as above; ρ empty or #F.
+FramePairs nearest_rotations(const FramePairs& gradient, double s, const Eigen::VectorXd& rho);
 
 /// ½ Σ_t A_t |∇φ_t − s R_t|² / (s² Σ_t A_t): the mean ARAP distortion of the map at scale s (R_t as above).
 /// \pre uv is #F by 3; s > 0.
 double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s);
+/// The same with face t at scale s·ρ_t (components of different densities, param/density.h):
+/// ½ Σ_t A_t |∇φ_t − s ρ_t R_t|² / (s² Σ_t A_t ρ_t²). \pre as above; ρ empty (1) or #F.
+double rigidity_energy(const Mesh& mesh, const Eigen::MatrixX3cd& uv, double s, const Eigen::VectorXd& rho);
 
 struct RelaxedCorrection {
   Eigen::VectorXcd u;
@@ -49,14 +54,16 @@ struct RelaxedCorrection {
 };
 
 /// The relaxation loop from u0 (φ = base − corner_values(u)); Z the scaled gauged frame, s its RMS length
-/// (grid units per model unit). Fills `result` (iterations and the energies of rigidity_energy before and after)
+/// (grid units per model unit), ρ per face the density factor of its component (param/density.h face_density; Z is
+/// s·ρ_t long on face t). Fills `result` (iterations and the energies of rigidity_energy before and after)
 /// except its price.
-/// \pre as in param/parameterize.cpp: matching #E, base #F by 3, Z #F by 2, u0 #V, s > 0. \throw NumericalError if a solve fails.
+/// \pre as in param/parameterize.cpp: matching #E, base #F by 3, Z #F by 2, u0 #V, s > 0. \throw NumericalError if a
+/// solve fails.
 RelaxedCorrection relax_correction(const Mesh& mesh, const Eigen::VectorXi& matching,
                                    const HarmonicCorrection& correction, const Eigen::MatrixX3cd& base,
-                                   const FramePairs& Z, double s, const Eigen::VectorXcd& u0,
-                                   const CorrectionResolve& resolve, const WeightedCorrectionSolve& weighted_solve,
-                                   const RelaxationOptions& options, ProgressSink& progress,
-                                   ParamDiagnostics::Relaxation& result);
+                                   const FramePairs& Z, double s, const Eigen::VectorXd& rho,
+                                   const Eigen::VectorXcd& u0, const CorrectionResolve& resolve,
+                                   const WeightedCorrectionSolve& weighted_solve, const RelaxationOptions& options,
+                                   ProgressSink& progress, ParamDiagnostics::Relaxation& result);
 
 }  // namespace quadcover

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 
+#include "param/density.h"
+
 namespace quadcover {
 namespace {
 
@@ -85,6 +87,7 @@ std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_
   const int n = static_cast<int>(loop_vertices.size());
   std::vector<BoundaryLoopCheck> loops(static_cast<std::size_t>(n));
   std::vector<int> edge_loop(static_cast<std::size_t>(mesh.num_edges()), -1);
+  const Eigen::VectorXd rho = face_density(mesh, map.component_density);  // grid units per h of each component
   for (int l = 0; l < n; ++l) {
     BoundaryLoopCheck& c = loops[l];
     c.first_vertex = input_vertices;
@@ -98,7 +101,9 @@ std::vector<BoundaryLoopCheck> check_boundary_loops(const Mesh& mesh, int input_
       edge_loop[e] = l;
       length += (mesh.V().row(mesh.E()(e, 0)) - mesh.V().row(mesh.E()(e, 1))).norm();
     }
-    c.length = map.edge_length > 0 ? length / map.edge_length : 0;
+    const int first_edge = mesh.boundary_loop_edges()[l].front();
+    const int loop_face = std::max(mesh.EF()(first_edge, 0), mesh.EF()(first_edge, 1));  // its one face
+    c.length = map.edge_length > 0 ? rho[loop_face] * length / map.edge_length : 0;
   }
   std::vector<std::map<std::string, int>> free_edges(static_cast<std::size_t>(n));
   std::vector<int> edges_on_lines(static_cast<std::size_t>(n), 0);

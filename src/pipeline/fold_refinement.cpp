@@ -9,6 +9,7 @@
 #include "field/indices.h"
 #include "mesh/vertex_rings.h"
 #include "param/cover_cut.h"
+#include "param/density.h"
 #include "param/disk_functions.h"
 #include "param/ring_winding.h"
 #include "param/seams.h"
@@ -18,13 +19,15 @@ namespace quadcover {
 
 namespace {
 
-/// The scaled gauged frames Z of the map (the untangler's Jacobian reference): scale · i^{r_f} (X_f, Y_f).
+/// The scaled gauged frames Z of the map (the untangler's Jacobian reference): ρ_f · scale · i^{r_f} (X_f, Y_f), ρ_f
+/// the density factor of f's component (param/density.h).
 FramePairs map_frames(const Mesh& mesh, const FrameField& field, const Parameterization& map) {
   FramePairs Z(mesh.num_faces(), 2);
+  const Eigen::VectorXd rho = face_density(mesh, map.component_density);
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const auto [x, y] = turn_frame(field.X[f], field.Y[f], map.face_rotation[f]);
-    Z(f, 0) = map.scale * x;
-    Z(f, 1) = map.scale * y;
+    Z(f, 0) = rho[f] * map.scale * x;
+    Z(f, 1) = rho[f] * map.scale * y;
   }
   return Z;
 }

@@ -65,7 +65,7 @@ LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, c
 /// Fixes the default density of job.options (param/density.h fix_default_density): one scale for the optimization,
 /// keep-better and the map. Made finer for a short boundary loop (job.density.raised) only when the memory holds
 /// it; else the job says that it was not.
-void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t available, ParamJob& job) {
+void fix_default_and_loop_density(const Mesh& mesh, const FrameField& field, std::int64_t available, ParamJob& job) {
   DensityOptions& density = job.options.param.density;
   const LoopResolution r = fix_default_density(mesh, field, density);
   if (r.loop < 0) return;
@@ -82,6 +82,16 @@ void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t availab
                 "would not fit in the memory available",
                 raise.loop, raise.vertex, quads);
   job.warnings.push_back(text);
+}
+
+/// fix_default_and_loop_density, then, unless the user gave the edge length, a finer density on the components that
+/// would have few quads for their branch points (param/density.h fix_component_density).
+void fix_density(const Mesh& mesh, const FrameField& field, std::int64_t available, ParamJob& job) {
+  DensityOptions& density = job.options.param.density;
+  const bool length_given = density.edge_length > 0 && !density.edge_length_from_default;
+  fix_default_and_loop_density(mesh, field, available, job);
+  if (!length_given)
+    fix_component_density(mesh, field, target_edge_length(mesh, density, job.field_branch_points), density);
 }
 
 /// The one-line summary of Algorithm 6.1 for the progress sink.

@@ -45,6 +45,7 @@ PipelineOptions attempt_options(const PipelineOptions& given, double first_edge_
     o.param.density.target_quads = std::max(1, static_cast<int>(std::lround(o.param.density.target_quads * factor)));
   else
     o.param.density.edge_length = first_edge_length / std::sqrt(factor);
+  o.param.density.edge_length_from_default = given.param.density.edge_length <= 0;
   return o;
 }
 

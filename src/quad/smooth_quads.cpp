@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/errors.h"
+#include "common/union_find.h"
 #include "field/feature_alignment.h"
 #include "mesh/segment_grid.h"
 #include "mesh/triangle_tree.h"
@@ -83,12 +84,12 @@ std::vector<char> feature_corners(const Mesh& mesh, const std::vector<int>& feat
 }
 
 // Chooses the vertices that slide along the features (feature_segment ≥ 0), nearest first: within feature_snap·h
-// of a feature, unless a quad would get two opposite corners or three corners on features, or an edge of a quad
-// would get shorter than h/2 (measured to the neighbour's projection if it slides). Vertices already on a feature
-// that may not slide, and those at a feature corner, become fixed.
+// of a feature (h per vertex: the edge length of its component), unless a quad would get two opposite corners or three
+// corners on features, or an edge of a quad would get shorter than h/2 (measured to the neighbour's projection if it
+// slides). Vertices already on a feature that may not slide, and those at a feature corner, become fixed.
 void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int>& feature_edges,
-                      const SegmentGrid& grid, const std::vector<std::vector<std::pair<int, int>>>& corners, double h,
-                      const QuadSmoothingOptions& options, std::vector<char>& fixed,
+                      const SegmentGrid& grid, const std::vector<std::vector<std::pair<int, int>>>& corners,
+                      const std::vector<double>& h, const QuadSmoothingOptions& options, std::vector<char>& fixed,
                       std::vector<int>& feature_segment) {
   const int nv = q.num_vertices();
   if (grid.num_segments() == 0) return;
@@ -101,17 +102,17 @@ void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int
     proj[v] = grid.closest_point(q.V.row(v).transpose(), &seg[v]);
     dist[v] = (proj[v] - q.V.row(v).transpose()).norm();
   });
-  const double on = options.feature_tolerance * h, reach = std::max(on, options.feature_snap * h);
+  const auto on = [&](int v) { return options.feature_tolerance * h[v]; };
   std::vector<int> order;
   for (int v = 0; v < nv; ++v)
-    if (!fixed[v] && dist[v] <= reach) order.push_back(v);
+    if (!fixed[v] && dist[v] <= std::max(on(v), options.feature_snap * h[v])) order.push_back(v);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return std::pair(dist[a], a) < std::pair(dist[b], b); });
   for (int v : order) {
     const int e = feature_edges[static_cast<std::size_t>(seg[v])];
     bool at_corner = false;
     for (int j = 0; j < 2; ++j) {
       const int w = mesh.E()(e, j);
-      at_corner |= corner[w] && (proj[v] - mesh.V().row(w).transpose()).norm() <= on;
+      at_corner |= corner[w] && (proj[v] - mesh.V().row(w).transpose()).norm() <= on(v);
     }
     bool ok = !at_corner && options.feature_snap > 0;
     for (const auto& [f, k] : corners[v]) {
@@ -121,7 +122,7 @@ void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int
         const int w = face[(k + j) % 4];
         const bool w_slides = feature_segment[w] >= 0;
         const Eigen::Vector3d pw = w_slides ? proj[w] : Eigen::Vector3d(q.V.row(w).transpose());
-        if (j != 2) ok = (pw - proj[v]).norm() >= 0.5 * h;  // no edge of the quad collapses
+        if (j != 2) ok = (pw - proj[v]).norm() >= 0.5 * h[v];  // no edge of the quad collapses
         if (!w_slides) continue;
         ++sliding;
         ok = ok && j != 2;
@@ -130,7 +131,7 @@ void snap_to_features(const QuadMesh& q, const Mesh& mesh, const std::vector<int
     }
     if (ok)
       feature_segment[v] = seg[v];
-    else if (dist[v] <= on)
+    else if (dist[v] <= on(v))
       fixed[v] = 1;
   }
 }
@@ -158,16 +159,16 @@ struct BoundaryPolylines {
 // The boundary vertices of q that slide (boundary_segment ≥ 0): on the input's boundary, in quads only and in two
 // or more of them, not at a corner of the input's boundary. They are taken out of `fixed`.
 void slide_on_boundary(const QuadMesh& q, const Mesh& mesh, const BoundaryPolylines& boundary,
-                       const std::vector<std::vector<std::pair<int, int>>>& corners, double h, std::vector<char>& fixed,
-                       std::vector<int>& boundary_segment) {
+                       const std::vector<std::vector<std::pair<int, int>>>& corners, const std::vector<double>& h,
+                       std::vector<char>& fixed, std::vector<int>& boundary_segment) {
   if (boundary.grid.num_segments() == 0) return;
   std::vector<int> faces_at(static_cast<std::size_t>(q.num_vertices()), 0);
   for (const auto& f : q.faces)
     for (int v : f) ++faces_at[v];
   const std::vector<char> on_boundary = quad_boundary_vertices(q);
-  const double on = 1e-6 * h;
   for (int v = 0; v < q.num_vertices(); ++v) {
     if (!on_boundary[v] || faces_at[v] < 2 || static_cast<int>(corners[v].size()) != faces_at[v]) continue;
+    const double on = 1e-6 * h[v];
     int s = -1;
     const Eigen::Vector3d p = q.V.row(v).transpose(), c = boundary.grid.closest_point(p, &s);
     if (s < 0 || (c - p).norm() > on) continue;
@@ -181,9 +182,16 @@ void slide_on_boundary(const QuadMesh& q, const Mesh& mesh, const BoundaryPolyli
   }
 }
 
-// Fixed vertices on the boundary (edges of one face) and at corners of non-quads into `fixed`. \return h, the mean
-// length of the quads' edges.
-double fix_boundary_and_edge_length(const QuadMesh& q, std::vector<char>& fixed) {
+// The mean length of the quads' edges: over all of q, and per vertex over its connected component (components of
+// different densities, param/density.h; 0 where a component has no quad).
+struct QuadEdgeLength {
+  double h = 0;
+  std::vector<double> of_vertex;
+};
+
+// Fixed vertices on the boundary (edges of one face) and at corners of non-quads into `fixed`. \return the quads'
+// mean edge length.
+QuadEdgeLength fix_boundary_and_edge_length(const QuadMesh& q, std::vector<char>& fixed) {
   // Per undirected edge: number of faces, and whether a quad has it.
   std::map<std::pair<int, int>, std::pair<int, bool>> edges;
   for (const auto& f : q.faces)
@@ -192,16 +200,30 @@ double fix_boundary_and_edge_length(const QuadMesh& q, std::vector<char>& fixed)
       ++count;
       in_quad = in_quad || f.size() == 4;
     }
+  const int nv = q.num_vertices();
+  detail::UnionFind components(nv);
+  for (const auto& [e, info] : edges) components.unite(e.first, e.second);
   double length_sum = 0;
   int quad_edges = 0;
+  std::vector<double> component_sum(static_cast<std::size_t>(nv), 0.0);  // at each component's representative
+  std::vector<int> component_edges(static_cast<std::size_t>(nv), 0);
   for (const auto& [e, info] : edges) {
     if (info.first == 1) fixed[e.first] = fixed[e.second] = 1;
-    if (info.second) length_sum += (q.V.row(e.first) - q.V.row(e.second)).norm(), ++quad_edges;
+    if (!info.second) continue;
+    const double length = (q.V.row(e.first) - q.V.row(e.second)).norm();
+    length_sum += length, ++quad_edges;
+    const int c = components.find(e.first);
+    component_sum[c] += length, ++component_edges[c];
   }
   for (const auto& f : q.faces)
     if (f.size() != 4)
       for (int v : f) fixed[v] = 1;
-  return quad_edges ? length_sum / quad_edges : 0;
+  QuadEdgeLength out{quad_edges ? length_sum / quad_edges : 0, std::vector<double>(static_cast<std::size_t>(nv), 0.0)};
+  for (int v = 0; v < nv; ++v) {
+    const int c = components.find(v);
+    if (component_edges[c] > 0) out.of_vertex[v] = component_sum[c] / component_edges[c];
+  }
+  return out;
 }
 
 // What one smoothing round reads: the quad mesh, the fixed and sliding vertices, the surface to project onto.
@@ -209,7 +231,7 @@ struct SmoothingRound {
   QuadMesh& q;
   const Mesh& mesh;
   const QuadSmoothingOptions& options;
-  double h;
+  const std::vector<double>& h;  // per vertex: the mean quad edge length of its component
   const std::vector<char>& fixed;
   const std::vector<std::vector<std::pair<int, int>>>& corners;  // (quad, corner) pairs of each vertex
   const std::vector<int>& feature_edges;
@@ -292,7 +314,7 @@ struct SmoothingRound {
       if (q.faces[f].size() != 4) return;
       Eigen::Vector3d p[4];
       for (int k = 0; k < 4; ++k) p[k] = q.V.row(q.faces[f][k]);
-      fits[f] = fit_square(p, h, options.rigidity);
+      fits[f] = fit_square(p, h[q.faces[f][0]], options.rigidity);
       bad_before[f] = bad_corners(f);
     });
     const Eigen::MatrixX3d before = q.V;
@@ -322,12 +344,12 @@ struct SmoothingRound {
 // φ at the new points of the free vertices (barycentric interpolation in the source triangle), and their
 // displacements in units of h.
 void interpolate_uv(QuadMesh& q, const Mesh& mesh, const Parameterization& param, const std::vector<char>& fixed,
-                    const Eigen::MatrixX3d& original, double h, QuadSmoothingReport& report) {
+                    const Eigen::MatrixX3d& original, const std::vector<double>& h, QuadSmoothingReport& report) {
   double moved_sum = 0;
   int moved_count = 0;
   for (int v = 0; v < q.num_vertices(); ++v) {
     if (fixed[v]) continue;
-    const double dist = (q.V.row(v) - original.row(v)).norm() / h;
+    const double dist = (q.V.row(v) - original.row(v)).norm() / h[v];
     moved_sum += dist;
     ++moved_count;
     report.max_displacement = std::max(report.max_displacement, dist);
@@ -357,9 +379,10 @@ QuadSmoothingReport smooth_quads(QuadMesh& q, const Mesh& mesh, const Parameteri
 
   // Fixed vertices: on the boundary (edges of one face), corners of non-quads, on sharp feature edges (below).
   std::vector<char> fixed(nv, 0);
-  const double h = fix_boundary_and_edge_length(q, fixed);
-  if (!(h > 0)) return report;
-  report.edge_length = h;
+  const QuadEdgeLength lengths = fix_boundary_and_edge_length(q, fixed);
+  if (!(lengths.h > 0)) return report;
+  report.edge_length = lengths.h;
+  const std::vector<double>& h = lengths.of_vertex;
   // (quad, corner) pairs of each vertex.
   std::vector<std::vector<std::pair<int, int>>> corners(nv);
   for (int f = 0; f < nf; ++f)

@@ -1,5 +1,6 @@
 // The default density (param/density.h): made finer for short boundary loops, so that a small hole keeps a ring of
-// quads (issue 14 item 4, issue 15 item 3), within a cap, and never when the user gave a density.
+// quads (issue 14 item 4, issue 15 item 3), within a cap, and never when the user gave a density; and finer on the
+// small components of a mesh, so that each has quads enough for its branch points.
 #include "param/density.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "field/compute_frame_field.h"
+#include "field/indices.h"
 #include "support/test_meshes.h"
 
 namespace quadcover {
@@ -81,6 +84,65 @@ TEST(DefaultDensity, AGivenDensityIsNeverChanged) {
     EXPECT_EQ(o.target_quads, given.target_quads);
     EXPECT_NEAR(target_edge_length(plate, o), by_count ? std::sqrt(plate.total_area() / 20) : 0.3, 1e-12);
   }
+}
+
+/// Two copies of `mesh` side by side, the second scaled by `scale`.
+Mesh with_small_copy(const Mesh& mesh, double scale) {
+  Eigen::MatrixX3d V(2 * mesh.num_vertices(), 3);
+  Eigen::MatrixX3d copy = scale * mesh.V();
+  copy.col(0).array() += 3.0;
+  V << mesh.V(), copy;
+  Eigen::MatrixX3i F(2 * mesh.num_faces(), 3);
+  F << mesh.F(), mesh.F().array() + mesh.num_vertices();
+  return Mesh::from_triangles(V, F);
+}
+
+/// Per component: area and branch points of `field`.
+std::pair<std::vector<double>, std::vector<int>> area_and_branch_points(const Mesh& mesh, const FrameField& field) {
+  std::vector<double> area(mesh.num_components(), 0.0);
+  std::vector<int> branch(mesh.num_components(), 0);
+  for (int f = 0; f < mesh.num_faces(); ++f) area[mesh.face_component()[f]] += mesh.face_areas()[f];
+  for (const BranchPoint& bp : branch_points(mesh, field)) ++branch[mesh.vertex_component()[bp.vertex]];
+  return {area, branch};
+}
+
+TEST(ComponentDensity, GivesASmallComponentTheQuadsItsBranchPointsAsk) {
+  const Mesh mesh = with_small_copy(testing::make_ellipsoid(3, 1.0, 0.8, 0.6), 0.1);
+  ASSERT_EQ(mesh.num_components(), 2);
+  const FrameField field = compute_frame_field(mesh);
+  const auto [area, branch] = area_and_branch_points(mesh, field);
+  ASSERT_GT(branch[0], 0);
+  ASSERT_GT(branch[1], 0);
+  DensityOptions o;
+  const double h = target_edge_length(mesh, o, branch[0] + branch[1]);
+  ASSERT_LT(area[1] / (h * h), o.min_quads_per_branch_point * branch[1]);  // one h leaves the copy too few quads
+  ASSERT_TRUE(fix_component_density(mesh, field, h, o));
+  ASSERT_EQ(o.component_density.size(), 2u);
+  EXPECT_EQ(o.component_density[0], 1.0);  // the large one has enough already
+  const double rho = o.component_density[1];
+  EXPECT_NEAR(area[1] * rho * rho / (h * h), o.min_quads_per_branch_point * branch[1], 1e-9 * area[1] / (h * h));
+  const Eigen::VectorXd per_face = face_density(mesh, o.component_density);
+  for (int f = 0; f < mesh.num_faces(); ++f) EXPECT_EQ(per_face[f], o.component_density[mesh.face_component()[f]]);
+  // At most one quad per triangle of the component.
+  DensityOptions many;
+  many.min_quads_per_branch_point = 1e6;
+  ASSERT_TRUE(fix_component_density(mesh, field, h, many));
+  const double capped = many.component_density[1];
+  EXPECT_NEAR(area[1] * capped * capped / (h * h), mesh.components()[1].faces, 1e-9 * mesh.components()[1].faces);
+}
+
+TEST(ComponentDensity, StaysEmptyOnOneComponentOrWhereEveryComponentHasEnough) {
+  const Mesh one = testing::make_ellipsoid(3);
+  const FrameField field = compute_frame_field(one);
+  DensityOptions o;
+  EXPECT_FALSE(fix_component_density(one, field, target_edge_length(one, o, 8), o));
+  EXPECT_TRUE(o.component_density.empty());
+  EXPECT_EQ(face_density(one, o.component_density), Eigen::VectorXd::Ones(one.num_faces()));
+  const Mesh two = with_small_copy(testing::make_ellipsoid(3), 1.0);  // the same size: one h suits both
+  const FrameField both = compute_frame_field(two);
+  const int count = static_cast<int>(branch_points(two, both).size());
+  EXPECT_FALSE(fix_component_density(two, both, target_edge_length(two, o, count), o));
+  EXPECT_TRUE(o.component_density.empty());
 }
 
 }  // namespace

@@ -33,19 +33,14 @@ Mesh coarse_cube() {
   return Mesh::from_triangles(V, F);
 }
 
-/// Returns whether the kept map rounded the curves with the periods or fell back from doing so.
-bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, bool round_curves = false) {
-  SCOPED_TRACE(what + (round_curves ? ", curves rounded with the periods" : ""));
-  PipelineOptions options;
-  options.param.density.target_quads = quads;
-  options.param.alignment.round_with_periods = round_curves;
-  const RemeshJob job = remesh_mesh(mesh, options);
+/// The remesh job of `mesh` with `options`, checked: a valid map, the input's topology, all quads where the input is
+/// closed, and an extraction that cut nothing out.
+RemeshJob expect_valid_job(const Mesh& mesh, const PipelineOptions& options) {
+  RemeshJob job = remesh_mesh(mesh, options);
   const Mesh& map_mesh = job.param.mesh(mesh);
   EXPECT_EQ(flipped_triangles(map_mesh, job.param.map.uv).non_positive, 0);
   EXPECT_TRUE(wrong_winding_vertices(map_mesh, job.param.map).empty());
   EXPECT_TRUE(job.surface.same_topology);
-  EXPECT_GT(job.surface.output.faces, quads / 2);
-  EXPECT_LT(job.surface.output.faces, 2 * quads);
   if (mesh.num_boundary_loops() == 0) {
     EXPECT_EQ(job.surface.output.non_quads, 0);
   }
@@ -53,8 +48,49 @@ bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, b
   const ExtractionReport& cut = job.extraction.report;
   EXPECT_EQ(cut.flipped_triangles + cut.degenerate_triangles + cut.collapsed_edges + cut.filled_holes, 0);
   for (const std::string& w : job.param.warnings) EXPECT_EQ(w.find("not valid"), std::string::npos) << w;
+  return job;
+}
+
+/// Returns whether the kept map rounded the curves with the periods or fell back from doing so.
+bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, bool round_curves = false) {
+  SCOPED_TRACE(what + (round_curves ? ", curves rounded with the periods" : ""));
+  PipelineOptions options;
+  options.param.density.target_quads = quads;
+  options.param.alignment.round_with_periods = round_curves;
+  const RemeshJob job = expect_valid_job(mesh, options);
+  EXPECT_GT(job.surface.output.faces, quads / 2);
+  EXPECT_LT(job.surface.output.faces, 2 * quads);
   const auto& rounding = job.param.map.diagnostics.rounding;
   return rounding.curve_lines > 0 || rounding.curve_rounding_dropped;
+}
+
+// Components of very different sizes: one h for all would leave the small copies a few quads for their branch
+// points, and their maps folded or wound wrong (BENCHMARKS.md, "Components of very different sizes"). Each gets its
+// own density (param/density.h fix_component_density), the large one keeps h.
+TEST(HardCases, ComponentsOfVeryDifferentSizes) {
+  const Mesh bunny = testing::load_test_mesh("bunny_3k");
+  const int nv = bunny.num_vertices(), nf = bunny.num_faces();
+  Eigen::MatrixX3d V(3 * nv, 3);
+  Eigen::MatrixX3i F(3 * nf, 3);
+  const double scales[3] = {1.0, 0.05, 0.3}, offsets[3] = {0.0, 3.0, -2.0};
+  for (int c = 0; c < 3; ++c) {
+    V.middleRows(c * nv, nv) = scales[c] * bunny.V();
+    V.middleRows(c * nv, nv).col(0).array() += offsets[c];
+    F.middleRows(c * nf, nf) = bunny.F().array() + c * nv;
+  }
+  const Mesh mesh = Mesh::from_triangles(V, F);
+  for (const int quads : {0, 6500}) {
+    SCOPED_TRACE(quads);
+    PipelineOptions options;
+    options.param.density.target_quads = quads;
+    const RemeshJob job = expect_valid_job(mesh, options);
+    const std::vector<double>& rho = job.param.map.component_density;
+    ASSERT_EQ(rho.size(), 3u);
+    EXPECT_EQ(rho[0], 1.0);
+    EXPECT_GT(rho[2], 1.0);
+    EXPECT_GT(rho[1], rho[2]);  // the smallest copy the finest
+    if (quads > 0) EXPECT_NEAR(job.surface.output.faces, quads, 0.03 * quads);
+  }
 }
 
 TEST(HardCases, CoarseSpheresWithManyQuadsPerTriangle) {

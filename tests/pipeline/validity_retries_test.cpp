@@ -48,6 +48,11 @@ TEST(ValidityRetries, AttemptOptionsScaleTheRequestedCountOrTheFirstEdgeLength) 
   EXPECT_NEAR(finer.param.density.edge_length, 0.1 / std::sqrt(1.04), 1e-15);
   EXPECT_EQ(finer.param.density.target_quads, 0);
   EXPECT_NO_THROW(validate(finer));
+  // The default made explicit is still the job's own density (components get theirs), a length given is the user's.
+  EXPECT_TRUE(finer.param.density.edge_length_from_default);
+  PipelineOptions length;
+  length.param.density.edge_length = 0.2;
+  EXPECT_FALSE(attempt_options(length, 0.2, 1).param.density.edge_length_from_default);
 }
 
 TEST(ValidityRetries, TopologyComesFirstThenFoldsThenWindingsThenNonQuads) {
