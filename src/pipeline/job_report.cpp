@@ -201,7 +201,7 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
                   {"resolves", job.density.resolves},
                   {"raised_for_loop", job.density.raised.loop},
                   {"raised_quads_factor", job.density.raised.quads_factor},
-                  {"component_density", job.options.param.density.component_density}};
+                  {"component_density", map.component_density}};
   r["field"] = field_json(job);
   // The input's sharp edges and the faces they constrain: a refinement's split halves are not new features.
   r["field"]["features"] = features_json(input_mesh, job.options);
