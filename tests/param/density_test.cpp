@@ -86,17 +86,6 @@ TEST(DefaultDensity, AGivenDensityIsNeverChanged) {
   }
 }
 
-/// Two copies of `mesh` side by side, the second scaled by `scale`.
-Mesh with_small_copy(const Mesh& mesh, double scale) {
-  Eigen::MatrixX3d V(2 * mesh.num_vertices(), 3);
-  Eigen::MatrixX3d copy = scale * mesh.V();
-  copy.col(0).array() += 3.0;
-  V << mesh.V(), copy;
-  Eigen::MatrixX3i F(2 * mesh.num_faces(), 3);
-  F << mesh.F(), mesh.F().array() + mesh.num_vertices();
-  return Mesh::from_triangles(V, F);
-}
-
 /// Per component: area and branch points of `field`.
 std::pair<std::vector<double>, std::vector<int>> area_and_branch_points(const Mesh& mesh, const FrameField& field) {
   std::vector<double> area(mesh.num_components(), 0.0);
@@ -107,7 +96,7 @@ std::pair<std::vector<double>, std::vector<int>> area_and_branch_points(const Me
 }
 
 TEST(ComponentDensity, GivesASmallComponentTheQuadsItsBranchPointsAsk) {
-  const Mesh mesh = with_small_copy(testing::make_ellipsoid(3, 1.0, 0.8, 0.6), 0.1);
+  const Mesh mesh = testing::scaled_copies(testing::make_ellipsoid(3, 1.0, 0.8, 0.6), {1.0, 0.1});
   ASSERT_EQ(mesh.num_components(), 2);
   const FrameField field = compute_frame_field(mesh);
   const auto [area, branch] = area_and_branch_points(mesh, field);
@@ -138,7 +127,7 @@ TEST(ComponentDensity, StaysEmptyOnOneComponentOrWhereEveryComponentHasEnough) {
   EXPECT_FALSE(fix_component_density(one, field, target_edge_length(one, o, 8), o));
   EXPECT_TRUE(o.component_density.empty());
   EXPECT_EQ(face_density(one, o.component_density), Eigen::VectorXd::Ones(one.num_faces()));
-  const Mesh two = with_small_copy(testing::make_ellipsoid(3), 1.0);  // the same size: one h suits both
+  const Mesh two = testing::scaled_copies(testing::make_ellipsoid(3), {1.0, 1.0});  // one h suits both
   const FrameField both = compute_frame_field(two);
   const int count = static_cast<int>(branch_points(two, both).size());
   EXPECT_FALSE(fix_component_density(two, both, target_edge_length(two, o, count), o));

@@ -68,17 +68,7 @@ bool expect_valid_remesh(const Mesh& mesh, int quads, const std::string& what, b
 // points, and their maps folded or wound wrong (BENCHMARKS.md, "Components of very different sizes"). Each gets its
 // own density (param/density.h fix_component_density), the large one keeps h.
 TEST(HardCases, ComponentsOfVeryDifferentSizes) {
-  const Mesh bunny = testing::load_test_mesh("bunny_3k");
-  const int nv = bunny.num_vertices(), nf = bunny.num_faces();
-  Eigen::MatrixX3d V(3 * nv, 3);
-  Eigen::MatrixX3i F(3 * nf, 3);
-  const double scales[3] = {1.0, 0.05, 0.3}, offsets[3] = {0.0, 3.0, -2.0};
-  for (int c = 0; c < 3; ++c) {
-    V.middleRows(c * nv, nv) = scales[c] * bunny.V();
-    V.middleRows(c * nv, nv).col(0).array() += offsets[c];
-    F.middleRows(c * nf, nf) = bunny.F().array() + c * nv;
-  }
-  const Mesh mesh = Mesh::from_triangles(V, F);
+  const Mesh mesh = testing::scaled_copies(testing::load_test_mesh("bunny_3k"), {1.0, 0.05, 0.3});
   for (const int quads : {0, 6500}) {
     SCOPED_TRACE(quads);
     PipelineOptions options;

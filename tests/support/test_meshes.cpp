@@ -130,6 +130,19 @@ Mesh make_torus_and_cylinder() {
   return Mesh::from_triangles(V, F);
 }
 
+Mesh scaled_copies(const Mesh& mesh, const std::vector<double>& scales) {
+  const int nv = mesh.num_vertices(), nf = mesh.num_faces(), n = static_cast<int>(scales.size());
+  const double spacing = 1.5 * (mesh.V().col(0).maxCoeff() - mesh.V().col(0).minCoeff());
+  Eigen::MatrixX3d V(n * nv, 3);
+  Eigen::MatrixX3i F(n * nf, 3);
+  for (int c = 0; c < n; ++c) {
+    V.middleRows(c * nv, nv) = scales[c] * mesh.V();
+    V.middleRows(c * nv, nv).col(0).array() += spacing * c;
+    F.middleRows(c * nf, nf) = mesh.F().array() + c * nv;
+  }
+  return Mesh::from_triangles(V, F);
+}
+
 Mesh with_faces_reversed(const Mesh& mesh) {
   Eigen::MatrixX3i F = mesh.F();
   F.col(1).swap(F.col(2));

@@ -23,6 +23,9 @@ Eigen::MatrixX3i grid_faces_with_holes(const Mesh& grid, int n);
 Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
 /// Two components in one mesh: make_torus(12, 8) and, after its vertices, make_cylinder(10, 4).
 Mesh make_torus_and_cylinder();
+/// Copies of `mesh` side by side, one per scale: copy c scaled by scales[c] and moved along x by c times 1.5 widths
+/// of `mesh`, so that no two overlap (components of very different sizes when the scales differ).
+Mesh scaled_copies(const Mesh& mesh, const std::vector<double>& scales);
 /// A UV sphere-like closed surface (octahedron subdivided `level` times and projected), scaled by (a, b, c).
 Mesh make_ellipsoid(int level, double a = 1.0, double b = 1.0, double c = 1.0);
 /// A fan of n triangles around one apex (0,0,height) over the unit circle in z = 0 (a disk, apex = vertex 0, rim =
