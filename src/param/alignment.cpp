@@ -276,6 +276,15 @@ AlignedLines::AlignedLines(const Mesh& mesh, const CoverCut& cut, const Eigen::M
   trace_lines(mesh, cut, at_slot);
 }
 
+std::vector<double> AlignedLines::line_lengths(const Eigen::VectorXd& face_weight) const {
+  std::vector<double> lengths(static_cast<std::size_t>(num_lines_), 0.0);
+  for (const int i : order_) {  // in the order of the trace
+    const double weight = face_weight.size() ? face_weight[slots_[i].face] : 1.0;
+    lengths[line_of_[i]] += mesh_->edge_lengths()[slots_[i].edge] * weight;
+  }
+  return lengths;
+}
+
 void AlignedLines::trace_lines(const Mesh& mesh, const CoverCut& cut, const std::vector<std::vector<int>>& at_slot) {
   const int ns = static_cast<int>(slots_.size());
   parent_.assign(static_cast<std::size_t>(ns), -1);
@@ -287,13 +296,11 @@ void AlignedLines::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
     const int line = num_lines_++;
     sigma_of_[root] = 1;
     std::vector<Anchor> anchors;
-    double length = 0;
     const std::size_t start = order_.size();
     order_.push_back(root);
     for (std::size_t q = start; q < order_.size(); ++q) {
       const int i = order_[q];
       line_of_[i] = line;
-      length += mesh.edge_lengths()[slots_[i].edge];
       for (int end = 0; end < 2; ++end) {
         const int f = slots_[i].face, c = mesh.corner_of(f, mesh.E()(slots_[i].edge, end));
         if (cut.branch[mesh.F()(f, c)]) anchors.push_back({i, f, c});
@@ -307,7 +314,6 @@ void AlignedLines::trace_lines(const Mesh& mesh, const CoverCut& cut, const std:
         order_.push_back(rel.to);
       }
     }
-    lengths_.push_back(length);
     usable_.push_back(1);
     if (!anchors.empty()) {
       anchors_.push_back(std::move(anchors));

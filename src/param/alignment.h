@@ -78,8 +78,9 @@ class AlignedLines {
   /// Per line: whether it fixes a component of u somewhere (not all its slot ends at branch points) and closes on
   /// itself with the same orientation (σ) wherever it does. \pre none
   const std::vector<char>& line_usable() const { return usable_; }
-  /// Per line: the length of its edges in model units. \pre none
-  const std::vector<double>& line_lengths() const { return lengths_; }
+  /// Per line: the length of its edges, each in model units times `face_weight` of its slot's face (empty: 1).
+  /// \pre face_weight is empty or #F.
+  std::vector<double> line_lengths(const Eigen::VectorXd& face_weight = {}) const;
   /// Per line: whether an endpoint of one of its edges is flagged in `vertex_flags`. \pre vertex_flags is #V.
   std::vector<char> lines_touching(const std::vector<char>& vertex_flags) const;
   /// Residuals of the lines in `lines` only: their closing relations, and n_k − (the integer of each branch point on
@@ -119,7 +120,6 @@ class AlignedLines {
   std::vector<int> line_of_;  ///< per slot
   int num_lines_ = 0;
   std::vector<char> usable_;
-  std::vector<double> lengths_;
   std::vector<int> line_anchor_;  ///< per anchor line (anchors_), its line
   double coordinate(int slot, int face, int corner, const Eigen::MatrixX3cd& known) const;
   std::vector<double> tau_along(const Eigen::MatrixX3cd& known) const;  ///< τ per slot (tree order)

@@ -96,8 +96,9 @@ Responses responses(const Mesh& mesh, const CurveRoundingInputs& in, const Varia
 /// The lines to pin: usable, at least min_length grid units long and not left free.
 std::vector<int> chosen_lines(const CurveRoundingInputs& in, double min_length) {
   std::vector<int> lines;
+  const std::vector<double> lengths = in.aligned.line_lengths(in.face_density);
   for (int k = 0; k < in.aligned.num_lines(); ++k)
-    if (in.aligned.line_usable()[k] && in.aligned.line_lengths()[k] / in.edge_length >= min_length &&
+    if (in.aligned.line_usable()[k] && lengths[k] / in.edge_length >= min_length &&
         (in.left_free.empty() || !in.left_free[k]))
       lines.push_back(k);
   return lines;

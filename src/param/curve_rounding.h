@@ -39,10 +39,12 @@ struct CurveRoundingInputs {
   const Eigen::MatrixX3cd& known_free;  ///< per corner, φ̂ (the integral before the period rounding)
   const std::vector<Complex>& periods, &direct;  ///< per path: the periods and their direct rounding
   double edge_length = 1;               ///< h in model units (line lengths in grid units)
+  Eigen::VectorXd face_density = {};    ///< per face, ρ of its component (param/density.h face_density; empty: 1)
   std::vector<char> left_free = {};     ///< per line: not to be pinned (empty: none)
 };
 
-/// Lines worth pinning: usable (param/alignment.h), at least `min_length` grid units long and not in.left_free.
+/// Lines worth pinning: usable (param/alignment.h), at least `min_length` grid units long (h / ρ a unit on a component
+/// meshed ρ times finer) and not in.left_free.
 /// Rounds as above. \throw NumericalError if a factorization fails.
 CurveRounding round_with_curves(const Mesh& mesh, const CurveRoundingInputs& in, Lattice lattice,
                                 const RoundingOptions& options, double min_length,

@@ -94,12 +94,26 @@ bool fix_component_density(const Mesh& mesh, const FrameField& field, double h, 
   return finer;
 }
 
-Eigen::VectorXd face_density(const Mesh& mesh, const std::vector<double>& component_density) {
-  Eigen::VectorXd rho = Eigen::VectorXd::Ones(mesh.num_faces());
+namespace {
+
+/// Per element, the density factor of the component `element_component` gives it (1 when component_density is empty).
+Eigen::VectorXd density_of(const Mesh& mesh, const Eigen::VectorXi& element_component,
+                           const std::vector<double>& component_density) {
+  Eigen::VectorXd rho = Eigen::VectorXd::Ones(element_component.size());
   if (static_cast<int>(component_density.size()) != mesh.num_components()) return rho;
   const std::vector<int> rank = rank_by_lowest_vertex(mesh);
-  for (int f = 0; f < mesh.num_faces(); ++f) rho[f] = component_density[rank[mesh.face_component()[f]]];
+  for (Eigen::Index i = 0; i < element_component.size(); ++i) rho[i] = component_density[rank[element_component[i]]];
   return rho;
+}
+
+}  // namespace
+
+Eigen::VectorXd face_density(const Mesh& mesh, const std::vector<double>& component_density) {
+  return density_of(mesh, mesh.face_component(), component_density);
+}
+
+Eigen::VectorXd vertex_density(const Mesh& mesh, const std::vector<double>& component_density) {
+  return density_of(mesh, mesh.vertex_component(), component_density);
 }
 
 }  // namespace quadcover

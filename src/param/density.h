@@ -68,5 +68,7 @@ bool fix_component_density(const Mesh& mesh, const FrameField& field, double h, 
 /// Per face, the density factor of its component (DensityOptions::component_density, Parameterization's copy; 1 when
 /// empty). \pre none
 Eigen::VectorXd face_density(const Mesh& mesh, const std::vector<double>& component_density);
+/// Per vertex, the density factor of its component (as face_density). \pre none
+Eigen::VectorXd vertex_density(const Mesh& mesh, const std::vector<double>& component_density);
 
 }  // namespace quadcover

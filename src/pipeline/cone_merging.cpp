@@ -9,6 +9,7 @@
 #include "field/indices.h"
 #include "field/relocation.h"
 #include "field/smoothing.h"
+#include "param/density.h"
 #include "param/map_development.h"
 #include "param/ring_winding.h"
 #include "param/seams.h"
@@ -153,15 +154,17 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
 }
 
 std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
-                                                  double max_distance) {
+                                                  double max_distance,
+                                                  const std::vector<double>& component_density) {
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), points);
+  const Eigen::VectorXd rho = vertex_density(mesh, component_density);
   struct Pair {
     double distance;
     int p, q;
   };
   std::vector<Pair> pairs;
   for (const BranchPoint& b : points)
-    for (const auto& [q, d] : relocation_reach(mesh, b.vertex, max_distance))
+    for (const auto& [q, d] : relocation_reach(mesh, b.vertex, max_distance / rho[b.vertex]))
       if (q > b.vertex && quarter[q] == -b.quarter_index && !mesh.is_boundary_vertex(q))
         pairs.push_back({d, b.vertex, q});
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {

@@ -61,10 +61,12 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
 /// takes (field/relocation.h relocation_reach): a grid of quad edge h puts every cone on a lattice point, so two cones
 /// less than h apart land on one point or on neighbouring ones, and the map folds or stretches between them. Merging
 /// such a pair cancels it (index 0). Pairs in order of distance (ties by vertex numbers), each vertex in at most one
-/// merge, `from` the higher number.
+/// merge, `from` the higher number. On a component meshed ρ times finer (DensityOptions::component_density, empty:
+/// 1 everywhere) its quad edge is h / ρ, and so is the distance.
 /// \pre points are interior vertices of mesh (field/indices.h branch_points), max_distance >= 0.
 std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
-                                                  double max_distance);
+                                                  double max_distance,
+                                                  const std::vector<double>& component_density = {});
 
 /// `field` with the merges applied to its matching and its frames smoothed again for that matching (the field
 /// stage's weights, trusted and constrained faces and λ; field/smoothing.h).

@@ -28,11 +28,14 @@ namespace {
 /// Ends the stage `meter` measured under `stage` in the job's seconds and peak bytes.
 void lap(StageMeter& meter, ParamJob& job, const char* stage) { meter.lap(stage, job.seconds, job.peak_bytes); }
 
-/// Cancels in `field` the opposite branch point pairs closer than the quad edge h (close_opposite_cone_merges) and
-/// smooths it again for the new matching. \return the pairs cancelled.
-int cancel_close_opposite_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda, double h,
-                                FrameField& field) {
-  const std::vector<ConeMerge> pairs = close_opposite_cone_merges(mesh, branch_points(mesh, field), h);
+/// Cancels in `field` the opposite branch point pairs closer than the quad edge (h, or h / ρ on a component of
+/// density factor ρ: close_opposite_cone_merges) and smooths it again for the new matching. \return the pairs
+/// cancelled.
+int cancel_close_opposite_cones(const Mesh& mesh, const FrameFieldResult& stage, double lambda,
+                                const DensityOptions& density, int field_branch_points, FrameField& field) {
+  const double h = target_edge_length(mesh, density, field_branch_points);
+  const std::vector<ConeMerge> pairs =
+      close_opposite_cone_merges(mesh, branch_points(mesh, field), h, density.component_density);
   if (!pairs.empty()) field = merge_cones(mesh, stage, field, lambda, pairs);
   return static_cast<int>(pairs.size());
 }
@@ -560,8 +563,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   // From here on every stage runs to the end: a stopped run still gives a valid, complete map.
   FinishingProgress finishing(progress);
   if (options.cancel_close_cones) {  // in the field the map is meant to be made from; keep-better's other one as it is
-    const double h = target_edge_length(mesh, param.density, job.field_branch_points);
-    job.cancelled_close_pairs = cancel_close_opposite_cones(mesh, field, oo.lambda, h, optimized.field);
+    job.cancelled_close_pairs =
+        cancel_close_opposite_cones(mesh, field, oo.lambda, param.density, job.field_branch_points, optimized.field);
     lap(meter, job, "cone_cancelling");
   }
   job.map = parameterize_keep_better(mesh, field.field, optimized.field, param, oo.mode, options.keep_better, finishing,

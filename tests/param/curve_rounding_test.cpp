@@ -87,6 +87,22 @@ TEST(CurveRounding, WithoutCurvesTheMapIsUnchanged) {
   EXPECT_TRUE(D.uv == R.uv);
 }
 
+// On a component meshed ρ times finer (DensityOptions::component_density) a line's length counts in that component's
+// grid units: mech_holes_shark at density factor 2 pins the lines it pins at half the edge length, more than at the
+// edge length itself.
+TEST(CurveRounding, CountsTheLinesLengthsInTheirComponentsGridUnits) {
+  const Mesh mesh = testing::load_test_mesh("mech_holes_shark");
+  const FrameField field = compute_frame_field(mesh);
+  const Parameterization coarse = parameterize(mesh, field, rounding_the_curves(true));
+  ParamOptions half = rounding_the_curves(true), finer = half;
+  half.density.edge_length = coarse.edge_length / 2;
+  finer.density.edge_length = coarse.edge_length;
+  finer.density.component_density = {2.0};
+  const int at_half = parameterize(mesh, field, half).diagnostics.rounding.curve_lines;
+  EXPECT_GT(at_half, coarse.diagnostics.rounding.curve_lines);
+  EXPECT_EQ(parameterize(mesh, field, finer).diagnostics.rounding.curve_lines, at_half);
+}
+
 // CurveAlignmentOptions::free_line_vertices: the lines through the given vertices are not rounded with the periods
 // and stay free with that reason; the lines away from them are still pinned exactly.
 TEST(CurveRounding, FreesExactlyTheLinesThroughTheGivenVertices) {

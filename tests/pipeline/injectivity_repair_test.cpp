@@ -478,6 +478,26 @@ TEST(CloseOppositeCones, PairsTheNearestOppositeConesCloserThanTheDistanceEachVe
   EXPECT_TRUE(close_opposite_cone_merges(grid, points, 0.05).empty());
 }
 
+TEST(CloseOppositeCones, OnAComponentMeshedFinerTheDistanceIsItsShorterQuadEdge) {
+  // Two copies of one grid (spacing 0.1), each with a +1/−1 pair 0.2 apart: within 0.25 on the first (ρ = 1), not
+  // on the second when it is meshed twice as finely (quad edge 0.125), again when both are at ρ = 1.
+  const Mesh grid = testing::make_grid(10);
+  const int n = static_cast<int>(grid.num_vertices());
+  Eigen::MatrixX3d V(2 * n, 3);
+  V << grid.V(), grid.V().rowwise() + Eigen::RowVector3d(2, 0, 0);
+  Eigen::MatrixX3i F(2 * grid.num_faces(), 3);
+  F << grid.F(), grid.F().array() + n;
+  const Mesh two = Mesh::from_triangles(V, F);
+  ASSERT_EQ(two.num_components(), 2);
+  const int a = 5 * 11 + 3, b = 5 * 11 + 5;  // (3, 5) and (5, 5)
+  const std::vector<BranchPoint> points{{a, 1}, {b, -1}, {n + a, 1}, {n + b, -1}};
+  const auto finer = close_opposite_cone_merges(two, points, 0.25, {1.0, 2.0});
+  ASSERT_EQ(finer.size(), 1u);
+  EXPECT_EQ(finer[0].into, a);
+  EXPECT_EQ(close_opposite_cone_merges(two, points, 0.25, {1.0, 1.0}).size(), 2u);
+  EXPECT_EQ(close_opposite_cone_merges(two, points, 0.25).size(), 2u);
+}
+
 TEST(CloseOppositeCones, MeasuresAlongInteriorEdgesSoThatEveryPairHasAPathToMergeAlong) {
   // Two 4 × 4 grids (spacing 0.25) joined by one strip quad between boundary vertices: the interior vertices 13 (left)
   // and 36 (right) are 0.75 apart through the strip, but every path between them through interior edges passes a
