@@ -319,14 +319,8 @@ bool round_periods_with_lines(const Mesh& mesh, const CoverCut& cc, const Harmon
     }
     left_free = lines.aligned->lines_touching(flags);
   }
-  const CurveRoundingInputs in{cc,
-                               correction,
-                               *lines.aligned,
-                               lines.known_free,
-                               P.periods,
-                               P.rounded_periods,
-                               P.edge_length,
-                               face_density(mesh, P.component_density),
+  const CurveRoundingInputs in{cc,        correction,        *lines.aligned, lines.known_free,
+                               P.periods, P.rounded_periods, P.edge_length,  face_density(mesh, P.component_density),
                                left_free};
   const CurveRounding r =
       round_with_curves(mesh, in, options.lattice, options.rounding, options.alignment.limits.min_length);

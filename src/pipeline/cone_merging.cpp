@@ -154,8 +154,7 @@ std::vector<ConeMerge> wound_cone_moves(const Mesh& mesh, const Parameterization
 }
 
 std::vector<ConeMerge> close_opposite_cone_merges(const Mesh& mesh, const std::vector<BranchPoint>& points,
-                                                  double max_distance,
-                                                  const std::vector<double>& component_density) {
+                                                  double max_distance, const std::vector<double>& component_density) {
   const Eigen::VectorXi quarter = quarter_index_of(mesh.num_vertices(), points);
   const Eigen::VectorXd rho = vertex_density(mesh, component_density);
   struct Pair {

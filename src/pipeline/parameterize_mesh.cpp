@@ -1,13 +1,11 @@
 #include "pipeline/parameterize_mesh.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <optional>
 
-#include "common/seconds_since.h"
 #include "common/side_by_side.h"
 #include "field/compute_frame_field.h"
 #include "field/indices.h"
@@ -421,7 +419,7 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
   const std::pair<bool, bool> kept_moves{job.merged_cone_pairs > 0, job.moved_wound_cones > 0};
   std::vector<char> used(static_cast<std::size_t>(mesh.num_vertices()), 0);
   for (const ConeMerge& m : merges) used[m.from] = used[m.into] = 1;
-  const auto start = std::chrono::steady_clock::now();
+  StageMeter meter;
   bool far_tried = false, far_next = false, tried = false;
   for (int round = 0; round < kRounds; ++round) {
     const std::size_t known = merges.size();
@@ -450,7 +448,7 @@ void merge_close_cones(const Mesh& input, const FrameFieldResult& stage, double 
     now = remade;
     if (now.valid() || progress.skip_improvements()) break;
   }
-  if (tried) job.seconds.emplace_back("close_cone_merging", seconds_since(start));
+  if (tried) lap(meter, job, "close_cone_merging");
 }
 
 /// The stages after the first map (job.map made from job.field): cone moves, density, fold refinement and the merges
@@ -497,7 +495,7 @@ bool invalid_beside(const Mesh& mesh, const Parameterization& map, const std::ve
 void settle_with_separated_cones(const Mesh& input, const FrameFieldResult& field, double lambda,
                                  ProgressSink& progress, ParamJob first, ParamJob& job) {
   if (progress.skip_improvements()) return record_cut_short(job, "cone separation");
-  const auto start = std::chrono::steady_clock::now();
+  StageMeter meter;
   FinishingProgress finishing(progress);
   first.options.param.separate_close_cones = true;
   first.map = parameterize(first.mesh(input), first.field, first.options.param, finishing);
@@ -510,7 +508,7 @@ void settle_with_separated_cones(const Mesh& input, const FrameFieldResult& fiel
     job = std::move(first);
   }
   job.cone_separation = {true, kept, separated};
-  job.seconds.emplace_back("cone_separation", seconds_since(start));
+  lap(meter, job, "cone_separation");
 }
 
 /// The field stage, and beside it when the optimization runs (common/side_by_side.h: below 100k faces) the ordering

@@ -42,6 +42,23 @@ TEST(ReportMemoryCli, ParamAndRemeshReportsHaveAPeakPerTimedStage) {
   fs::remove_all(dir);
 }
 
+// The stages that make the map again when it is not valid (the merges of close cones, the cone separation) have a
+// peak too: mech_holes_shark at 6500 vertices runs both.
+TEST(ReportMemoryCli, TheStagesThatRemakeAnInvalidMapHaveAPeakToo) {
+  const fs::path dir = testing::fresh_dir("report_memory_cli", "remakes");
+  const std::string out = (dir / "out.obj").string(), report = (dir / "out.json").string();
+  const testing::CliRun run = testing::run_cli(
+      "remesh " + testing::data_path("mech_holes_shark") + " --vertices 6500 -o " + out + " --report " + report + " -q",
+      "", 300);
+  ASSERT_EQ(run.code, 0) << run.err;
+  const nlohmann::json r = nlohmann::json::parse(testing::slurp(report));
+  ASSERT_TRUE(r["seconds"].contains("cone_separation") && r["seconds"].contains("close_cone_merging"))
+      << "this mesh no longer needs them: choose another";
+  testing::expect_memory_matches_seconds(r);
+  EXPECT_GT(testing::memory_stage_index(r, "cone_separation"), testing::memory_stage_index(r, "close_cone_merging"));
+  fs::remove_all(dir);
+}
+
 constexpr bool kGlibcMalloc =
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
     false;  // the sanitizer's allocator
