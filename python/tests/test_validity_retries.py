@@ -14,10 +14,12 @@ def test_validity_retries_reach_the_job_and_every_attempt_is_reported():
     assert report["options"]["validity_retries"] == 2
     attempts = report["validity_retries"]["attempts"]
     # The default field on a closed surface: the smoothest first, then the curvature-guided one (not valid either),
-    # then the two density retries with the field of the better of those.
-    assert [round(a["quads_factor"], 2) for a in attempts] == [1.0, 1.0, 1.02, 0.98]
+    # the full optimization, then the two density retries with the field and optimization of the best of those.
+    assert [round(a["quads_factor"], 2) for a in attempts] == [1.0, 1.0, 1.0, 1.02, 0.98]
     assert [a["field"] for a in attempts[:2]] == ["smooth", "curvature"]
-    assert attempts[2]["field"] == attempts[3]["field"]
+    assert [a["optimize"] for a in attempts[:3]] == ["relocate", "relocate", "full"]
+    assert attempts[3]["field"] == attempts[4]["field"]
+    assert attempts[3]["optimize"] == attempts[4]["optimize"]
     assert report["options"]["field"] == attempts[report["validity_retries"]["used"]]["field"]
     assert report["options"]["field_auto"]
     assert all(a["topology_changes"] == 1 and not a["valid"] for a in attempts)

@@ -46,7 +46,8 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
                  "While the result has a flipped or collapsed triangle or a quad mesh whose topology differs from "
                  "the input's, run the job again at up to N nearby densities (+4%, -4%, +8%, ... quads; +2%, -2%, +4%, "
                  "... when --faces/--vertices or --edge-length gave the density) and keep the "
-                 "first valid one, else the best (0 = off; see the report's validity_retries)")
+                 "first valid one, else the best (0 = off, and so are the attempts with the curvature field and "
+                 "the full optimization when the result is not valid; see the report's validity_retries)")
       ->check(CLI::Range(0, 8))
       ->capture_default_str();
 }

@@ -146,6 +146,7 @@ nlohmann::json validity_retries_json(const ParamJob& job) {
   for (const ValidityAttempt& a : job.validity_attempts)
     attempts.push_back({{"quads_factor", a.quads_factor},
                         {"field", to_string(a.field_style)},
+                        {"optimize", to_string(a.optimize)},
                         {"edge_length", a.edge_length},
                         {"valid", a.validity.valid()},
                         {"topology_changes", a.validity.topology_changes},

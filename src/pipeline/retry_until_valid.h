@@ -78,11 +78,54 @@ inline bool fall_back_to_curvature(const PipelineOptions& given, FieldStyle firs
          given.validity_retries > 0 && !progress.skip_improvements();
 }
 
-/// Attempt 0 = first_attempt(given minus its retries), then FieldStyle::Auto's fallback (fall_back_to_curvature),
-/// kept when more valid, then, while the best so far is worth_retrying, up to
-/// given.validity_retries further attempts run(attempt_options(given, h0, k)), keeping the best by `judge`. The
-/// kept job's ParamJob (param_job(job)) records the attempts; a warning says when the kept one is not the first or
-/// is not valid. A time limit or Ctrl-C ends the retries (recorded as cut short).
+/// The largest map (triangles) that fall_back_to_full_optimization makes again.
+inline constexpr int kFullFallbackMaxFaces = 30000;
+
+/// The second fallback: when the best result so far is still not valid and Algorithm 6.1 ran in its default mode
+/// (relocate: moves the field's branch points), the job runs once more with the full optimization (creation, then
+/// balancing), whose cones sit elsewhere: on spot and mech_holes_shark at 6500 vertices its map is valid where
+/// relocate's winds wrong (BENCHMARKS.md, "The full optimization when the map is not valid"). Only on maps of at
+/// most kFullFallbackMaxFaces triangles (where it fails it costs one or two more jobs), with retries on and no time
+/// limit or Ctrl-C reached. \pre none
+inline bool fall_back_to_full_optimization(const PipelineOptions& given, const Validity& best, long map_faces,
+                                           ProgressSink& progress) {
+  return given.optimize == OptimizeMode::Relocate && !best.valid() && map_faces <= kFullFallbackMaxFaces &&
+         given.validity_retries > 0 && !progress.skip_improvements();
+}
+
+/// The best attempt so far of retry_until_valid, and every attempt made.
+template <class Job>
+struct Attempts {
+  Job best;
+  Validity best_validity;
+  std::vector<ValidityAttempt> all;
+  int used = 0;
+};
+
+/// A fallback attempt of retry_until_valid: first_attempt(options), recorded and kept when more valid. An InputError
+/// (e.g. a density too coarse for that field) leaves the best as it is and says so in a warning naming `what`.
+/// \throw as run, but InputError.
+template <class Job, class Run, class Judge>
+void fall_back(const PipelineOptions& options, int retries, const std::string& what, Run& run, Judge& judge,
+               ProgressSink& progress, Attempts<Job>& a) {
+  try {
+    const SteadyClock::time_point start = SteadyClock::now();
+    auto [next, v] = first_attempt(options, retries, run, judge, progress);
+    a.all.push_back({1.0, param_job(next).map.edge_length, v, param_job(next).options.field_style, seconds_since(start),
+                     options.optimize});
+    if (v < a.best_validity) a.best = std::move(next), a.best_validity = v, a.used = static_cast<int>(a.all.size()) - 1;
+  } catch (const InputError& e) {
+    param_job(a.best).warnings.push_back(what +
+                                         ", tried because this one is not valid, could not be made: " + e.what());
+  }
+}
+
+/// Attempt 0 = first_attempt(given minus its retries), then FieldStyle::Auto's fallback (fall_back_to_curvature)
+/// and the full optimization's (fall_back_to_full_optimization), each kept when more valid, then, while the best so
+/// far is worth_retrying, up to given.validity_retries further attempts run(attempt_options(given, h0, k)) with the
+/// field and optimization of the best, keeping the best by `judge`. The kept job's ParamJob (param_job(job)) records
+/// the attempts; a warning says when the kept one is not the first or is not valid. A time limit or Ctrl-C ends the
+/// retries (recorded as cut short).
 /// \throw InputError for invalid options (validate).
 template <class Run, class Judge>
 auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
@@ -90,37 +133,35 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   PipelineOptions once = given;
   once.validity_retries = 0;
   SteadyClock::time_point start = SteadyClock::now();
-  auto [first, best_validity] = first_attempt(once, given.validity_retries, run, judge, progress);
+  auto [first, first_validity] = first_attempt(once, given.validity_retries, run, judge, progress);
   using Job = decltype(first);
   const FieldStyle first_style = param_job(first).options.field_style;
-  std::vector<ValidityAttempt> attempts{
-      {1.0, param_job(first).map.edge_length, best_validity, first_style, seconds_since(start)}};
-  int used = 0;
-  Job best = std::move(first);
-  if (fall_back_to_curvature(given, first_style, best_validity, progress)) {
+  Attempts<Job> a{std::move(first), first_validity, {}, 0};
+  a.all.push_back(
+      {1.0, param_job(a.best).map.edge_length, first_validity, first_style, seconds_since(start), once.optimize});
+  if (fall_back_to_curvature(given, first_style, a.best_validity, progress)) {
     progress.report("retry", -1, "result not valid: the map made again from the curvature-guided field");
     PipelineOptions curvature = once;
     curvature.field_style = FieldStyle::Curvature;
-    try {
-      start = SteadyClock::now();
-      auto [next, v] = first_attempt(curvature, given.validity_retries, run, judge, progress);
-      attempts.push_back({1.0, param_job(next).map.edge_length, v, FieldStyle::Curvature, seconds_since(start)});
-      if (v < best_validity) best = std::move(next), best_validity = v, used = 1;
-    } catch (const InputError& e) {  // e.g. too coarse a density for that field: the smooth field's result stays
-      param_job(best).warnings.push_back(std::string("the map from the curvature-guided field, tried because this ") +
-                                         "one is not valid, could not be made: " + e.what());
-    }
+    fall_back(curvature, given.validity_retries, "the map from the curvature-guided field", run, judge, progress, a);
   }
-  // The density retries keep the field of the best so far, and its density made finer for a loop (their h is
-  // explicit: the job would not say why).
-  const LoopDensityRaise raised = param_job(best).density.raised;
+  if (fall_back_to_full_optimization(given, a.best_validity, param_job(a.best).map.uv.rows(), progress)) {
+    progress.report("retry", -1, "result not valid: the map made again with the full optimization");
+    PipelineOptions full = once;
+    full.field_style = param_job(a.best).options.field_style;
+    full.optimize = OptimizeMode::Full;
+    fall_back(full, given.validity_retries, "the map with the full optimization", run, judge, progress, a);
+  }
+  // The density retries keep the field and optimization of the best so far, and its density made finer for a loop
+  // (their h is explicit: the job would not say why).
+  const LoopDensityRaise raised = param_job(a.best).density.raised;
   PipelineOptions retried = given;
-  retried.field_style = param_job(best).options.field_style;
-  const double h0 = param_job(best).options.param.density.edge_length;
-  const int field_attempts = static_cast<int>(attempts.size()) - 1;
-  for (int k = 1; k <= given.validity_retries && best_validity.worth_retrying(); ++k) {
+  retried.field_style = param_job(a.best).options.field_style;
+  retried.optimize = param_job(a.best).options.optimize;
+  const double h0 = param_job(a.best).options.param.density.edge_length;
+  for (int k = 1; k <= given.validity_retries && a.best_validity.worth_retrying(); ++k) {
     if (progress.skip_improvements()) {
-      record_cut_short(param_job(best), "validity retries");
+      record_cut_short(param_job(a.best), "validity retries");
       break;
     }
     progress.report("retry", -1, "result not valid: attempt " + std::to_string(k + 1) + " at a nearby density");
@@ -128,19 +169,19 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     Job next = run(attempt_options(retried, h0, k));
     param_job(next).density.raised = raised;
     const Validity v = judge(next);
-    attempts.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v,
-                        retried.field_style, seconds_since(start)});
-    if (v < best_validity) best = std::move(next), best_validity = v, used = k + field_attempts;
+    a.all.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v,
+                     retried.field_style, seconds_since(start), retried.optimize});
+    if (v < a.best_validity) a.best = std::move(next), a.best_validity = v, a.used = static_cast<int>(a.all.size()) - 1;
   }
-  ParamJob& kept = param_job(best);
+  ParamJob& kept = param_job(a.best);
   kept.field_style_auto = given.field_style == FieldStyle::Auto;
-  kept.validity_attempts = attempts;
-  kept.validity_attempt_used = used;
+  kept.validity_attempts = a.all;
+  kept.validity_attempt_used = a.used;
   kept.options.validity_retries = given.validity_retries;  // the attempts ran without; the job had these
   if (kept.density.raised.loop > 0)
     kept.warnings.insert(kept.warnings.begin(), loop_density_warning(kept.density.raised));
-  if (used > 0 || !best_validity.valid()) kept.warnings.push_back(validity_warning(attempts, used));
-  return best;
+  if (a.used > 0 || !a.best_validity.valid()) kept.warnings.push_back(validity_warning(a.all, a.used));
+  return std::move(a.best);
 }
 
 }  // namespace quadcover

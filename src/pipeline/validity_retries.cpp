@@ -72,12 +72,16 @@ std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int u
     return "the result is not valid: " + describe(kept.validity) +
            (kept.validity.worth_retrying() ? " (retries off)" : " (wrong windings alone are not retried)") +
            "; see the report's parameterization.wrong_winding_vertices and flipped_faces";
-  // An attempt with another field than the first's is named by its field (FieldStyle::Auto's fallback).
+  // An attempt with another field or optimization than the first's is named by them (the fallbacks of
+  // pipeline/retry_until_valid.h).
   const auto name = [&](const ValidityAttempt& a) {
+    std::string using_;
+    if (a.field_style != attempts[0].field_style) using_ = "the " + to_string(a.field_style) + " field";
+    if (a.optimize != attempts[0].optimize)
+      using_ += (using_.empty() ? "the " : " and the ") + std::string(to_string(a.optimize)) + " optimization";
     const std::string at = "at " + percent(a.quads_factor) + " quads";
-    if (a.field_style == attempts[0].field_style) return at;
-    const std::string field = "using the " + to_string(a.field_style) + " field";
-    return a.quads_factor == 1 ? field : field + " " + at;
+    if (using_.empty()) return at;
+    return a.quads_factor == 1 ? "using " + using_ : "using " + using_ + " " + at;
   };
   std::string tried;
   for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + name(attempts[k]);

@@ -44,6 +44,7 @@ struct ValidityAttempt {
   Validity validity;
   FieldStyle field_style = FieldStyle::Curvature;  ///< the field stage's preset it ran with (resolved)
   double seconds = 0;  ///< wall time of its job: the attempts not kept cost time too, outside the kept job's stages
+  OptimizeMode optimize = OptimizeMode::Relocate;  ///< Algorithm 6.1's mode it ran with
 };
 
 /// The interior vertices around which φ winds other than the field's cross-field index says (param/ring_winding.h

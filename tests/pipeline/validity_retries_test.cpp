@@ -102,6 +102,7 @@ Validity folds(int n) {
 
 StubJob run_stub(StubRuns& stub, int retries, ProgressSink& progress = null_progress()) {
   PipelineOptions given;
+  given.optimize = OptimizeMode::None;  // the density retries alone (the full optimization's fallback: OptimizeStub)
   given.validity_retries = retries;
   given.param.density.edge_length = 0.2;
   return retry_until_valid(
@@ -143,6 +144,7 @@ TEST(ValidityRetries, ADensityMadeFinerForALoopIsKeptAndSaidByTheRetries) {
   StubRuns stub;
   stub.by_factor = {{1000, folds(3)}, {1020, folds(0)}};
   PipelineOptions given;
+  given.optimize = OptimizeMode::None;
   given.validity_retries = 2;
   given.param.density.edge_length = 0.2;
   LoopDensityRaise raise;
@@ -203,6 +205,7 @@ struct FieldStub {
   }
   StubJob kept(FieldStyle given_style) {
     PipelineOptions given;
+    given.optimize = OptimizeMode::None;  // the field's fallback alone
     given.field_style = given_style;
     given.param.density.edge_length = 0.2;
     return retry_until_valid(
@@ -254,6 +257,65 @@ TEST(ValidityRetries, AutoFallsBackToTheCurvatureFieldOnlyWhenTheSmoothOneIsNotV
   EXPECT_FALSE(job.param.field_style_auto);
 }
 
+/// A job whose validity depends only on Algorithm 6.1's mode, on a map of `faces` triangles.
+struct OptimizeStub {
+  Validity relocate, full;
+  long faces = 1000;
+  std::vector<OptimizeMode> runs;
+  StubJob run(const PipelineOptions& o) {
+    StubJob job;
+    job.param.options = o;
+    job.param.options.field_style = FieldStyle::Curvature;
+    job.param.map.edge_length = 0.2;
+    job.param.map.uv.resize(faces, 3);
+    runs.push_back(o.optimize);
+    return job;
+  }
+  StubJob kept(OptimizeMode mode) {
+    PipelineOptions given;
+    given.optimize = mode;
+    given.field_style = FieldStyle::Curvature;
+    given.param.density.edge_length = 0.2;
+    return retry_until_valid(
+        given, [&](const PipelineOptions& o) { return run(o); },
+        [&](const StubJob& job) { return job.param.options.optimize == OptimizeMode::Full ? full : relocate; },
+        null_progress());
+  }
+};
+
+TEST(ValidityRetries, ANotValidRelocatedMapIsMadeAgainWithTheFullOptimizationOnSmallMeshes) {
+  OptimizeStub stub{wound(2), Validity{}};
+  StubJob job = stub.kept(OptimizeMode::Relocate);
+  EXPECT_EQ(stub.runs, (std::vector{OptimizeMode::Relocate, OptimizeMode::Full}));
+  EXPECT_EQ(job.param.validity_attempt_used, 1);
+  EXPECT_EQ(job.param.options.optimize, OptimizeMode::Full);
+  ASSERT_EQ(job.param.validity_attempts.size(), 2u);
+  EXPECT_EQ(job.param.validity_attempts[0].optimize, OptimizeMode::Relocate);
+  EXPECT_EQ(job.param.validity_attempts[1].optimize, OptimizeMode::Full);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("retried using the full optimization and kept a valid result, using the full "
+                                       "optimization"),
+            std::string::npos)
+      << job.param.warnings[0];
+  OptimizeStub worse{wound(2), wound(3)};  // not more valid: relocate's map stays
+  job = worse.kept(OptimizeMode::Relocate);
+  EXPECT_EQ(worse.runs.size(), 2u);
+  EXPECT_EQ(job.param.validity_attempt_used, 0);
+  EXPECT_EQ(job.param.options.optimize, OptimizeMode::Relocate);
+  OptimizeStub valid{Validity{}, wound(2)};  // a valid map: once
+  job = valid.kept(OptimizeMode::Relocate);
+  EXPECT_EQ(valid.runs.size(), 1u);
+  EXPECT_TRUE(job.param.warnings.empty());
+  OptimizeStub large{wound(2), Validity{}, kFullFallbackMaxFaces + 1};  // above the size it is tried on
+  job = large.kept(OptimizeMode::Relocate);
+  EXPECT_EQ(large.runs.size(), 1u);
+  for (const OptimizeMode chosen : {OptimizeMode::None, OptimizeMode::Full}) {  // other modes: as they are
+    OptimizeStub other{wound(2), wound(2)};
+    job = other.kept(chosen);
+    EXPECT_EQ(other.runs, (std::vector{chosen}));
+  }
+}
+
 /// A sink past its time limit: the improving stages are skipped.
 struct PastLimit : ProgressSink {
   void report(std::string_view, double, std::string_view) override {}
@@ -279,11 +341,16 @@ TEST(ValidityRetries, AHandleThinnerThanTheQuadsIsRetriedReportedAndNeverSilent)
   const RemeshJob job = remesh_mesh(torus, options);
   const auto& attempts = job.param.validity_attempts;
   // The default field style on a closed surface: the smoothest field first, then its fallback to the curvature-
-  // guided one (fall_back_to_curvature), then the two density retries with the field of the better of those.
-  ASSERT_EQ(attempts.size(), 4u);
+  // guided one (fall_back_to_curvature), the full optimization's (fall_back_to_full_optimization), then the two
+  // density retries with the field and optimization of the best of those.
+  ASSERT_EQ(attempts.size(), 5u);
   EXPECT_EQ(attempts[0].field_style, FieldStyle::Smooth);
   EXPECT_EQ(attempts[1].field_style, FieldStyle::Curvature);
-  EXPECT_EQ(attempts[2].field_style, attempts[3].field_style);
+  EXPECT_EQ(attempts[0].optimize, OptimizeMode::Relocate);
+  EXPECT_EQ(attempts[1].optimize, OptimizeMode::Relocate);
+  EXPECT_EQ(attempts[2].optimize, OptimizeMode::Full);
+  EXPECT_EQ(attempts[3].field_style, attempts[4].field_style);
+  EXPECT_EQ(attempts[3].optimize, attempts[4].optimize);
   EXPECT_TRUE(job.param.field_style_auto);
   EXPECT_EQ(job.param.options.field_style,
             attempts[static_cast<std::size_t>(job.param.validity_attempt_used)].field_style);
