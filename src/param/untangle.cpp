@@ -17,6 +17,7 @@
 #include "common/errors.h"
 #include "common/seconds_since.h"
 #include "mesh/vertex_rings.h"
+#include "param/isotropic_projection.h"
 #include "param/region_folds.h"
 #include "param/seams.h"
 
@@ -269,10 +270,7 @@ bool newton_step(Energy& energy, Pattern& P, SparseCholesky<double>& chol, doubl
       H6[f] = m.area * m.Dm.transpose() * H * m.Dm;
       return;
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> es(H);
-    const Eigen::Matrix4d Hp =
-        es.eigenvectors() * es.eigenvalues().cwiseMax(0.0).asDiagonal() * es.eigenvectors().transpose();
-    H6[f] = m.area * m.Dm.transpose() * Hp * m.Dm;
+    H6[f] = m.area * m.Dm.transpose() * project_isotropic_hessian(as_matrix(J), H) * m.Dm;
   });
   Eigen::VectorXd grad = Eigen::VectorXd::Zero(P.nfree);
   double* val = P.H.valuePtr();
