@@ -29,7 +29,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// χ(D, ε) = (D + √(ε² + D²)) / 2, written without cancellation for D < 0; s = √(ε² + D²).
 double chi(double D, double eps, double& s) {
-  s = std::hypot(eps, D);
+  const double m = std::max(eps, std::abs(D));  // √(ε² + D²): std::hypot only where the squares could leave range
+  s = m > 1e-100 && m < 1e100 ? std::sqrt(eps * eps + D * D) : std::hypot(eps, D);
   return D >= 0 ? 0.5 * (D + s) : 0.5 * eps * eps / (s - D);
 }
 
