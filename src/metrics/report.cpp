@@ -53,8 +53,8 @@ nlohmann::json to_json(const SurfaceDistance& d) {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExtractionReport, quads, non_quads, grid_vertices, boundary_vertices,
                                    unfolded_triangles, moved_vertices, collapsed_edges, flipped_triangles,
                                    degenerate_triangles, torn_seams, non_integer_translations, failed_traces,
-                                   dropped_faces, degenerate_faces, removed_spikes, removed_doublets, split_vertices,
-                                   split_polygons, merged_polygons, boundary_collapsed_triangles,
+                                   dropped_faces, degenerate_faces, boundary_slivers, removed_spikes, removed_doublets,
+                                   split_vertices, split_polygons, merged_polygons, boundary_collapsed_triangles,
                                    boundary_added_vertices, boundary_split_polygons, boundary_merged_polygons,
                                    filled_holes, active_parameter_area)
 

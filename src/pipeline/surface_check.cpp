@@ -150,6 +150,10 @@ std::vector<std::string> remesh_warnings(const SurfaceCheck& check, const Extrac
   for (const std::string& p : check.problems) warnings.push_back("remesh changed the surface: " + p);
   if (!check.problems.empty() && !check.places.empty()) warnings.push_back(places_sentence(check.places));
   for (std::string& w : extraction_repairs(extraction)) warnings.push_back(std::move(w));
+  if (const int n = extraction.boundary_slivers; n > 0)
+    warnings.push_back(std::to_string(n) + (n == 1 ? " sliver" : " slivers") +
+                       " between the boundary and an iso-line it crosses twice cut off: the quad mesh's boundary "
+                       "follows the iso-line there (the report's extraction.boundary_slivers)");
   if (check.input.boundary_loops > 0 && check.output.non_quads > 0)  // a closed input's are a problem above
     warnings.push_back(std::to_string(check.output.non_quads) + " of the " + std::to_string(check.output.faces) +
                        " faces are not quads");

@@ -514,7 +514,9 @@ class Extractor {
           if (mesh_.is_boundary_vertex(mesh_.F()(qm.source_face[v], c))) return false;
       return true;
     };
-    if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces + rep_.degenerate_faces > 0) {
+    if (g_.flipped_faces + g_.degenerate_faces + g_.torn_edges + rep_.dropped_faces + rep_.degenerate_faces +
+            rep_.boundary_slivers >
+        0) {
       rep_.dropped_faces += drop_closed_debris(qm);
       rep_.filled_holes = fill_small_holes(qm, 10, inside);
     }
@@ -575,7 +577,9 @@ class Extractor {
       std::vector<int> sorted = clean;
       std::sort(sorted.begin(), sorted.end());
       if (clean.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-        ++rep_.degenerate_faces;
+        const bool sliver =
+            std::all_of(clean.begin(), clean.end(), [&](int v) { return gv_[v].type == GVType::Crossing; });
+        ++(sliver ? rep_.boundary_slivers : rep_.degenerate_faces);
         continue;
       }
       faces.push_back(std::move(clean));

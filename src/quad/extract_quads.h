@@ -49,7 +49,10 @@ struct ExtractionReport {
   int non_integer_translations = 0;  ///< transitions whose translation is not in Z[i]
   int failed_traces = 0;         ///< iso-line segments that could not be followed (e.g. into a non-integer branch point)
   int dropped_faces = 0;         ///< faces not emitted: a bounding segment failed, or an edge twice (near folds)
-  int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped)
+  int degenerate_faces = 0;      ///< faces with fewer than 3 distinct corners (dropped), but boundary slivers
+  /// Faces whose corners are two boundary crossings only: a piece of the boundary beyond an iso-line that it crosses
+  /// twice with no grid point between. Dropped: the quad mesh's boundary follows the iso-line there.
+  int boundary_slivers = 0;
   int removed_spikes = 0;        ///< face loops x → v → x shortened (v an output vertex of valence 1, dropped)
   int removed_doublets = 0;      ///< interior vertices of valence 2 removed, their two faces merged (doublets.h)
   int split_vertices = 0;        ///< output vertices duplicated because cut-out folds pinched them

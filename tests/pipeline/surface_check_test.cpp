@@ -161,6 +161,16 @@ TEST(SurfaceCheck, RemeshWarningsSayEveryDegradation) {
   EXPECT_NE(w[0].find("3 vertices moved by the fold repair, 1 torn seam treated as boundary, 1 hole filled"),
             std::string::npos)
       << w[0];
+  // Boundary slivers cut off are said on their own, not as a repair of the map; a degenerate face is a repair.
+  ExtractionReport slivers;
+  slivers.boundary_slivers = 2;
+  const auto ws = remesh_warnings(check_surface(torus, 48, quad_grid(8, 6, true)), slivers);
+  ASSERT_EQ(ws.size(), 1u);
+  EXPECT_EQ(ws[0].find("2 slivers between the boundary and an iso-line it crosses twice cut off"), 0u) << ws[0];
+  slivers.degenerate_faces = 1;
+  const auto wd = remesh_warnings(check_surface(torus, 48, quad_grid(8, 6, true)), slivers);
+  ASSERT_EQ(wd.size(), 2u);
+  EXPECT_NE(wd[0].find("the extraction repaired the map (1 degenerate face dropped)"), std::string::npos) << wd[0];
   // A closed input with a hexagon: the check's problem, flagged, once.
   auto merged = quad_grid(8, 6, true);
   merged[0] = {0, 1, 2, 10, 9, 8};

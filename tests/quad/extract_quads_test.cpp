@@ -158,6 +158,37 @@ TEST(ExtractQuads, SquareAlignedWithBoundary) {
   EXPECT_EQ(t.euler_characteristic, 1);
 }
 
+// A square whose top side runs at v = 5.9, with an ear triangle on it (two boundary edges) whose tip reaches v = 6.05
+// between u = 3 and 4: the iso-line v = 6 cuts the ear's two boundary edges with no grid point between (as it cuts
+// the teeth of a sawtooth boundary). The tip beyond it is a face of the two crossings alone: dropped and counted as
+// a boundary sliver, not as a degenerate face (no map repair); the quad mesh stays a disk.
+TEST(ExtractQuads, AnEarTipAcrossAnIsoLineIsABoundarySliverNotARepair) {
+  const double scale = 5.9;
+  const Complex offset(0.15, 0);
+  const Mesh grid = testing::make_grid(4);
+  const int left = 4 * 5 + 2, right = 4 * 5 + 3;  // (0.5, 1) and (0.75, 1): u = 3.1 and 4.575
+  const Complex tip(3.5, 6.05);
+  Eigen::MatrixX3d V(grid.num_vertices() + 1, 3);
+  V << grid.V(), Eigen::RowVector3d((tip.real() - offset.real()) / scale, tip.imag() / scale, 0);
+  Eigen::MatrixX3i F(grid.num_faces() + 1, 3);
+  F << grid.F(), Eigen::RowVector3i(left, right, grid.num_vertices());
+  const Mesh mesh = Mesh::from_triangles(V, F);
+  ASSERT_EQ(mesh.boundary_loops().size(), 1u);
+  Eigen::MatrixX3cd uv(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const auto p = mesh.V().row(mesh.F()(f, c));
+      uv(f, c) = scale * Complex(p.x(), p.y()) + offset;
+    }
+  const ExtractionResult res = extract_quads(mesh, parameterization_from_uv(mesh, uv));
+  EXPECT_EQ(res.report.boundary_slivers, 1);
+  expect_clean(res.report);
+  const SurfaceCounts t = surface_counts(res.mesh.num_vertices(), res.mesh.faces);
+  EXPECT_TRUE(t.manifold() && t.oriented());
+  EXPECT_EQ(t.euler_characteristic, 1);
+  EXPECT_EQ(t.boundary_loops, 1);
+}
+
 // Polygon signed area in the parameter plane (all vertices of a face lie in one chart here: no seams).
 double uv_area(const QuadMesh& q, const std::vector<int>& f) {
   double a = 0;
