@@ -100,6 +100,12 @@ struct Attempts {
   Validity best_validity;
   std::vector<ValidityAttempt> all;
   int used = 0;
+  /// Records `attempt` and keeps `job` (its job) when it is more valid than the best so far. \pre none
+  void add(Job&& job, const ValidityAttempt& attempt) {
+    all.push_back(attempt);
+    if (attempt.validity < best_validity)
+      best = std::move(job), best_validity = attempt.validity, used = static_cast<int>(all.size()) - 1;
+  }
 };
 
 /// A fallback attempt of retry_until_valid: first_attempt(options), recorded and kept when more valid. An InputError
@@ -111,9 +117,13 @@ void fall_back(const PipelineOptions& options, int retries, const std::string& w
   try {
     const SteadyClock::time_point start = SteadyClock::now();
     auto [next, v] = first_attempt(options, retries, run, judge, progress);
-    a.all.push_back({1.0, param_job(next).map.edge_length, v, param_job(next).options.field_style, seconds_since(start),
-                     options.optimize});
-    if (v < a.best_validity) a.best = std::move(next), a.best_validity = v, a.used = static_cast<int>(a.all.size()) - 1;
+    const ValidityAttempt attempt{1.0,
+                                  param_job(next).map.edge_length,
+                                  v,
+                                  param_job(next).options.field_style,
+                                  seconds_since(start),
+                                  options.optimize};
+    a.add(std::move(next), attempt);
   } catch (const InputError& e) {
     param_job(a.best).warnings.push_back(what +
                                          ", tried because this one is not valid, could not be made: " + e.what());
@@ -169,9 +179,13 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
     Job next = run(attempt_options(retried, h0, k));
     param_job(next).density.raised = raised;
     const Validity v = judge(next);
-    a.all.push_back({attempt_quads_factor(k, given.param.density), param_job(next).map.edge_length, v,
-                     retried.field_style, seconds_since(start), retried.optimize});
-    if (v < a.best_validity) a.best = std::move(next), a.best_validity = v, a.used = static_cast<int>(a.all.size()) - 1;
+    const ValidityAttempt attempt{attempt_quads_factor(k, given.param.density),
+                                  param_job(next).map.edge_length,
+                                  v,
+                                  retried.field_style,
+                                  seconds_since(start),
+                                  retried.optimize};
+    a.add(std::move(next), attempt);
   }
   ParamJob& kept = param_job(a.best);
   kept.field_style_auto = given.field_style == FieldStyle::Auto;

@@ -75,13 +75,13 @@ std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int u
   // An attempt with another field or optimization than the first's is named by them (the fallbacks of
   // pipeline/retry_until_valid.h).
   const auto name = [&](const ValidityAttempt& a) {
-    std::string using_;
-    if (a.field_style != attempts[0].field_style) using_ = "the " + to_string(a.field_style) + " field";
+    std::string differs;  // what it ran with other than the first attempt
+    if (a.field_style != attempts[0].field_style) differs = "the " + to_string(a.field_style) + " field";
     if (a.optimize != attempts[0].optimize)
-      using_ += (using_.empty() ? "the " : " and the ") + std::string(to_string(a.optimize)) + " optimization";
+      differs += (differs.empty() ? "the " : " and the ") + std::string(to_string(a.optimize)) + " optimization";
     const std::string at = "at " + percent(a.quads_factor) + " quads";
-    if (using_.empty()) return at;
-    return a.quads_factor == 1 ? "using " + using_ : "using " + using_ + " " + at;
+    if (differs.empty()) return at;
+    return a.quads_factor == 1 ? "using " + differs : "using " + differs + " " + at;
   };
   std::string tried;
   for (std::size_t k = 1; k < attempts.size(); ++k) tried += (k > 1 ? ", " : "") + name(attempts[k]);
