@@ -79,7 +79,9 @@ TEST(HardCases, ComponentsOfVeryDifferentSizes) {
     EXPECT_EQ(rho[0], 1.0);
     EXPECT_GT(rho[2], 1.0);
     EXPECT_GT(rho[1], rho[2]);  // the smallest copy the finest
-    if (quads > 0) EXPECT_NEAR(job.surface.output.faces, quads, 0.03 * quads);
+    if (quads > 0) {
+      EXPECT_NEAR(job.surface.output.faces, quads, 0.03 * quads);
+    }
   }
 }
 

@@ -284,7 +284,7 @@ struct OptimizeStub {
 };
 
 TEST(ValidityRetries, ANotValidRelocatedMapIsMadeAgainWithTheFullOptimizationOnSmallMeshes) {
-  OptimizeStub stub{wound(2), Validity{}};
+  OptimizeStub stub{wound(2), Validity{}, 1000, {}};
   StubJob job = stub.kept(OptimizeMode::Relocate);
   EXPECT_EQ(stub.runs, (std::vector{OptimizeMode::Relocate, OptimizeMode::Full}));
   EXPECT_EQ(job.param.validity_attempt_used, 1);
@@ -297,20 +297,20 @@ TEST(ValidityRetries, ANotValidRelocatedMapIsMadeAgainWithTheFullOptimizationOnS
                                        "optimization"),
             std::string::npos)
       << job.param.warnings[0];
-  OptimizeStub worse{wound(2), wound(3)};  // not more valid: relocate's map stays
+  OptimizeStub worse{wound(2), wound(3), 1000, {}};  // not more valid: relocate's map stays
   job = worse.kept(OptimizeMode::Relocate);
   EXPECT_EQ(worse.runs.size(), 2u);
   EXPECT_EQ(job.param.validity_attempt_used, 0);
   EXPECT_EQ(job.param.options.optimize, OptimizeMode::Relocate);
-  OptimizeStub valid{Validity{}, wound(2)};  // a valid map: once
+  OptimizeStub valid{Validity{}, wound(2), 1000, {}};  // a valid map: once
   job = valid.kept(OptimizeMode::Relocate);
   EXPECT_EQ(valid.runs.size(), 1u);
   EXPECT_TRUE(job.param.warnings.empty());
-  OptimizeStub large{wound(2), Validity{}, kFullFallbackMaxFaces + 1};  // above the size it is tried on
+  OptimizeStub large{wound(2), Validity{}, kFullFallbackMaxFaces + 1, {}};  // above the size it is tried on
   job = large.kept(OptimizeMode::Relocate);
   EXPECT_EQ(large.runs.size(), 1u);
   for (const OptimizeMode chosen : {OptimizeMode::None, OptimizeMode::Full}) {  // other modes: as they are
-    OptimizeStub other{wound(2), wound(2)};
+    OptimizeStub other{wound(2), wound(2), 1000, {}};
     job = other.kept(chosen);
     EXPECT_EQ(other.runs, (std::vector{chosen}));
   }
