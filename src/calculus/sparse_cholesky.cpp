@@ -10,6 +10,7 @@
 #include <string>
 #include <type_traits>
 
+#include "calculus/column_substitution.h"
 #include "common/errors.h"
 
 #ifdef QUADCOVER_HAVE_CHOLMOD
@@ -253,6 +254,19 @@ class CholmodBackend {
                                                             Eigen::OuterStride<>(static_cast<Eigen::Index>(out->d)));
   }
 
+  /// The factor converted in place to simplicial LLᴴ with packed, monotonic columns (diagonal first).
+  void make_simplicial(const std::string& stage) {
+    if (!cholmod_change_factor(xtype(), 1, 0, 1, 1, factor_, &common_) || factor_->is_super)
+      throw NumericalError(
+          stage, "CHOLMOD could not make the factor simplicial (status " + std::to_string(common_.status) + ")");
+  }
+  /// \pre make_simplicial() was called.
+  LowerColumns<Scalar> columns() const {
+    return {static_cast<int>(factor_->n), static_cast<const int*>(factor_->p), static_cast<const int*>(factor_->i),
+            static_cast<const Scalar*>(factor_->x)};
+  }
+  const int* permutation() const { return static_cast<const int*>(factor_->Perm); }  ///< perm[new] = old
+
  private:
   static int xtype() { return kIsComplex<Scalar> ? CHOLMOD_COMPLEX : CHOLMOD_REAL; }  // interleaved re/im
 
@@ -287,6 +301,11 @@ struct SparseCholesky<Scalar>::Impl {
 #ifdef QUADCOVER_HAVE_CHOLMOD
   std::optional<CholmodBackend<Scalar>> cholmod;
 #endif
+  /// Set by prepare_sparse_solves(), cleared by every factorization: the factor by columns, its order both ways and
+  /// the split of its back substitution.
+  LowerColumns<Scalar> columns;
+  std::vector<int> old_of_new, new_of_old;
+  BackSubstitutionSplit back_split;
 
   void check_posdef() const {
     if (eigen.info() != Eigen::Success)
@@ -353,6 +372,8 @@ void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage, std::sp
     throw NumericalError(
         im.stage, "the given ordering is not a permutation of the matrix's " + std::to_string(A.rows()) + " rows");
   im.n = -1;
+  im.columns = {};
+  im.back_split = {};
   Matrix lower = A.template triangularView<Eigen::Lower>();
   lower.makeCompressed();
   im.lower_nnz = lower.nonZeros();
@@ -383,6 +404,8 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
   if (im.n == 0) return;
   const Eigen::Index n = im.n;
   im.n = -1;  // a failed refactorization leaves no usable factor
+  im.columns = {};
+  im.back_split = {};
 #ifdef QUADCOVER_HAVE_CHOLMOD
   if (im.backend == CholeskyBackend::Cholmod) im.cholmod->factorize(lower, im.stage);
 #endif
@@ -436,6 +459,62 @@ typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::forward_solve(co
   // Eigen: P A Pᵀ = L Lᴴ, so y = L⁻¹ P b.
   Vector pb = im.eigen.permutationP() * b;
   return im.eigen.matrixL().solve(pb);
+}
+
+/// Factors of fewer columns solve their back substitution in one pass (two cores do not pay below).
+constexpr int kSplitBackSubstitutionColumns = 20000;
+
+template <class Scalar>
+void SparseCholesky<Scalar>::prepare_sparse_solves() {
+  Impl& im = *impl_;
+  if (im.n < 0) throw NumericalError(im.stage, "prepare_sparse_solves() called before compute()");
+  const int n = static_cast<int>(im.n);
+  im.old_of_new.resize(static_cast<std::size_t>(n));
+  im.new_of_old.resize(static_cast<std::size_t>(n));
+  if (n == 0) return void(im.columns = LowerColumns<Scalar>{});
+#ifdef QUADCOVER_HAVE_CHOLMOD
+  if (im.backend == CholeskyBackend::Cholmod) {
+    im.cholmod->make_simplicial(im.stage);
+    im.columns = im.cholmod->columns();
+    std::copy(im.cholmod->permutation(), im.cholmod->permutation() + n, im.old_of_new.begin());
+  }
+#endif
+  if (im.backend == CholeskyBackend::Eigen) {
+    const Matrix& L = im.eigen.matrixL().nestedExpression();  // compressed, the diagonal first in each column
+    const auto& to_new = im.eigen.permutationP().indices();   // (P b)[to_new[k]] = b[k]
+    for (int k = 0; k < n; ++k) im.old_of_new[static_cast<std::size_t>(to_new[k])] = k;
+    im.columns = {n, L.outerIndexPtr(), L.innerIndexPtr(), L.valuePtr()};
+  }
+  for (int k = 0; k < n; ++k) im.new_of_old[static_cast<std::size_t>(im.old_of_new[static_cast<std::size_t>(k)])] = k;
+  for (int j = 0; j < n; ++j)
+    if (im.columns.p[j + 1] <= im.columns.p[j] || im.columns.i[im.columns.p[j]] != j)
+      throw NumericalError(im.stage, "the factor's column " + std::to_string(j) + " does not start at its diagonal");
+  im.back_split = split_back_substitution(im.columns, kSplitBackSubstitutionColumns);
+}
+
+template <class Scalar>
+typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::solve_sparse(std::span<const int> rows,
+                                                                             std::span<const Scalar> values) const {
+  const Impl& im = *impl_;
+  if (im.n < 0 || im.new_of_old.size() != static_cast<std::size_t>(im.n) || (im.n > 0 && !im.columns.p))
+    throw NumericalError(im.stage, "solve_sparse() called without prepare_sparse_solves() after the factorization");
+  if (rows.size() != values.size())
+    throw NumericalError(im.stage, "solve_sparse(): " + std::to_string(rows.size()) + " rows but " +
+                                       std::to_string(values.size()) + " values");
+  Vector y = Vector::Zero(im.n);
+  int first = static_cast<int>(im.n);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (rows[k] < 0 || rows[k] >= im.n)
+      throw NumericalError(im.stage, "solve_sparse(): row " + std::to_string(rows[k]) + " is out of range");
+    const int j = im.new_of_old[static_cast<std::size_t>(rows[k])];
+    y[j] += values[k];
+    first = std::min(first, j);
+  }
+  forward_substitute(im.columns, first, y.data());
+  back_substitute(im.columns, im.back_split, y.data());
+  Vector x(im.n);
+  for (Eigen::Index k = 0; k < im.n; ++k) x[im.old_of_new[static_cast<std::size_t>(k)]] = y[k];
+  return x;
 }
 
 template <class Scalar>

@@ -64,6 +64,16 @@ class SparseCholesky {
   /// y = L⁻¹ P b for the factorization Pᵀ L Lᴴ P = A, so that bᴴ A⁻¹ b = ‖y‖² (forward substitution only; the
   /// energy E_D of thesis 6.2.1 is ½‖y‖²). \throw NumericalError if nothing was factored or b has the wrong size.
   Vector forward_solve(const Vector& b) const;
+  /// Makes the factor one that solve_sparse() walks column by column: CHOLMOD's supernodal factor is converted in
+  /// place to simplicial LLᴴ (no copy is kept; solve() then uses it too, and a later refactorize() factors
+  /// simplicially); Eigen's already is. \throw NumericalError if nothing was factored or the conversion fails.
+  void prepare_sparse_solves();
+  /// x with A x = r for an r that is zero but at `rows` (r[rows[k]] += values[k]): the forward substitution skips
+  /// the columns where it is still zero, so it visits only the elimination-tree paths from those rows; the back
+  /// substitution visits every column. Equal to solve(r) up to round-off.
+  /// \throw NumericalError if prepare_sparse_solves() was not called after the last factorization, the spans
+  /// differ in length or a row is out of range.
+  Vector solve_sparse(std::span<const int> rows, std::span<const Scalar> values) const;
   Eigen::Index rows() const;  ///< 0 before compute(). \pre none
 
  private:

@@ -1,0 +1,97 @@
+// Column-wise triangular solves (calculus/column_substitution.h) on the Cholesky factor of a real mesh's Laplacian:
+// the split of the back substitution covers every column once, keeps each part's columns reading only their part
+// and the top, and gives the numbers of one pass; a chain (no two subtrees) is not split; the forward substitution
+// from a sparse right-hand side is the full one.
+#include "calculus/column_substitution.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <vector>
+
+#include "calculus/stiffness.h"
+#include "calculus_test_util.h"
+
+namespace quadcover {
+namespace {
+
+using testing::cached_mesh;
+using testing::random_vector;
+
+using Factor = Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+LowerColumns<double> columns_of(const Factor& factor) {
+  const Eigen::SparseMatrix<double>& L = factor.matrixL().nestedExpression();
+  return {static_cast<int>(L.cols()), L.outerIndexPtr(), L.innerIndexPtr(), L.valuePtr()};
+}
+
+// 𝔏 + diag(vertex areas): positive definite with the pattern of the mesh's vertex graph.
+Eigen::SparseMatrix<double> laplacian_plus_mass(const Mesh& mesh) {
+  Eigen::SparseMatrix<double> A = conforming_stiffness(mesh);
+  const Eigen::VectorXd a = vertex_areas(mesh);
+  for (int p = 0; p < mesh.num_vertices(); ++p) A.coeffRef(p, p) += a[p];
+  return A;
+}
+
+TEST(ColumnSubstitution, BackSubstitutionSplitIntoTwoClosedPartsGivesTheNumbersOfOnePass) {
+  const Factor factor(laplacian_plus_mass(cached_mesh("fertility_genus4")));
+  ASSERT_EQ(factor.info(), Eigen::Success);
+  const LowerColumns<double> L = columns_of(factor);
+  const BackSubstitutionSplit split = split_back_substitution(L, 0);
+  ASSERT_FALSE(split.empty());
+  std::vector<int> part_of(static_cast<std::size_t>(L.n), -2);
+  long entries[2] = {0, 0};
+  for (const int j : split.top) part_of[j] = -1;
+  for (int part = 0; part < 2; ++part) {
+    EXPECT_TRUE(std::is_sorted(split.part[part].rbegin(), split.part[part].rend()));
+    for (const int j : split.part[part]) {
+      ASSERT_EQ(part_of[j], -2) << "column " << j << " twice";
+      part_of[j] = part;
+      entries[part] += L.p[j + 1] - L.p[j];
+    }
+  }
+  EXPECT_EQ(std::count(part_of.begin(), part_of.end(), -2), 0);  // every column once
+  long top_entries = 0;
+  for (const int j : split.top) top_entries += L.p[j + 1] - L.p[j];
+  EXPECT_LT(3 * top_entries, L.p[L.n]);  // AMD's last clique on top: about a sixth here
+  EXPECT_GT(3 * std::min(entries[0], entries[1]), std::max(entries[0], entries[1]));  // about balanced
+  for (int j = 0; j < L.n; ++j)
+    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q)
+      EXPECT_TRUE(part_of[L.i[q]] == -1 || part_of[L.i[q]] == part_of[j]) << "column " << j << ", row " << L.i[q];
+  Eigen::VectorXd one_pass = random_vector(L.n, 5), split_pass = one_pass;
+  back_substitute(L, BackSubstitutionSplit{}, one_pass.data());
+  back_substitute(L, split, split_pass.data());
+  EXPECT_EQ(split_pass, one_pass);                           // bitwise: each column's arithmetic is the same
+  EXPECT_TRUE(split_back_substitution(L, L.n + 1).empty());  // below the size it is made for
+}
+
+TEST(ColumnSubstitution, AChainIsNotSplit) {
+  const int n = 500;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < n; ++k) {
+    t.emplace_back(k, k, 3.0);
+    if (k + 1 < n) t.emplace_back(k + 1, k, -1.0), t.emplace_back(k, k + 1, -1.0);
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  const Factor factor(A);
+  const LowerColumns<double> L = columns_of(factor);
+  const BackSubstitutionSplit split = split_back_substitution(L, 0);
+  EXPECT_TRUE(split.empty());  // a path: every subtree but one leaf holds more than half of the rest
+}
+
+TEST(ColumnSubstitution, ForwardSubstitutionFromASparseRightHandSideIsTheFullOne) {
+  const Factor factor(laplacian_plus_mass(cached_mesh("bunny_3k")));
+  const LowerColumns<double> L = columns_of(factor);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(L.n);
+  b[L.n / 3] = 2.0, b[L.n / 2] = -1.0;
+  const Eigen::VectorXd full = factor.matrixL().solve(b);
+  Eigen::VectorXd sparse = b;
+  forward_substitute(L, L.n / 3, sparse.data());
+  EXPECT_LT((sparse - full).norm(), 1e-14 * full.norm());
+  EXPECT_GT(std::count(sparse.data(), sparse.data() + L.n, 0.0), L.n / 2);  // a path's worth of columns reached
+}
+
+}  // namespace
+}  // namespace quadcover
