@@ -1,6 +1,7 @@
 #include "field/smoothing.h"
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -175,6 +176,34 @@ Eigen::VectorXd FrameSmoother::solve() const {
   const Eigen::VectorXd x = solver_->cholesky.solve(b_);
   for (std::size_t i = 0; i < unknowns_.size(); ++i) alpha[unknowns_[i]] = x[static_cast<Eigen::Index>(i)];
   return alpha;
+}
+
+void FrameSmoother::prepare_sparse_solves() { solver_->cholesky.prepare_sparse_solves(); }
+
+Eigen::VectorXd FrameSmoother::solve_after(const Eigen::VectorXd& alpha, std::span<const MatchingChange> changes) {
+  std::vector<int> rows;  // the unknowns whose b the changes touch
+  std::vector<std::pair<int, double>> saved_theta;
+  for (const MatchingChange& c : changes) {
+    if (c.delta == 0 || mesh_->is_boundary_edge(c.edge)) continue;
+    saved_theta.emplace_back(c.edge, theta_[c.edge]);
+    for (int side = 0; side < 2; ++side)
+      if (const int u = unknown_of_face_[static_cast<std::size_t>(mesh_->EF()(c.edge, side))]; u >= 0)
+        rows.push_back(u);
+  }
+  if (rows.empty()) return alpha;
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  std::vector<double> before(rows.size()), delta(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) before[k] = b_[rows[k]];
+  for (const MatchingChange& c : changes) change_matching(c.edge, c.delta);
+  for (std::size_t k = 0; k < rows.size(); ++k) delta[k] = b_[rows[k]] - before[k], b_[rows[k]] = before[k];
+  for (const MatchingChange& c : changes)
+    if (c.delta != 0 && !mesh_->is_boundary_edge(c.edge)) matching_[c.edge] -= c.delta;
+  for (auto it = saved_theta.rbegin(); it != saved_theta.rend(); ++it) theta_[it->first] = it->second;
+  const Eigen::VectorXd x = solver_->cholesky.solve_sparse(rows, delta);
+  Eigen::VectorXd result = alpha;
+  for (std::size_t i = 0; i < unknowns_.size(); ++i) result[unknowns_[i]] += x[static_cast<Eigen::Index>(i)];
+  return result;
 }
 
 Eigen::VectorXd FrameSmoother::solve_system(const Eigen::VectorXd& r) const {

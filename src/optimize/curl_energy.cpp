@@ -93,9 +93,11 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   pending_.assign(changes.begin(), changes.end());
   pending_valid_ = false;
   // min E(α) with the new matching (5.2.2), then the rotated field; the smoother is restored afterwards.
-  for (const auto& c : changes) smoother_->change_matching(c.edge, c.delta);
-  pending_alpha_ = smoother_->solve();
-  for (auto it = changes.rbegin(); it != changes.rend(); ++it) smoother_->change_matching(it->edge, -it->delta);
+  if (!sparse_solves_ready_) {  // at the first evaluation: a job without any keeps the factor of A as it is
+    smoother_->prepare_sparse_solves();
+    sparse_solves_ready_ = true;
+  }
+  pending_alpha_ = smoother_->solve_after(alpha_, changes);  // from the few entries of b the changes move
   timings_.smoothing += seconds_since(t0);
   // Star changes one edge at a time (a path may cross the same face twice: layers are updated as we go).
   t0 = SteadyClock::now();
@@ -113,7 +115,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   }
   timings_.update += seconds_since(t0);
   t0 = SteadyClock::now();
-  const Eigen::VectorXcd b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
+  const Eigen::VectorXcd& b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
   timings_.curl += seconds_since(t0);
   for (auto it = saved.rbegin(); it != saved.rend(); ++it) mu_(std::get<0>(*it), std::get<1>(*it)) = std::get<2>(*it);
   for (const auto& c : changes)
@@ -159,15 +161,17 @@ Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
 
 // -curl* of the field e^{iα}X⁰ with the current layers: one rotation per face (not one per face edge). The face
 // terms are made on both cores; each edge then sums its two in face order, as one loop over the faces would.
-Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
-  Eigen::MatrixX3cd terms(mesh_->num_faces(), 3);
+const Eigen::VectorXcd& CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
+  Eigen::MatrixX3cd& terms = face_terms_;
+  terms.resize(mesh_->num_faces(), 3);
   tbb::parallel_for(tbb::blocked_range<int>(0, mesh_->num_faces(), 4096), [&](const tbb::blocked_range<int>& faces) {
     for (int f = faces.begin(); f < faces.end(); ++f) {
       const Complex X = rotated_frame(f, alpha[f]);
       for (int k = 0; k < 3; ++k) terms(f, k) = term(f, k, X, mu_(f, k));
     }
   });
-  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
+  Eigen::VectorXcd& b = curl_rhs_;
+  b.setZero(mesh_->num_edges());
   for (int f = 0; f < mesh_->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += terms(f, k);
   for (int e = 0; e < mesh_->num_edges(); ++e)

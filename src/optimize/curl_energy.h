@@ -5,10 +5,10 @@
 // there (tests/optimize/one_energy_test.cpp).
 //
 // One evaluation (Table 6.1): the matching changes at some edges; the frame field is re-smoothed by minimizing
-// E(α) (5.3) with the new matching (5.2.2, FrameSmoother: two right-hand side entries per edge, one solve); curl*
-// of the rotated field is recomputed; 𝔏̄* changes by a four-entry star per edge (Deng split, two rank-1 terms
-// applied to private copies of the affected factor columns); one forward solve gives E_D. Nothing is written
-// back unless the change is committed.
+// E(α) (5.3) with the new matching (5.2.2, FrameSmoother::solve_after: two right-hand side entries per edge, a solve
+// from those entries); curl* of the rotated field is recomputed; 𝔏̄* changes by a four-entry star per edge (Deng
+// split, two rank-1 terms applied to private copies of the affected factor columns); one forward solve gives E_D.
+// Nothing is written back unless the change is committed.
 //
 // Local estimates of E_D for screening candidates: optimize/curl_estimator.h.
 #include <span>
@@ -103,7 +103,9 @@ class CurlEnergy {
   mutable bool solution_valid_ = false;
   const Eigen::VectorXcd& solution() const;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
-  Eigen::VectorXcd rhs(const Eigen::VectorXd& alpha) const;
+  /// -curl* of e^{iα}X⁰ with the current layers, into curl_rhs_ (kept with face_terms_ between calls: no fresh
+  /// pages every evaluation).
+  const Eigen::VectorXcd& rhs(const Eigen::VectorXd& alpha) const;
 
   const Mesh* mesh_;
   FrameSmoother* smoother_;
@@ -120,6 +122,9 @@ class CurlEnergy {
   std::vector<MatchingChange> pending_;
   Eigen::VectorXd pending_alpha_;
   bool pending_valid_ = false;
+  bool sparse_solves_ready_ = false;  // the smoother's factor prepared for FrameSmoother::solve_after
+  mutable Eigen::MatrixX3cd face_terms_;
+  mutable Eigen::VectorXcd curl_rhs_;
   mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
 

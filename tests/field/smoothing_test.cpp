@@ -95,6 +95,32 @@ TEST(Smoothing, ResolveAfterMatchingChangeEqualsFreshSolve) {
   EXPECT_LT((smoother.curvature() - fresh.curvature()).norm(), 1e-12);
 }
 
+// solve_after(): α + A⁻¹δb from the changed entries of b equals a smoother built from the changed matching (an edge
+// changed twice, a boundary-free mesh's random edges, one change of 0), and leaves the smoother exactly as it was.
+TEST(Smoothing, SolveAfterChangesEqualsTheChangedSmoothersSolve) {
+  const Propagated s = propagated("fertility_genus4");
+  FrameSmoother smoother(s.mesh, s.field, s.stability, s.trusted, {}, 0.5);
+  smoother.prepare_sparse_solves();
+  const Eigen::VectorXd alpha = smoother.solve();
+  const Eigen::VectorXd theta = smoother.curvature();
+  std::vector<MatchingChange> changes;
+  std::mt19937 rng(11);
+  for (int i = 0; i < 8; ++i)
+    changes.push_back({static_cast<int>(rng() % static_cast<unsigned>(s.mesh.num_edges())), i % 2 ? 1 : -2});
+  changes.push_back({changes[2].edge, 3});
+  changes.push_back({changes[4].edge, 0});
+  FrameField changed = s.field;
+  for (const MatchingChange& c : changes) changed.matching[c.edge] += c.delta;
+  const Eigen::VectorXd after = smoother.solve_after(alpha, changes);
+  const Eigen::VectorXd direct = FrameSmoother(s.mesh, changed, s.stability, s.trusted, {}, 0.5).solve();
+  EXPECT_GT((after - alpha).norm(), 1e-3);  // the changes matter
+  EXPECT_LT((after - direct).norm(), 1e-10 * direct.norm());
+  EXPECT_EQ(smoother.matching(), s.field.matching);
+  EXPECT_EQ(smoother.curvature(), theta);  // exactly: θ and b are restored, not changed back
+  EXPECT_EQ(smoother.solve(), alpha);
+  EXPECT_EQ(smoother.solve_after(alpha, std::span<const MatchingChange>{}), alpha);
+}
+
 // Alignment targets β (E_A = Σ a_t(α_t - β_t)²) only move b: the re-solve minimizes the new energy, equals a
 // smoother that starts from the frames rotated by β with zero targets (up to that rotation), and β = 0 restores
 // the thesis solution.
