@@ -44,7 +44,7 @@ bool parts_are_closed(const LowerColumns<Scalar>& L, const std::vector<int>& par
 }  // namespace
 
 template <class Scalar>
-BackSubstitutionSplit split_back_substitution(const LowerColumns<Scalar>& L, int min_columns) {
+SubstitutionSplit split_substitution(const LowerColumns<Scalar>& L, int min_columns) {
   const int n = L.n;
   if (n < std::max(min_columns, 2)) return {};
   const std::vector<int> parent = elimination_tree(L);
@@ -60,7 +60,7 @@ BackSubstitutionSplit split_back_substitution(const LowerColumns<Scalar>& L, int
   std::priority_queue<std::pair<long, int>> trees;
   for (int j = 0; j < n; ++j)
     if (parent[j] < 0) trees.emplace(below[j], j);
-  BackSubstitutionSplit split;
+  SubstitutionSplit split;
   long top_entries = 0;
   while (!trees.empty() && 2 * trees.top().first > total - top_entries) {
     const int root = trees.top().second;
@@ -87,6 +87,8 @@ BackSubstitutionSplit split_back_substitution(const LowerColumns<Scalar>& L, int
   if (!parts_are_closed(L, part_of)) return {};
   for (std::vector<int>* columns : {&split.top, &split.part[0], &split.part[1]})
     std::sort(columns->begin(), columns->end(), std::greater<>());
+  split.top_position.assign(static_cast<std::size_t>(n), -1);
+  for (std::size_t t = 0; t < split.top.size(); ++t) split.top_position[split.top[t]] = static_cast<int>(t);
   return split;
 }
 
@@ -100,7 +102,7 @@ void forward_substitute(const LowerColumns<Scalar>& L, int first, Scalar* y) {
 }
 
 template <class Scalar>
-void back_substitute(const LowerColumns<Scalar>& L, const BackSubstitutionSplit& split, Scalar* y) {
+void back_substitute(const LowerColumns<Scalar>& L, const SubstitutionSplit& split, Scalar* y) {
   const auto column = [&](int j) {
     Scalar s = y[j];
     for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q) s -= conjugate(L.x[q]) * y[L.i[q]];
@@ -111,18 +113,21 @@ void back_substitute(const LowerColumns<Scalar>& L, const BackSubstitutionSplit&
     return;
   }
   for (const int j : split.top) column(j);
-  const auto part = [&](const std::vector<int>& columns) {
-    for (const int j : columns) column(j);
-  };
-  tbb::parallel_invoke([&] { part(split.part[0]); }, [&] { part(split.part[1]); });
+  run_parts_side_by_side([&](int part) {
+    for (const int j : split.part[part]) column(j);
+  });
 }
 
-template BackSubstitutionSplit split_back_substitution(const LowerColumns<double>&, int);
-template BackSubstitutionSplit split_back_substitution(const LowerColumns<std::complex<double>>&, int);
+void run_parts_side_by_side(const std::function<void(int)>& part) {
+  tbb::parallel_invoke([&] { part(0); }, [&] { part(1); });
+}
+
+template SubstitutionSplit split_substitution(const LowerColumns<double>&, int);
+template SubstitutionSplit split_substitution(const LowerColumns<std::complex<double>>&, int);
 template void forward_substitute(const LowerColumns<double>&, int, double*);
 template void forward_substitute(const LowerColumns<std::complex<double>>&, int, std::complex<double>*);
-template void back_substitute(const LowerColumns<double>&, const BackSubstitutionSplit&, double*);
-template void back_substitute(const LowerColumns<std::complex<double>>&, const BackSubstitutionSplit&,
+template void back_substitute(const LowerColumns<double>&, const SubstitutionSplit&, double*);
+template void back_substitute(const LowerColumns<std::complex<double>>&, const SubstitutionSplit&,
                               std::complex<double>*);
 
 }  // namespace quadcover

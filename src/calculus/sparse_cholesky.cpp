@@ -305,7 +305,7 @@ struct SparseCholesky<Scalar>::Impl {
   /// the split of its back substitution.
   LowerColumns<Scalar> columns;
   std::vector<int> old_of_new, new_of_old;
-  BackSubstitutionSplit back_split;
+  SubstitutionSplit substitution_split;
 
   void check_posdef() const {
     if (eigen.info() != Eigen::Success)
@@ -373,7 +373,7 @@ void SparseCholesky<Scalar>::compute(const Matrix& A, const char* stage, std::sp
         im.stage, "the given ordering is not a permutation of the matrix's " + std::to_string(A.rows()) + " rows");
   im.n = -1;
   im.columns = {};
-  im.back_split = {};
+  im.substitution_split = {};
   Matrix lower = A.template triangularView<Eigen::Lower>();
   lower.makeCompressed();
   im.lower_nnz = lower.nonZeros();
@@ -405,7 +405,7 @@ void SparseCholesky<Scalar>::refactorize(const Matrix& A) {
   const Eigen::Index n = im.n;
   im.n = -1;  // a failed refactorization leaves no usable factor
   im.columns = {};
-  im.back_split = {};
+  im.substitution_split = {};
 #ifdef QUADCOVER_HAVE_CHOLMOD
   if (im.backend == CholeskyBackend::Cholmod) im.cholmod->factorize(lower, im.stage);
 #endif
@@ -461,9 +461,6 @@ typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::forward_solve(co
   return im.eigen.matrixL().solve(pb);
 }
 
-/// Factors of fewer columns solve their back substitution in one pass (two cores do not pay below).
-constexpr int kSplitBackSubstitutionColumns = 20000;
-
 template <class Scalar>
 void SparseCholesky<Scalar>::prepare_sparse_solves() {
   Impl& im = *impl_;
@@ -489,7 +486,7 @@ void SparseCholesky<Scalar>::prepare_sparse_solves() {
   for (int j = 0; j < n; ++j)
     if (im.columns.p[j + 1] <= im.columns.p[j] || im.columns.i[im.columns.p[j]] != j)
       throw NumericalError(im.stage, "the factor's column " + std::to_string(j) + " does not start at its diagonal");
-  im.back_split = split_back_substitution(im.columns, kSplitBackSubstitutionColumns);
+  im.substitution_split = split_substitution(im.columns, kSplitSubstitutionMinColumns);
 }
 
 template <class Scalar>
@@ -511,7 +508,7 @@ typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::solve_sparse(std
     first = std::min(first, j);
   }
   forward_substitute(im.columns, first, y.data());
-  back_substitute(im.columns, im.back_split, y.data());
+  back_substitute(im.columns, im.substitution_split, y.data());
   Vector x(im.n);
   for (Eigen::Index k = 0; k < im.n; ++k) x[im.old_of_new[static_cast<std::size_t>(k)]] = y[k];
   return x;

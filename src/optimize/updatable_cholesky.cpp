@@ -123,6 +123,7 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
       throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   }
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
+  split_ = split_substitution(LowerColumns<Complex>{n, col_ptr(), row_idx(), values()}, kSplitSubstitutionMinColumns);
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);
   x_norm2_ = 0;
@@ -332,15 +333,14 @@ double FactorTrial::evaluate_full(const UpdatableCholesky& F, const Eigen::Vecto
   for (int i = 0; i < n; ++i) bfull_[i] = b_new[F.perm()[i]];
   xfull_ = bfull_;
   Complex* x = xfull_.data();
-  for (int j = 0; j < n; ++j) {
-    const Complex* col = slot_[j] >= 0 ? vals_.data() + slot_[j] : Lx + Lp[j];
-    const Complex xj = x[j] / col[0].real();
-    x[j] = xj;
-    const int len = Lp[j + 1] - Lp[j];
-    const int* rows = Li + Lp[j];
-    for (int p = 1; p < len; ++p) {  // x_i -= L_ij x_j in real arithmetic (std::complex's product has NaN branches)
-      const double a = col[p].real(), b = col[p].imag();
-      x[rows[p]] -= Complex(a * xj.real() - b * xj.imag(), a * xj.imag() + b * xj.real());
+  const auto column_values = [&](int j) { return slot_[j] >= 0 ? vals_.data() + slot_[j] : Lx + Lp[j]; };
+  if (!F.substitution_split().empty()) {
+    forward_substitute_split(LowerColumns<Complex>{n, Lp, Li, Lx}, F.substitution_split(), column_values, x);
+  } else {
+    for (int j = 0; j < n; ++j) {
+      const Complex* col = column_values(j);
+      const Complex xj = x[j] /= col[0].real();
+      for (int p = Lp[j] + 1; p < Lp[j + 1]; ++p) x[Li[p]] -= product(col[p - Lp[j]], xj);
     }
   }
   energy_ = xfull_.squaredNorm();

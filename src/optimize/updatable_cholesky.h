@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "calculus/column_substitution.h"
 #include "mesh/mesh.h"
 
 namespace quadcover {
@@ -92,12 +93,16 @@ class UpdatableCholesky {
   const int* row_idx() const;  ///< \pre none
   Complex* values();  ///< \pre none (writes must keep L a valid factor).
   const Complex* values() const;  ///< \pre none
+  /// The split of L's elimination tree for substitutions on two cores (calculus/column_substitution.h; made with the
+  /// factor, the pattern never changes); empty below kSplitSubstitutionMinColumns. \pre none
+  const SubstitutionSplit& substitution_split() const { return split_; }
 
  private:
   friend class FactorTrial;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<int> perm_, pinv_, parent_;
+  SubstitutionSplit split_;
   Eigen::VectorXcd b_;  // permuted: b_[new] = b[perm[new]]
   Eigen::VectorXcd x_;  // permuted forward solution
   double x_norm2_ = 0;

@@ -5,6 +5,7 @@
 #include "calculus/column_substitution.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -34,11 +35,11 @@ Eigen::SparseMatrix<double> laplacian_plus_mass(const Mesh& mesh) {
   return A;
 }
 
-TEST(ColumnSubstitution, BackSubstitutionSplitIntoTwoClosedPartsGivesTheNumbersOfOnePass) {
+TEST(ColumnSubstitution, SplitBackSubstitutionGivesTheNumbersOfOnePass) {
   const Factor factor(laplacian_plus_mass(cached_mesh("fertility_genus4")));
   ASSERT_EQ(factor.info(), Eigen::Success);
   const LowerColumns<double> L = columns_of(factor);
-  const BackSubstitutionSplit split = split_back_substitution(L, 0);
+  const SubstitutionSplit split = split_substitution(L, 0);
   ASSERT_FALSE(split.empty());
   std::vector<int> part_of(static_cast<std::size_t>(L.n), -2);
   long entries[2] = {0, 0};
@@ -60,10 +61,39 @@ TEST(ColumnSubstitution, BackSubstitutionSplitIntoTwoClosedPartsGivesTheNumbersO
     for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q)
       EXPECT_TRUE(part_of[L.i[q]] == -1 || part_of[L.i[q]] == part_of[j]) << "column " << j << ", row " << L.i[q];
   Eigen::VectorXd one_pass = random_vector(L.n, 5), split_pass = one_pass;
-  back_substitute(L, BackSubstitutionSplit{}, one_pass.data());
+  back_substitute(L, SubstitutionSplit{}, one_pass.data());
   back_substitute(L, split, split_pass.data());
   EXPECT_EQ(split_pass, one_pass);                           // bitwise: each column's arithmetic is the same
-  EXPECT_TRUE(split_back_substitution(L, L.n + 1).empty());  // below the size it is made for
+  EXPECT_TRUE(split_substitution(L, L.n + 1).empty());       // below the size it is made for
+}
+
+// The forward substitution on two cores: the numbers of one pass up to round-off, bitwise the same on one thread
+// and on two, and columns swapped in through `values` are the ones used.
+TEST(ColumnSubstitution, ForwardSubstitutionSplitIsOnePassUpToRoundOffWhateverTheThreads) {
+  const Factor factor(laplacian_plus_mass(cached_mesh("fertility_genus4")));
+  const LowerColumns<double> L = columns_of(factor);
+  const SubstitutionSplit split = split_substitution(L, 0);
+  ASSERT_FALSE(split.empty());
+  ASSERT_EQ(split.top_position.size(), static_cast<std::size_t>(L.n));
+  for (std::size_t t = 0; t < split.top.size(); ++t) EXPECT_EQ(split.top_position[split.top[t]], static_cast<int>(t));
+  const Eigen::VectorXd b = random_vector(L.n, 8);
+  Eigen::VectorXd one_pass = b;
+  forward_substitute(L, 0, one_pass.data());
+  const auto own = [&](int j) { return L.x + L.p[j]; };
+  Eigen::VectorXd two_cores = b, one_thread = b;
+  forward_substitute_split(L, split, own, two_cores.data());
+  tbb::task_arena(1).execute([&] { forward_substitute_split(L, split, own, one_thread.data()); });
+  EXPECT_LT((two_cores - one_pass).norm(), 1e-13 * one_pass.norm());
+  EXPECT_EQ(two_cores, one_thread);
+  // A column scaled by 2 swapped in: the solution's entry there halves (its diagonal doubled, the rest follows).
+  const int j = split.part[0].back();
+  std::vector<double> doubled(L.x + L.p[j], L.x + L.p[j + 1]);
+  for (double& v : doubled) v *= 2;
+  Eigen::VectorXd swapped = b;
+  forward_substitute_split(
+      L, split, [&](int c) { return c == j ? doubled.data() : L.x + L.p[c]; }, swapped.data());
+  EXPECT_NEAR(swapped[j], 0.5 * two_cores[j], 1e-12 * std::abs(two_cores[j]));
+  EXPECT_GT((swapped - two_cores).norm(), 0.0);
 }
 
 TEST(ColumnSubstitution, AChainIsNotSplit) {
@@ -77,7 +107,7 @@ TEST(ColumnSubstitution, AChainIsNotSplit) {
   A.setFromTriplets(t.begin(), t.end());
   const Factor factor(A);
   const LowerColumns<double> L = columns_of(factor);
-  const BackSubstitutionSplit split = split_back_substitution(L, 0);
+  const SubstitutionSplit split = split_substitution(L, 0);
   EXPECT_TRUE(split.empty());  // a path: every subtree but one leaf holds more than half of the rest
 }
 

@@ -297,6 +297,29 @@ TEST(UpdatableCholesky, NestedDissectionShortensTheUpdatePaths) {
   EXPECT_LT(nested, 0.8 * mean_path_work(amd_parent, amd_counts));
 }
 
+// On a factor of more than kSplitSubstitutionMinColumns columns the full forward solve of a trial runs on two cores
+// (the substitution split): its energy for a new right-hand side everywhere is still the fresh factorization's.
+TEST(FactorTrial, FullEvaluationOnTwoCoresIsTheFreshEnergy) {
+  const Mesh mesh = testing::load_test_mesh("bunny_20k_holes");
+  std::mt19937 rng(5);
+  SyntheticCover cover(mesh, rng);
+  UpdatableCholesky F(cover.matrix());
+  ASSERT_GE(F.size(), kSplitSubstitutionMinColumns);
+  ASSERT_FALSE(F.substitution_split().empty());
+  F.set_rhs(random_vector(mesh.num_edges(), rng));
+  FactorTrial trial(F.size());
+  int f = 1234;
+  for (int step = 0; step < 8; ++step) {
+    ASSERT_TRUE(trial.add_star_change(F, cover.turn(f, step % 3, 1)));
+    if (mesh.neighbor(f, step % 3) >= 0) f = mesh.neighbor(f, step % 3);
+  }
+  const Eigen::VectorXcd b_new = random_vector(mesh.num_edges(), rng);
+  const double expected = fresh(cover.matrix(), b_new).second;
+  EXPECT_NEAR(trial.evaluate_full(F, b_new), expected, 1e-9 * expected);
+  trial.commit(F);
+  EXPECT_NEAR(F.rhs_energy(), expected, 1e-9 * expected);
+}
+
 // A change that makes the matrix indefinite must be detected, not silently produce NaNs.
 TEST(FactorTrial, DetectsLossOfPositiveDefiniteness) {
   const Mesh mesh = testing::make_grid(6);
