@@ -36,8 +36,9 @@ struct SubstitutionSplit {
 
 /// Splits the elimination tree of L (parent = smallest row below the diagonal) into whole subtrees of about equal
 /// entries for two parts, their ancestors on top. Empty when L has fewer than `min_columns` columns, when the
-/// ancestors would hold more than a tenth of the entries, or when a column's rows leave its part and the top (a
-/// pattern without the elimination tree's closure). \pre L's columns start at their diagonal.
+/// ancestors would hold more than a third of the entries (they are solved on one core), or when a column's rows
+/// leave its part and the top (a pattern without the elimination tree's closure). \pre L's columns start at their
+/// diagonal.
 template <class Scalar>
 SubstitutionSplit split_substitution(const LowerColumns<Scalar>& L, int min_columns);
 

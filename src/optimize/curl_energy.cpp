@@ -92,7 +92,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   auto t0 = SteadyClock::now();
   pending_.assign(changes.begin(), changes.end());
   pending_valid_ = false;
-  // min E(α) with the new matching (5.2.2), then the rotated field; the smoother is restored afterwards.
+  // min E(α) with the new matching (5.2.2), from α and the changed entries of b; the smoother stays as it is.
   if (!sparse_solves_ready_) {  // at the first evaluation: a job without any keeps the factor of A as it is
     smoother_->prepare_sparse_solves();
     sparse_solves_ready_ = true;
