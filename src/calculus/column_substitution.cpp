@@ -22,10 +22,10 @@ Scalar conjugate(Scalar v) {
 /// The elimination tree of L: parent[j] = the smallest row below the diagonal of column j, -1 at a root.
 template <class Scalar>
 std::vector<int> elimination_tree(const LowerColumns<Scalar>& L) {
-  std::vector<int> parent(static_cast<std::size_t>(L.n), -1);
-  for (int j = 0; j < L.n; ++j)
-    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q)
-      if (parent[j] < 0 || L.i[q] < parent[j]) parent[j] = L.i[q];
+  std::vector<int> parent(static_cast<std::size_t>(L.size()), -1);
+  for (int j = 0; j < L.size(); ++j)
+    for (int q = 1; q < L.length[j]; ++q)
+      if (parent[j] < 0 || L.rows[j][q] < parent[j]) parent[j] = L.rows[j][q];
   return parent;
 }
 
@@ -33,9 +33,9 @@ std::vector<int> elimination_tree(const LowerColumns<Scalar>& L) {
 /// rows on top: then the top, solved first, and each part read only what is already solved.
 template <class Scalar>
 bool parts_are_closed(const LowerColumns<Scalar>& L, const std::vector<int>& part_of) {
-  for (int j = 0; j < L.n; ++j)
-    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q) {
-      const int other = part_of[static_cast<std::size_t>(L.i[q])];
+  for (int j = 0; j < L.size(); ++j)
+    for (int q = 1; q < L.length[j]; ++q) {
+      const int other = part_of[static_cast<std::size_t>(L.rows[j][q])];
       if (other != -1 && other != part_of[static_cast<std::size_t>(j)]) return false;
     }
   return true;
@@ -45,13 +45,13 @@ bool parts_are_closed(const LowerColumns<Scalar>& L, const std::vector<int>& par
 
 template <class Scalar>
 SubstitutionSplit split_substitution(const LowerColumns<Scalar>& L, int min_columns) {
-  const int n = L.n;
+  const int n = L.size();
   if (n < std::max(min_columns, 2)) return {};
   const std::vector<int> parent = elimination_tree(L);
   std::vector<long> entries(static_cast<std::size_t>(n)), below(static_cast<std::size_t>(n));
   std::vector<int> first_child(static_cast<std::size_t>(n), -1), next_sibling(static_cast<std::size_t>(n), -1);
   long total = 0;
-  for (int j = 0; j < n; ++j) total += below[j] = entries[j] = L.p[j + 1] - L.p[j];
+  for (int j = 0; j < n; ++j) total += below[j] = entries[j] = L.length[j];
   for (int j = 0; j < n; ++j)
     if (parent[j] >= 0) below[parent[j]] += below[j];  // parent > j: its subtree is complete when it is reached
   for (int j = n - 1; j >= 0; --j)
@@ -94,22 +94,26 @@ SubstitutionSplit split_substitution(const LowerColumns<Scalar>& L, int min_colu
 
 template <class Scalar>
 void forward_substitute(const LowerColumns<Scalar>& L, int first, Scalar* y) {
-  for (int j = first; j < L.n; ++j) {
+  for (int j = first; j < L.size(); ++j) {
     if (y[j] == Scalar(0)) continue;
-    const Scalar yj = y[j] /= std::real(L.x[L.p[j]]);
-    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q) y[L.i[q]] -= L.x[q] * yj;
+    const int* rows = L.rows[j];
+    const Scalar* v = L.values[j];
+    const Scalar yj = y[j] /= std::real(v[0]);
+    for (int q = 1; q < L.length[j]; ++q) y[rows[q]] -= v[q] * yj;
   }
 }
 
 template <class Scalar>
 void back_substitute(const LowerColumns<Scalar>& L, const SubstitutionSplit& split, Scalar* y) {
   const auto column = [&](int j) {
+    const int* rows = L.rows[j];
+    const Scalar* v = L.values[j];
     Scalar s = y[j];
-    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q) s -= conjugate(L.x[q]) * y[L.i[q]];
-    y[j] = s / std::real(L.x[L.p[j]]);
+    for (int q = 1; q < L.length[j]; ++q) s -= conjugate(v[q]) * y[rows[q]];
+    y[j] = s / std::real(v[0]);
   };
   if (split.empty()) {
-    for (int j = L.n - 1; j >= 0; --j) column(j);
+    for (int j = L.size() - 1; j >= 0; --j) column(j);
     return;
   }
   for (const int j : split.top) column(j);

@@ -12,14 +12,24 @@
 
 namespace quadcover {
 
-/// A lower triangular factor L of P A Pᵀ = L Lᴴ by columns: column j holds rows i[p[j]] .. i[p[j+1]-1], the diagonal
-/// first (real, positive). Non-owning.
+/// A lower triangular factor L of P A Pᵀ = L Lᴴ by columns, read in place: column j holds length[j] entries, rows
+/// rows[j][0 ..] and values values[j][0 ..], the diagonal first (real, positive). A supernodal factor's column is a
+/// slice of its supernode's rows and block; a compressed one's a slice of its arrays (compressed()).
 template <class Scalar>
 struct LowerColumns {
-  int n = 0;
-  const int* p = nullptr;
-  const int* i = nullptr;
-  const Scalar* x = nullptr;
+  std::vector<const int*> rows;
+  std::vector<const Scalar*> values;
+  std::vector<int> length;
+  int size() const { return static_cast<int>(length.size()); }  ///< \pre none
+  /// Column j at p[j] .. p[j+1]-1 of i and x. \pre p has n + 1 entries.
+  static LowerColumns compressed(int n, const int* p, const int* i, const Scalar* x) {
+    LowerColumns L;
+    L.rows.resize(static_cast<std::size_t>(n));
+    L.values.resize(static_cast<std::size_t>(n));
+    L.length.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) L.rows[j] = i + p[j], L.values[j] = x + p[j], L.length[j] = p[j + 1] - p[j];
+    return L;
+  }
 };
 
 /// Factors of fewer columns are substituted in one pass (two cores do not pay below).
@@ -46,20 +56,20 @@ SubstitutionSplit split_substitution(const LowerColumns<Scalar>& L, int min_colu
 void run_parts_side_by_side(const std::function<void(int)>& part);
 
 /// y := L⁻¹ y from column `first` on, skipping columns whose entry is still zero (they change nothing below them):
-/// a right-hand side of few entries costs their elimination-tree paths. \pre y has L.n entries; 0 <= first.
+/// a right-hand side of few entries costs their elimination-tree paths. \pre y has L.size() entries; 0 <= first.
 template <class Scalar>
 void forward_substitute(const LowerColumns<Scalar>& L, int first, Scalar* y);
 
 /// y := L⁻¹ y by `split` on two cores (not empty): each part's columns ascending, their updates of top rows summed
 /// apart and added part by part, then the top ascending. The same numbers whatever the threads, not bitwise one
-/// pass's (the top rows sum in another order). `values(j)` points to column j's values (L.x is not read: a factor
-/// may have columns swapped in). \pre y has L.n entries; split was made for L's pattern.
+/// pass's (the top rows sum in another order). `values(j)` points to column j's values (L.values is not read: a
+/// factor may have columns swapped in). \pre y has L.size() entries; split was made for L's pattern.
 template <class Scalar, class ColumnValues>
 void forward_substitute_split(const LowerColumns<Scalar>& L, const SubstitutionSplit& split, ColumnValues values,
                               Scalar* y);
 
 /// y := L⁻ᴴ y, by `split` on two cores when it is not empty (the same numbers as one pass).
-/// \pre y has L.n entries; split was made for L or is empty.
+/// \pre y has L.size() entries; split was made for L or is empty.
 template <class Scalar>
 void back_substitute(const LowerColumns<Scalar>& L, const SubstitutionSplit& split, Scalar* y);
 
@@ -79,9 +89,10 @@ void forward_substitute_split(const LowerColumns<Scalar>& L, const SubstitutionS
   const auto column = [&](int j, Scalar* top_sums) {
     const Scalar* v = values(j);
     const Scalar yj = y[j] /= std::real(v[0]);
-    for (int q = L.p[j] + 1; q < L.p[j + 1]; ++q) {
-      const int row = L.i[q], t = top_sums ? split.top_position[static_cast<std::size_t>(row)] : -1;
-      (t >= 0 ? top_sums[t] : y[row]) -= column_product(v[q - L.p[j]], yj);
+    const int* rows = L.rows[j];
+    for (int q = 1; q < L.length[j]; ++q) {
+      const int row = rows[q], t = top_sums ? split.top_position[static_cast<std::size_t>(row)] : -1;
+      (t >= 0 ? top_sums[t] : y[row]) -= column_product(v[q], yj);
     }
   };
   run_parts_side_by_side([&](int part) {

@@ -254,16 +254,31 @@ class CholmodBackend {
                                                             Eigen::OuterStride<>(static_cast<Eigen::Index>(out->d)));
   }
 
-  /// The factor converted in place to simplicial LLᴴ with packed, monotonic columns (diagonal first).
-  void make_simplicial(const std::string& stage) {
-    if (!cholmod_change_factor(xtype(), 1, 0, 1, 1, factor_, &common_) || factor_->is_super)
-      throw NumericalError(
-          stage, "CHOLMOD could not make the factor simplicial (status " + std::to_string(common_.status) + ")");
-  }
-  /// \pre make_simplicial() was called.
-  LowerColumns<Scalar> columns() const {
-    return {static_cast<int>(factor_->n), static_cast<const int*>(factor_->p), static_cast<const int*>(factor_->i),
-            static_cast<const Scalar*>(factor_->x)};
+  /// The factor's columns read in place, no copy: column j of supernode k (columns super[k] .. super[k+1]-1, its rows
+  /// s[pi[k] ..], a column-major block at px[k]) starts at its diagonal, row c = j - super[k] of the block.
+  /// \throw NumericalError naming `stage` if the factor is not supernodal (compute() always makes it so).
+  LowerColumns<Scalar> columns(const std::string& stage) const {
+    const int n = static_cast<int>(factor_->n);
+    if (!factor_->is_super) throw NumericalError(stage, "the CHOLMOD factor is not supernodal");
+    LowerColumns<Scalar> L;
+    L.rows.resize(static_cast<std::size_t>(n));
+    L.values.resize(static_cast<std::size_t>(n));
+    L.length.resize(static_cast<std::size_t>(n));
+    const int* super = static_cast<const int*>(factor_->super);
+    const int* pi = static_cast<const int*>(factor_->pi);
+    const int* px = static_cast<const int*>(factor_->px);
+    const int* rows = static_cast<const int*>(factor_->s);
+    const Scalar* x = static_cast<const Scalar*>(factor_->x);
+    for (std::size_t k = 0; k < factor_->nsuper; ++k) {
+      const int height = pi[k + 1] - pi[k];
+      for (int j = super[k]; j < super[k + 1]; ++j) {
+        const int c = j - super[k];
+        L.rows[j] = rows + pi[k] + c;
+        L.values[j] = x + px[k] + static_cast<std::ptrdiff_t>(c) * height + c;
+        L.length[j] = height - c;
+      }
+    }
+    return L;
   }
   const int* permutation() const { return static_cast<const int*>(factor_->Perm); }  ///< perm[new] = old
 
@@ -301,8 +316,8 @@ struct SparseCholesky<Scalar>::Impl {
 #ifdef QUADCOVER_HAVE_CHOLMOD
   std::optional<CholmodBackend<Scalar>> cholmod;
 #endif
-  /// Set by prepare_sparse_solves(), cleared by every factorization: the factor by columns, its order both ways and
-  /// the split of its back substitution.
+  /// Set by prepare_sparse_solves(), cleared by every factorization: the factor's columns (read in place), its order
+  /// both ways and the split of its back substitution.
   LowerColumns<Scalar> columns;
   std::vector<int> old_of_new, new_of_old;
   SubstitutionSplit substitution_split;
@@ -468,11 +483,11 @@ void SparseCholesky<Scalar>::prepare_sparse_solves() {
   const int n = static_cast<int>(im.n);
   im.old_of_new.resize(static_cast<std::size_t>(n));
   im.new_of_old.resize(static_cast<std::size_t>(n));
-  if (n == 0) return void(im.columns = LowerColumns<Scalar>{});
+  im.columns = {};
+  if (n == 0) return;
 #ifdef QUADCOVER_HAVE_CHOLMOD
   if (im.backend == CholeskyBackend::Cholmod) {
-    im.cholmod->make_simplicial(im.stage);
-    im.columns = im.cholmod->columns();
+    im.columns = im.cholmod->columns(im.stage);
     std::copy(im.cholmod->permutation(), im.cholmod->permutation() + n, im.old_of_new.begin());
   }
 #endif
@@ -480,11 +495,11 @@ void SparseCholesky<Scalar>::prepare_sparse_solves() {
     const Matrix& L = im.eigen.matrixL().nestedExpression();  // compressed, the diagonal first in each column
     const auto& to_new = im.eigen.permutationP().indices();   // (P b)[to_new[k]] = b[k]
     for (int k = 0; k < n; ++k) im.old_of_new[static_cast<std::size_t>(to_new[k])] = k;
-    im.columns = {n, L.outerIndexPtr(), L.innerIndexPtr(), L.valuePtr()};
+    im.columns = LowerColumns<Scalar>::compressed(n, L.outerIndexPtr(), L.innerIndexPtr(), L.valuePtr());
   }
   for (int k = 0; k < n; ++k) im.new_of_old[static_cast<std::size_t>(im.old_of_new[static_cast<std::size_t>(k)])] = k;
   for (int j = 0; j < n; ++j)
-    if (im.columns.p[j + 1] <= im.columns.p[j] || im.columns.i[im.columns.p[j]] != j)
+    if (im.columns.length[j] < 1 || im.columns.rows[j][0] != j)
       throw NumericalError(im.stage, "the factor's column " + std::to_string(j) + " does not start at its diagonal");
   im.substitution_split = split_substitution(im.columns, kSplitSubstitutionMinColumns);
 }
@@ -493,7 +508,7 @@ template <class Scalar>
 typename SparseCholesky<Scalar>::Vector SparseCholesky<Scalar>::solve_sparse(std::span<const int> rows,
                                                                              std::span<const Scalar> values) const {
   const Impl& im = *impl_;
-  if (im.n < 0 || im.new_of_old.size() != static_cast<std::size_t>(im.n) || (im.n > 0 && !im.columns.p))
+  if (im.n < 0 || im.new_of_old.size() != static_cast<std::size_t>(im.n) || im.columns.size() != im.n)
     throw NumericalError(im.stage, "solve_sparse() called without prepare_sparse_solves() after the factorization");
   if (rows.size() != values.size())
     throw NumericalError(im.stage, "solve_sparse(): " + std::to_string(rows.size()) + " rows but " +

@@ -64,9 +64,9 @@ class SparseCholesky {
   /// y = L⁻¹ P b for the factorization Pᵀ L Lᴴ P = A, so that bᴴ A⁻¹ b = ‖y‖² (forward substitution only; the
   /// energy E_D of thesis 6.2.1 is ½‖y‖²). \throw NumericalError if nothing was factored or b has the wrong size.
   Vector forward_solve(const Vector& b) const;
-  /// Makes the factor one that solve_sparse() walks column by column: CHOLMOD's supernodal factor is converted in
-  /// place to simplicial LLᴴ (no copy is kept; solve() then uses it too, and a later refactorize() factors
-  /// simplicially); Eigen's already is. \throw NumericalError if nothing was factored or the conversion fails.
+  /// Lets solve_sparse() walk the factor column by column, read in place (CHOLMOD's supernodal blocks, Eigen's
+  /// compressed columns; no copy): pointers per column and the split of the substitutions. Needed again after
+  /// every factorization. \throw NumericalError if nothing was factored.
   void prepare_sparse_solves();
   /// x with A x = r for an r that is zero but at `rows` (r[rows[k]] += values[k]): the forward substitution skips
   /// the columns where it is still zero, so it visits only the elimination-tree paths from those rows; the back

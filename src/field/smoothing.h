@@ -58,7 +58,7 @@ class FrameSmoother {
   /// \pre set_input() was called. \throw NumericalError if the solve fails.
   Eigen::VectorXd solve() const;
   /// Lets solve_after() solve with few right-hand side entries (SparseCholesky::prepare_sparse_solves: the factor of
-  /// A becomes simplicial, and solve() uses it too). \throw NumericalError if the conversion fails.
+  /// A read by columns in place). \throw NumericalError if nothing was factored.
   void prepare_sparse_solves();
   /// The minimizer of (5.3) for the matching after `changes` (m_e += delta, in order), given `alpha`, the minimizer
   /// for the current matching: α + A⁻¹δb, where δb is nonzero at the changed edges' faces only (5.2.2), so the

@@ -115,7 +115,7 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   }
   timings_.update += seconds_since(t0);
   t0 = SteadyClock::now();
-  const Eigen::VectorXcd& b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
+  const Eigen::VectorXcd b = rhs(pending_alpha_);  // -curl* of the re-smoothed field with the new layers
   timings_.curl += seconds_since(t0);
   for (auto it = saved.rbegin(); it != saved.rend(); ++it) mu_(std::get<0>(*it), std::get<1>(*it)) = std::get<2>(*it);
   for (const auto& c : changes)
@@ -161,17 +161,15 @@ Complex CurlEnergy::contribution(int f, int k, double alpha, int mu) const {
 
 // -curl* of the field e^{iα}X⁰ with the current layers: one rotation per face (not one per face edge). The face
 // terms are made on both cores; each edge then sums its two in face order, as one loop over the faces would.
-const Eigen::VectorXcd& CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
-  Eigen::MatrixX3cd& terms = face_terms_;
-  terms.resize(mesh_->num_faces(), 3);
+Eigen::VectorXcd CurlEnergy::rhs(const Eigen::VectorXd& alpha) const {
+  Eigen::MatrixX3cd terms(mesh_->num_faces(), 3);
   tbb::parallel_for(tbb::blocked_range<int>(0, mesh_->num_faces(), 4096), [&](const tbb::blocked_range<int>& faces) {
     for (int f = faces.begin(); f < faces.end(); ++f) {
       const Complex X = rotated_frame(f, alpha[f]);
       for (int k = 0; k < 3; ++k) terms(f, k) = term(f, k, X, mu_(f, k));
     }
   });
-  Eigen::VectorXcd& b = curl_rhs_;
-  b.setZero(mesh_->num_edges());
+  Eigen::VectorXcd b = Eigen::VectorXcd::Zero(mesh_->num_edges());
   for (int f = 0; f < mesh_->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) b[mesh_->FE()(f, k)] += terms(f, k);
   for (int e = 0; e < mesh_->num_edges(); ++e)

@@ -103,9 +103,7 @@ class CurlEnergy {
   mutable bool solution_valid_ = false;
   const Eigen::VectorXcd& solution() const;
   Eigen::SparseMatrix<Complex> shifted_stiffness() const;
-  /// -curl* of e^{iα}X⁰ with the current layers, into curl_rhs_ (kept with face_terms_ between calls: no fresh
-  /// pages every evaluation).
-  const Eigen::VectorXcd& rhs(const Eigen::VectorXd& alpha) const;
+  Eigen::VectorXcd rhs(const Eigen::VectorXd& alpha) const;
 
   const Mesh* mesh_;
   FrameSmoother* smoother_;
@@ -122,9 +120,7 @@ class CurlEnergy {
   std::vector<MatchingChange> pending_;
   Eigen::VectorXd pending_alpha_;
   bool pending_valid_ = false;
-  bool sparse_solves_ready_ = false;  // the smoother's factor prepared for FrameSmoother::solve_after
-  mutable Eigen::MatrixX3cd face_terms_;
-  mutable Eigen::VectorXcd curl_rhs_;
+  bool sparse_solves_ready_ = false;   // the smoother's factor prepared for FrameSmoother::solve_after
   mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
 

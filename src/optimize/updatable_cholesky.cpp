@@ -123,7 +123,8 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
       throw NumericalError("cholesky", "matrix is not positive definite (n = " + std::to_string(n) + ")");
   }
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
-  split_ = split_substitution(LowerColumns<Complex>{n, col_ptr(), row_idx(), values()}, kSplitSubstitutionMinColumns);
+  columns_ = LowerColumns<Complex>::compressed(n, col_ptr(), row_idx(), values());
+  split_ = split_substitution(columns_, kSplitSubstitutionMinColumns);
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);
   x_norm2_ = 0;
@@ -335,7 +336,7 @@ double FactorTrial::evaluate_full(const UpdatableCholesky& F, const Eigen::Vecto
   Complex* x = xfull_.data();
   const auto column_values = [&](int j) { return slot_[j] >= 0 ? vals_.data() + slot_[j] : Lx + Lp[j]; };
   if (!F.substitution_split().empty()) {
-    forward_substitute_split(LowerColumns<Complex>{n, Lp, Li, Lx}, F.substitution_split(), column_values, x);
+    forward_substitute_split(F.columns_, F.substitution_split(), column_values, x);
   } else {
     for (int j = 0; j < n; ++j) {
       const Complex* col = column_values(j);
