@@ -481,6 +481,7 @@ void SparseCholesky<Scalar>::prepare_sparse_solves() {
   Impl& im = *impl_;
   if (im.n < 0) throw NumericalError(im.stage, "prepare_sparse_solves() called before compute()");
   const int n = static_cast<int>(im.n);
+  if (im.columns.size() == n && im.new_of_old.size() == static_cast<std::size_t>(n)) return;  // since the factorization
   im.old_of_new.resize(static_cast<std::size_t>(n));
   im.new_of_old.resize(static_cast<std::size_t>(n));
   im.columns = {};

@@ -66,7 +66,7 @@ class SparseCholesky {
   Vector forward_solve(const Vector& b) const;
   /// Lets solve_sparse() walk the factor column by column, read in place (CHOLMOD's supernodal blocks, Eigen's
   /// compressed columns; no copy): pointers per column and the split of the substitutions. Needed again after
-  /// every factorization. \throw NumericalError if nothing was factored.
+  /// every factorization; once since, it returns at once. \throw NumericalError if nothing was factored.
   void prepare_sparse_solves();
   /// x with A x = r for an r that is zero but at `rows` (r[rows[k]] += values[k]): the forward substitution skips
   /// the columns where it is still zero, so it visits only the elimination-tree paths from those rows; the back

@@ -178,8 +178,6 @@ Eigen::VectorXd FrameSmoother::solve() const {
   return alpha;
 }
 
-void FrameSmoother::prepare_sparse_solves() { solver_->cholesky.prepare_sparse_solves(); }
-
 Eigen::VectorXd FrameSmoother::solve_after(const Eigen::VectorXd& alpha, std::span<const MatchingChange> changes) {
   std::vector<int> rows;  // the unknowns whose b the changes touch
   std::vector<std::pair<int, double>> saved_theta;
@@ -200,6 +198,7 @@ Eigen::VectorXd FrameSmoother::solve_after(const Eigen::VectorXd& alpha, std::sp
   for (const MatchingChange& c : changes)
     if (c.delta != 0 && !mesh_->is_boundary_edge(c.edge)) matching_[c.edge] -= c.delta;
   for (auto it = saved_theta.rbegin(); it != saved_theta.rend(); ++it) theta_[it->first] = it->second;
+  solver_->cholesky.prepare_sparse_solves();  // at the first call: a smoother never asked keeps its factor untouched
   const Eigen::VectorXd x = solver_->cholesky.solve_sparse(rows, delta);
   Eigen::VectorXd result = alpha;
   for (std::size_t i = 0; i < unknowns_.size(); ++i) result[unknowns_[i]] += x[static_cast<Eigen::Index>(i)];

@@ -57,14 +57,12 @@ class FrameSmoother {
   /// The minimizer α of (5.3) for the current matching: #F, 0 at fixed faces.
   /// \pre set_input() was called. \throw NumericalError if the solve fails.
   Eigen::VectorXd solve() const;
-  /// Lets solve_after() solve with few right-hand side entries (SparseCholesky::prepare_sparse_solves: the factor of
-  /// A read by columns in place). \throw NumericalError if nothing was factored.
-  void prepare_sparse_solves();
   /// The minimizer of (5.3) for the matching after `changes` (m_e += delta, in order), given `alpha`, the minimizer
   /// for the current matching: α + A⁻¹δb, where δb is nonzero at the changed edges' faces only (5.2.2), so the
-  /// forward substitution visits only their elimination-tree paths. Equal to applying the changes and solve() up to
-  /// round-off; the matching, θ and b are left exactly as they were.
-  /// \pre set_input() and prepare_sparse_solves() were called; alpha has #F entries; every change names an edge.
+  /// forward substitution visits only their elimination-tree paths (the factor of A is prepared for that at the first
+  /// call: SparseCholesky::prepare_sparse_solves). Equal to applying the changes and solve() up to round-off; the
+  /// matching, θ and b are left exactly as they were.
+  /// \pre set_input() was called; alpha has #F entries; every change names an edge.
   /// \throw NumericalError if the solve fails.
   Eigen::VectorXd solve_after(const Eigen::VectorXd& alpha, std::span<const MatchingChange> changes);
   /// X_t = e^{iα_t} X⁰_t with the current matching (a cross field). \pre set_input() was called; alpha has #F entries.

@@ -93,10 +93,6 @@ double CurlEnergy::evaluate(std::span<const MatchingChange> changes) {
   pending_.assign(changes.begin(), changes.end());
   pending_valid_ = false;
   // min E(α) with the new matching (5.2.2), from α and the changed entries of b; the smoother stays as it is.
-  if (!sparse_solves_ready_) {  // at the first evaluation: a job without any keeps the factor of A as it is
-    smoother_->prepare_sparse_solves();
-    sparse_solves_ready_ = true;
-  }
   pending_alpha_ = smoother_->solve_after(alpha_, changes);  // from the few entries of b the changes move
   timings_.smoothing += seconds_since(t0);
   // Star changes one edge at a time (a path may cross the same face twice: layers are updated as we go).

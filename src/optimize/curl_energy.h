@@ -120,7 +120,6 @@ class CurlEnergy {
   std::vector<MatchingChange> pending_;
   Eigen::VectorXd pending_alpha_;
   bool pending_valid_ = false;
-  bool sparse_solves_ready_ = false;   // the smoother's factor prepared for FrameSmoother::solve_after
   mutable CurlEnergyTimings timings_;  // distortion_shares() is const but timed
 };
 

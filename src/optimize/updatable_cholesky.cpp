@@ -125,6 +125,7 @@ UpdatableCholesky::UpdatableCholesky(Eigen::SparseMatrix<Complex> A, Route route
   parent_.assign(impl_->S->parent, impl_->S->parent + n);
   columns_ = LowerColumns<Complex>::compressed(n, col_ptr(), row_idx(), values());
   split_ = split_substitution(columns_, kSplitSubstitutionMinColumns);
+  if (split_.empty()) columns_ = {};  // read by the split forward solve only
   b_ = Eigen::VectorXcd::Zero(n);
   x_ = Eigen::VectorXcd::Zero(n);
   x_norm2_ = 0;

@@ -102,7 +102,7 @@ class UpdatableCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<int> perm_, pinv_, parent_;
-  LowerColumns<Complex> columns_;  // L's columns for the split forward solve (its pattern never changes)
+  LowerColumns<Complex> columns_;  // L's columns for the split forward solve (its pattern never changes); else empty
   SubstitutionSplit split_;
   Eigen::VectorXcd b_;  // permuted: b_[new] = b[perm[new]]
   Eigen::VectorXcd x_;  // permuted forward solution

@@ -100,7 +100,6 @@ TEST(Smoothing, ResolveAfterMatchingChangeEqualsFreshSolve) {
 TEST(Smoothing, SolveAfterChangesEqualsTheChangedSmoothersSolve) {
   const Propagated s = propagated("fertility_genus4");
   FrameSmoother smoother(s.mesh, s.field, s.stability, s.trusted, {}, 0.5);
-  smoother.prepare_sparse_solves();
   const Eigen::VectorXd alpha = smoother.solve();
   const Eigen::VectorXd theta = smoother.curvature();
   std::vector<MatchingChange> changes;
