@@ -194,6 +194,21 @@ def thin_handle():
     return torus(1.0, 0.04, 400, 12)
 
 
+def pinched_handle():
+    # Hard: a ring of tube radius 0.3 pinched to 0.03 over a quarter of its length (a thin handle on a thick body,
+    # 24 triangles around): the default h, set by the thick part, is longer than a third of the thin part's girth.
+    n, m = 200, 24
+    u, v = np.meshgrid(2 * np.pi * np.arange(n) / n, 2 * np.pi * np.arange(m) / m, indexing="ij")
+    t = np.clip((np.minimum(u, 2 * np.pi - u) - 0.4) / 0.4, 0, 1)
+    r = 0.03 + 0.27 * t * t * (3 - 2 * t)
+    V = np.stack([(1 + r * np.cos(v)) * np.cos(u), (1 + r * np.cos(v)) * np.sin(u), r * np.sin(v)], -1)
+    i, j = np.meshgrid(np.arange(n), np.arange(m), indexing="ij")
+    a, b = i * m + j, (i + 1) % n * m + j
+    c, d = (i + 1) % n * m + (j + 1) % m, i * m + (j + 1) % m
+    F = np.concatenate([np.stack([a, b, c], -1), np.stack([a, c, d], -1)]).reshape(-1, 3)
+    return V.reshape(-1, 3), F
+
+
 def plate_tiny_holes():
     # Hard: 12 tiny octagonal holes (radius 0.03) in an open 2 x 2 plate: 13 boundaries to align to.
     n, h, rng, centers = 40, 0.05, np.random.default_rng(3), []
@@ -390,6 +405,7 @@ CASES = {
     "coarse_close_cones": (coarse_close_cones, (0, 0, 1), "outward"),
     "slivers_cylinder": (slivers_cylinder, (0, 0, 1), "outward"),
     "thin_handle": (thin_handle, (0, 1, 1), "outward"),
+    "pinched_handle": (pinched_handle, (0, 1, 1), "outward"),
     "plate_tiny_holes": (plate_tiny_holes, (13, 0, 1), "open"),
     "jagged_disk": (jagged_disk, (1, 0, 1), "open"),
     "noisy_sphere": (noisy_sphere, (0, 0, 1), "outward"),

@@ -13,18 +13,45 @@
 
 namespace quadcover {
 
-/// A shape thinner than the default quad edge (a thin tube, a narrow strip: the default h is twice the mean edge
-/// length, param/density.h) folds most of its map at the default density, or leaves too few quads to extract. Such
-/// a first attempt (non-positive triangles and triangles the fold refinement added, pipeline/fold_refinement.h, more
-/// than kUnderResolvedShare of the input's triangles together, while the map holds fewer quads than the input has
-/// triangles: a triangulation coarser than the grid folds for other reasons; or DensityTooCoarse) is made
+/// A shape thinner than the default quad edge (a thin tube or handle, a narrow strip: the default h is twice the mean
+/// edge length, param/density.h) folds most of its map at the default density, leaves too few quads to extract, or
+/// gives a quad mesh that falls apart there. Such a first attempt (see under_resolved; or DensityTooCoarse) is made
 /// again with the default edge factor halved, up to kCoarseHalvings times; the kept job says so in a warning. A
 /// density the user gave is never changed, and with no validity retries (`once_retries` 0) attempt 0 is kept.
 inline constexpr int kCoarseHalvings = 5;
 inline constexpr double kUnderResolvedShare = 0.25;
 
-/// Attempt 0 of retry_until_valid with the halvings above, and its Validity by `judge`. When a finer attempt is
-/// refused (the memory budget, pipeline/memory_budget.h), the coarser one is kept and a warning says why.
+/// Why a job at the default density is made again at half its quad edge, or "" when it is not: non-positive
+/// triangles and triangles the fold refinement added (pipeline/fold_refinement.h) more than kUnderResolvedShare of
+/// the input's triangles together, or a quad mesh whose components, genus or boundary loops differ from the input's;
+/// either only while the map holds fewer quads than the input has triangles (a triangulation coarser than the grid
+/// folds, and a finer grid does not mend what the triangles cannot resolve). \pre none
+template <class Job>
+std::string under_resolved(Job& job, const Validity& v) {
+  const ParamJob& p = param_job(job);
+  const int faces = static_cast<int>(p.map.uv.rows()) - p.refinement.added_faces;
+  if (map_quads(p.map) >= faces) return "";
+  const int added = p.fold_refinement.added_faces;
+  if (v.non_positive + added > kUnderResolvedShare * faces)
+    return std::to_string(v.non_positive) + " of " + std::to_string(faces) + " triangles folded, " +
+           std::to_string(added) + " added around folds";
+  if (v.topology_changes > 0) return "the quad mesh's topology differs from the input's";
+  return "";
+}
+
+/// The warning of a job made `halvings` times at half the default quad edge (none for 0). \pre halvings >= 0
+template <class Job>
+void say_made_finer(Job& job, int halvings) {
+  if (halvings == 0) return;
+  ParamJob& p = param_job(job);
+  p.warnings.push_back("the default density was too coarse for this shape (a part thinner than the quad edge): made " +
+                       std::to_string(1 << (2 * halvings)) + " times finer, h = " + std::to_string(p.map.edge_length) +
+                       " (pass --faces or --edge-length to choose)");
+}
+
+/// Attempt 0 of retry_until_valid with the halvings above, and its Validity by `judge`: the most valid of the
+/// attempts made (the finer one on a tie). When a finer attempt is refused (the memory budget,
+/// pipeline/memory_budget.h), the best before it is kept and a warning says why.
 /// \throw as run (DensityTooCoarse after the last halving).
 template <class Run, class Judge>
 auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judge& judge, ProgressSink& progress) {
@@ -32,40 +59,33 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
   const bool adjustable = density.edge_length <= 0 && density.target_quads <= 0 && once_retries > 0;
   PipelineOptions o = once;
   using Judged = std::pair<decltype(run(once)), Validity>;
-  std::optional<Judged> coarser;  // the attempt before, while a finer one runs
+  std::optional<Judged> best;  // while a finer attempt runs
+  int best_halvings = 0;
   for (int halvings = 0;; ++halvings) {
     const bool last = !adjustable || halvings == kCoarseHalvings || progress.skip_improvements();
     std::string why;
     try {
       auto job = run(o);
       const Validity v = judge(job);
-      const int faces = static_cast<int>(param_job(job).map.uv.rows()) - param_job(job).refinement.added_faces;
-      const int added = param_job(job).fold_refinement.added_faces, trouble = v.non_positive + added;
-      if (last || trouble <= kUnderResolvedShare * faces || map_quads(param_job(job).map) >= faces) {
-        if (halvings > 0)
-          param_job(job).warnings.push_back(
-              "the default density was too coarse for this shape (a part thinner than the quad edge): made " +
-              std::to_string(1 << (2 * halvings)) + " times finer, h = " +
-              std::to_string(param_job(job).map.edge_length) + " (pass --faces or --edge-length to choose)");
-        return Judged{std::move(job), v};
-      }
-      why = std::to_string(v.non_positive) + " of " + std::to_string(faces) + " triangles folded, " +
-            std::to_string(added) + " added around folds";
-      coarser.emplace(std::move(job), v);
+      why = last ? "" : under_resolved(job, v);
+      if (!best || !(best->second < v)) best.emplace(std::move(job), v), best_halvings = halvings;
+      if (why.empty()) break;
     } catch (const InputError& e) {
       const bool too_coarse = dynamic_cast<const DensityTooCoarse*>(&e) != nullptr;
-      if (!coarser && (last || !too_coarse)) throw;
-      if (coarser) {
-        param_job(coarser->first)
+      if (!best && (last || !too_coarse)) throw;
+      if (best) {
+        param_job(best->first)
             .warnings.push_back(std::string("the default density is too coarse for this shape, and ") +
                                 "a finer one was refused: " + e.what());
-        return std::move(*coarser);
+        break;
       }
       why = e.what();
     }
     o.param.density.default_edge_factor /= 2;
     progress.report("retry", -1, "default density too coarse (" + why + "): attempt at half the quad edge");
   }
+  say_made_finer(best->first, best_halvings);
+  return std::move(*best);
 }
 
 /// FieldStyle::Auto's fallback: when the first attempt ran with the Smooth field (a closed surface) and is not valid

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "param/seams.h"
@@ -169,6 +170,45 @@ TEST(HardCases, SmallHolesKeptAtTheDefaultDensity) {
   EXPECT_TRUE(said(held, "the default density was not made finer for boundary loop " +
                              std::to_string(job.param.density.raised.loop)));
   EXPECT_FALSE(held.surface.same_topology);
+}
+
+/// A ring (R = 1) whose tube (radius 0.3) pinches to radius 0.03 over a quarter of its length, like a thin handle
+/// on a thick body: 200 × 24 quads split into triangles. The default h, twice the mean edge length, is longer than
+/// a third of the thin part's circumference.
+Mesh pinched_torus() {
+  const int n_major = 200, n_minor = 24;
+  Eigen::MatrixX3d V(n_major * n_minor, 3);
+  Eigen::MatrixX3i F(2 * n_major * n_minor, 3);
+  const auto id = [&](int i, int j) { return (i % n_major) * n_minor + j % n_minor; };
+  for (int i = 0; i < n_major; ++i) {
+    const double u = 2 * std::numbers::pi * i / n_major, from_pinch = std::min(u, 2 * std::numbers::pi - u);
+    const double t = std::clamp((from_pinch - 0.4) / 0.4, 0.0, 1.0), r = 0.03 + 0.27 * t * t * (3 - 2 * t);
+    for (int j = 0; j < n_minor; ++j) {
+      const double v = 2 * std::numbers::pi * j / n_minor;
+      V.row(id(i, j)) << (1 + r * std::cos(v)) * std::cos(u), (1 + r * std::cos(v)) * std::sin(u), r * std::sin(v);
+      F.row(2 * id(i, j)) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
+      F.row(2 * id(i, j) + 1) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
+    }
+  }
+  return Mesh::from_triangles(V, F);
+}
+
+// A part thinner than the default quad edge that folds nothing: at the default density its quads fall apart (the
+// topology changes), so the job is made again at half the quad edge (pipeline/retry_until_valid.h under_resolved)
+// and says so; a density the user gives is kept, with the change of topology reported.
+TEST(HardCases, AThinHandleMakesTheDefaultDensityFiner) {
+  const Mesh mesh = pinched_torus();
+  const RemeshJob job = expect_valid_job(mesh, PipelineOptions{});
+  EXPECT_EQ(job.surface.output.components, 1);
+  EXPECT_TRUE(std::any_of(job.param.warnings.begin(), job.param.warnings.end(), [](const std::string& w) {
+    return w.find(
+               "the default density was too coarse for this shape (a part thinner than the quad edge): made 4 times") !=
+           std::string::npos;
+  }));
+  PipelineOptions given;  // the density of the first attempt, not made finer
+  given.param.density.edge_length = 2 * job.param.map.edge_length;
+  given.validity_retries = 0;
+  EXPECT_FALSE(remesh_mesh(mesh, given).surface.same_topology);
 }
 
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned
