@@ -209,6 +209,16 @@ def pinched_handle():
     return V.reshape(-1, 3), F
 
 
+def fan_disk():
+    # Hard: a flat disk fanned around its one interior vertex (600 triangles, a planar CAD face): the index +1 has no
+    # other interior vertex to be split over.
+    n = 600
+    t = 2 * np.pi * np.arange(n) / n
+    V = np.concatenate([[[0.0, 0.0, 0.0]], np.stack([np.cos(t), np.sin(t), np.zeros(n)], -1)])
+    F = np.array([(0, 1 + k, 1 + (k + 1) % n) for k in range(n)])
+    return V, F
+
+
 def plate_tiny_holes():
     # Hard: 12 tiny octagonal holes (radius 0.03) in an open 2 x 2 plate: 13 boundaries to align to.
     n, h, rng, centers = 40, 0.05, np.random.default_rng(3), []
@@ -406,6 +416,7 @@ CASES = {
     "slivers_cylinder": (slivers_cylinder, (0, 0, 1), "outward"),
     "thin_handle": (thin_handle, (0, 1, 1), "outward"),
     "pinched_handle": (pinched_handle, (0, 1, 1), "outward"),
+    "fan_disk": (fan_disk, (1, 0, 1), "open"),
     "plate_tiny_holes": (plate_tiny_holes, (13, 0, 1), "open"),
     "jagged_disk": (jagged_disk, (1, 0, 1), "open"),
     "noisy_sphere": (noisy_sphere, (0, 0, 1), "outward"),

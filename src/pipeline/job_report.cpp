@@ -121,16 +121,14 @@ nlohmann::json map_json(const Mesh& mesh, const Parameterization& map, const Eig
   return j;
 }
 
-/// What the curve refinement added (pipeline/curve_refinement.h): the map lives on input + these.
+/// What the curve, cone and fold refinements added (pipeline/curve_refinement.h, cone_refinement.h,
+/// fold_refinement.h): the map lives on input + these.
 nlohmann::json refinement_json(const Mesh& input, const ParamJob& job) {
   const CurveRefinement& r = job.refinement;
   nlohmann::json split = nlohmann::json::array();
   for (const auto& [a, b] : r.split) split.push_back({a, b});
-  return {{"split_edges", r.split.size()},
-          {"added_vertices", r.split.size()},
-          {"added_faces", r.added_faces},
-          {"faces", job.mesh(input).num_faces()},
-          {"split", split}};
+  return {{"split_edges", r.split.size()}, {"cone_split_edges", job.cone_splits},  {"added_vertices", r.split.size()},
+          {"added_faces", r.added_faces},  {"faces", job.mesh(input).num_faces()}, {"split", split}};
 }
 
 /// What the fold refinement did (pipeline/fold_refinement.h), its price E_F under that name.

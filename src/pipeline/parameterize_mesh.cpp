@@ -16,6 +16,7 @@
 #include "param/face_count.h"
 #include "param/seams.h"
 #include "pipeline/cone_merging.h"
+#include "pipeline/cone_refinement.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/retry_until_valid.h"
 
@@ -240,15 +241,20 @@ void refine_job_folds(const Mesh& mesh, ParamJob& job, ProgressSink& progress) {
   job.map = std::move(r.map);
 }
 
-/// The sentences for a refined triangulation (`curve_splits` of job.refinement.split by the curve refinement, the
-/// rest by the fold refinement) and for triangles left non-positive.
-std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t curve_splits) {
+/// The sentences for a refined triangulation (the first `before_folds` of job.refinement.split by the curve and the
+/// cone refinement, the rest by the fold refinement) and for triangles left non-positive.
+std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t before_folds) {
   std::vector<std::string> w;
-  const std::size_t splits = job.refinement.split.size(), fold_splits = splits - curve_splits;
+  const std::size_t splits = job.refinement.split.size(), fold_splits = splits - before_folds;
+  const std::size_t cone_splits = static_cast<std::size_t>(job.cone_splits), curve_splits = before_folds - cone_splits;
   if (job.refinement.mesh) {
     std::string why;
     if (curve_splits > 0)
       why = std::to_string(curve_splits) + " where a triangle had its three corners on boundary or feature curves";
+    if (cone_splits > 0)
+      why += (why.empty() ? "" : ", ") + std::to_string(cone_splits) +
+             " at field singularities of index 3/4 or more with too few interior vertices around to split them "
+             "into quarter cones";
     if (fold_splits > 0)
       why += (why.empty() ? "" : ", ") + std::to_string(fold_splits) +
              " around triangles the untangling could not make positive on the coarser triangulation";
@@ -523,6 +529,28 @@ FrameFieldResult field_and_ordering(const Mesh& mesh, const PipelineOptions& opt
   return std::move(*field);
 }
 
+/// The field stage on the job's mesh. While the field keeps a singularity of three quarters or more that its split
+/// could not spread over interior vertices nearby (pipeline/cone_refinement.h), the edges at it are split and the
+/// field is made again on the refined mesh, at most kConeRefinementRounds times. A half cone left as it is can be
+/// mapped (a quad vertex of valence 2 or 6: the corners of a tetrahedron); a 3/4 cone is a valence-1 spike and a
+/// whole turn a cone of angle 0 (the map folds flat) or 4π.
+FrameFieldResult field_on_refined_mesh(const Mesh& input, ParamJob& job, ProgressSink& progress) {
+  constexpr int kConeRefinementRounds = 2;
+  FrameFieldResult field = field_and_ordering(job.mesh(input), job.options, progress);
+  const FieldOptions options = field_stage_options(job.options);
+  if (!options.split_singularities) return field;
+  const int min_quarters = std::max(3, options.split_min_quarters);
+  for (int round = 0; round < kConeRefinementRounds; ++round) {
+    const std::vector<int> stuck = unsplit_singularities(job.mesh(input), field.field, min_quarters);
+    if (stuck.empty()) break;
+    const std::size_t before = job.refinement.split.size();
+    refine_around_vertices(job.mesh(input), stuck, job.refinement);
+    job.cone_splits += static_cast<int>(job.refinement.split.size() - before);
+    field = field_and_ordering(job.mesh(input), job.options, progress);
+  }
+  return field;
+}
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
   validate(options);
@@ -537,8 +565,8 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
     job.refinement = refine_for_curves(input, param.features);
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
+  const FrameFieldResult field = field_on_refined_mesh(input, job, progress);
   const Mesh& mesh = job.mesh(input);
-  const FrameFieldResult field = field_and_ordering(mesh, job.options, progress);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
   lap(meter, job, "field");
@@ -577,7 +605,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   if (job.map.diagnostics.relaxation.stopped_early) record_cut_short(job, "relaxation");
   for (const auto& [stage, s] : job.map.diagnostics.stage_seconds) job.seconds.emplace_back("param_" + stage, s);
   for (const auto& [stage, b] : job.map.diagnostics.stage_peak_bytes) job.peak_bytes.emplace_back("param_" + stage, b);
-  const std::size_t curve_splits = job.refinement.split.size();
+  const std::size_t before_folds = job.refinement.split.size();
   std::optional<ParamJob> first;  // at the first map: settle_with_separated_cones starts again from here
   if (options.separate_coincident_cones && !param.separate_close_cones &&
       !job.map.diagnostics.rounding.coincident_cones.empty())
@@ -589,7 +617,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   job.map.diagnostics.rounding.curve_rounding_dropped =
       options.param.alignment.round_with_periods && !job.options.param.alignment.round_with_periods;
   for (std::string& w : map_warnings(job.map)) job.warnings.push_back(std::move(w));
-  for (std::string& w : refinement_warnings(job, curve_splits)) job.warnings.push_back(std::move(w));
+  for (std::string& w : refinement_warnings(job, before_folds)) job.warnings.push_back(std::move(w));
   return job;
 }
 

@@ -55,9 +55,11 @@ struct ParamJob {
   PipelineOptions options;
   bool field_style_auto = false;
   /// The triangulation the map lives on: the input's, or a refinement of it (more triangles, the input's vertices
-  /// first) when the curve constraints or the fold refinement needed one; `split` lists the curve refinement's
-  /// splits, then the fold refinement's. Use mesh(input) for it.
+  /// first) when the curve constraints, the field's singularities (pipeline/cone_refinement.h) or the fold
+  /// refinement needed one; `split` lists the curve refinement's splits, then the cone refinement's, then the fold
+  /// refinement's. Use mesh(input) for it.
   CurveRefinement refinement;
+  int cone_splits = 0;                   ///< the entries of refinement.split that the cone refinement made
   FoldRefinementReport fold_refinement;  ///< what the fold refinement did (pipeline/fold_refinement.h)
   FrameField field;             ///< the field the map was made from (optimized or original, see optimize["kept"])
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization

@@ -211,6 +211,32 @@ TEST(HardCases, AThinHandleMakesTheDefaultDensityFiner) {
   EXPECT_FALSE(remesh_mesh(mesh, given).surface.same_topology);
 }
 
+// A flat disk fanned around its one interior vertex (a planar CAD face): the field aligned to the round boundary
+// has index +1 there, with no other interior vertex to split it over, and the map folded flat ("the map holds about
+// 0 quads", exit 2). The edges at the centre are split (pipeline/cone_refinement.h) and the field made again.
+TEST(HardCases, AFanDiskGetsVerticesForItsCones) {
+  for (const int n : {12, 100}) {
+    SCOPED_TRACE(n);
+    const Mesh disk = testing::make_fan(n, false, 0.0);
+    const RemeshJob job = expect_valid_job(disk, PipelineOptions{});
+    EXPECT_EQ(job.param.cone_splits, n);
+    EXPECT_EQ(job.param.refinement.added_faces, 2 * n);
+    EXPECT_EQ(job.surface.output.non_quads, 0);
+    EXPECT_TRUE(std::any_of(job.param.warnings.begin(), job.param.warnings.end(), [&](const std::string& w) {
+      return w.find(std::to_string(n) + " at field singularities of index 3/4 or more") != std::string::npos;
+    }));
+  }
+  // The corners of a tetrahedron are half cones with no interior vertex beside them either: those are mapped as
+  // they are (quad vertices of valence 2), the triangulation is not refined.
+  Eigen::MatrixX3d V(4, 3);
+  V << 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1;
+  Eigen::MatrixX3i F(4, 3);
+  F << 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2;
+  const RemeshJob tetrahedron = expect_valid_job(Mesh::from_triangles(V, F), PipelineOptions{});
+  EXPECT_EQ(tetrahedron.param.cone_splits, 0);
+  EXPECT_FALSE(tetrahedron.param.refinement.mesh);
+}
+
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned
 // or, where that map is less valid, the period-matrix map; valid either way, with the input's topology.
 TEST(HardCases, CurvesRoundedWithThePeriodsStayValid) {
