@@ -166,11 +166,24 @@ void warn(ProgressSink& progress, const std::string& text) { progress.report("wa
 
 namespace {
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices, bool written_back) {
-  const PolygonSoup soup = read_mesh(input);
+// The soup of `input`; with `triangulate` its polygons fan-triangulated, said through `progress`.
+PolygonSoup read_soup(const std::string& input, const std::string& name, bool triangulate, ProgressSink& progress) {
+  PolygonSoup soup = read_mesh(input);
+  std::size_t polygons = 0;
+  for (std::size_t f = 0; f < soup.num_faces(); ++f) polygons += soup.face_size(f) > 3;
+  if (!triangulate || polygons == 0) return soup;
+  soup = triangulate_polygons(soup);
+  warn(progress, name + ": " + std::to_string(polygons) +
+                     " polygons (faces of more than 3 corners) split into triangles from their first corner");
+  return soup;
+}
+
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices, bool written_back,
+               bool triangulate) {
+  const std::string name = input == "-" ? std::string("<stdin>") : input;
+  const PolygonSoup soup = read_soup(input, name, triangulate, progress);
   MeshBuildResult built = build_mesh(soup);
   const std::size_t dropped = built.report.unreferenced_vertices;
-  const std::string name = input == "-" ? std::string("<stdin>") : input;
   if (dropped > 0 && written_back)
     warn(progress, name + ": " + std::to_string(dropped) +
                        " unreferenced vertices (used by no face) are written back unchanged, without texture "
@@ -192,10 +205,13 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
 
 }  // namespace
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress) { return load_mesh(input, progress, nullptr, false); }
+Mesh load_mesh(const std::string& input, ProgressSink& progress) {
+  return load_mesh(input, progress, nullptr, false, false);
+}
 
-Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back) {
-  return load_mesh(input, progress, &file_vertices, written_back);
+Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back,
+               bool triangulate) {
+  return load_mesh(input, progress, &file_vertices, written_back, triangulate);
 }
 
 // ---- progress -----------------------------------------------------------------------------------------------

@@ -163,6 +163,33 @@ TEST_F(AdversarialCli, FlatDiskIsMeshedWithoutDistortion) {
   EXPECT_LT(remesh_["arap"].get<double>(), 1e-6);
 }
 
+// A quad mesh as input (a quad torus, e.g. an earlier remesh): `remesh` splits its polygons into triangles and says
+// how many; `param`, whose output keeps the input's faces, refuses them and names the repair, leaving no file.
+TEST_F(AdversarialCli, PolygonMeshesAreRemeshedAndRefusedByParam) {
+  const int n_major = 24, n_minor = 12;
+  const Mesh torus = testing::make_torus(n_major, n_minor);
+  std::vector<std::vector<int>> quads;
+  for (int f = 0; f < torus.num_faces(); f += 2)  // make_torus splits each grid quad into faces f, f + 1
+    quads.push_back({torus.F()(f, 0), torus.F()(f, 1), torus.F()(f, 2), torus.F()(f + 1, 2)});
+  const std::string in = path("quad_torus.obj");
+  write_polygon_mesh(in, torus.V(), quads);
+  const CliRun remeshed = run("remesh " + in + " -o " + path("remeshed.obj") + " --json");
+  ASSERT_EQ(remeshed.code, 0) << remeshed.err;
+  EXPECT_NE(remeshed.err.find(std::to_string(n_major * n_minor) +
+                              " polygons (faces of more than 3 corners) split into triangles"),
+            std::string::npos)
+      << remeshed.err;
+  const nlohmann::json report = nlohmann::json::parse(remeshed.out);
+  EXPECT_EQ(report["non_quads"].get<int>(), 0);
+  EXPECT_TRUE(report["same_topology"].get<bool>());
+  EXPECT_EQ(report["input_faces"].get<int>(), torus.num_faces());
+  const CliRun param = run("param " + in + " -o " + path("param.obj"));
+  EXPECT_EQ(param.code, 2);
+  EXPECT_NE(param.err.find("non-triangle faces"), std::string::npos) << param.err;
+  EXPECT_NE(param.err.find("quadcover repair"), std::string::npos) << param.err;
+  EXPECT_FALSE(fs::exists(path("param.obj")));
+}
+
 TEST_F(AdversarialCli, SliversAndNeedles) {
   // A grid whose upper rows are squashed onto a band of height 1e-9: needle triangles with angles near 0 and π.
   const Mesh grid = testing::make_grid(20);
