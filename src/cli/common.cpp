@@ -24,6 +24,7 @@
 #include "common/seconds_since.h"
 #include "io/atomic_file.h"
 #include "io/read_mesh.h"
+#include "io/weld_positions.h"
 
 namespace quadcover::cli {
 
@@ -166,24 +167,49 @@ void warn(ProgressSink& progress, const std::string& text) { progress.report("wa
 
 namespace {
 
-// The soup of `input`; with `triangulate` its polygons fan-triangulated, said through `progress`.
-PolygonSoup read_soup(const std::string& input, const std::string& name, bool triangulate, ProgressSink& progress) {
+// The soup of `input`; for a new surface its polygons fan-triangulated, said through `progress`.
+PolygonSoup read_soup(const std::string& input, const std::string& name, bool new_surface, ProgressSink& progress) {
   PolygonSoup soup = read_mesh(input);
   std::size_t polygons = 0;
   for (std::size_t f = 0; f < soup.num_faces(); ++f) polygons += soup.face_size(f) > 3;
-  if (!triangulate || polygons == 0) return soup;
+  if (!new_surface || polygons == 0) return soup;
   soup = triangulate_polygons(soup);
   warn(progress, name + ": " + std::to_string(polygons) +
                      " polygons (faces of more than 3 corners) split into triangles from their first corner");
   return soup;
 }
 
+// The mesh of `soup` with its vertices at one point welded (io/weld_positions.h: `welding`); when the welded surface
+// is not a valid manifold (pieces that touch at a point), the soup as the file has it (welding.merged 0). Either way
+// said through `progress`. \throw as build_mesh(soup).
+MeshBuildResult build_welded(const PolygonSoup& soup, const std::string& name, Welding& welding,
+                             ProgressSink& progress) {
+  PolygonSoup joined = soup;
+  welding = weld_identical_positions(joined);
+  if (welding.merged == 0) return build_mesh(soup);
+  try {
+    MeshBuildResult built = build_mesh(joined);
+    warn(progress,
+         name + ": " + std::to_string(welding.merged) + " vertices at the position of an earlier vertex " +
+             "merged into it (the file's surface is cut there, as exporters split vertices at texture seams)");
+    return built;
+  } catch (const TopologyError&) {
+    const std::size_t apart = welding.merged;
+    welding = {};
+    MeshBuildResult built = build_mesh(soup);
+    warn(progress, name + ": " + std::to_string(apart) + " vertices at the position of another are not merged: " +
+                       "merged, the surface would not be a manifold");
+    return built;
+  }
+}
+
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices, bool written_back,
-               bool triangulate) {
+               bool new_surface) {
   const std::string name = input == "-" ? std::string("<stdin>") : input;
-  const PolygonSoup soup = read_soup(input, name, triangulate, progress);
-  MeshBuildResult built = build_mesh(soup);
-  const std::size_t dropped = built.report.unreferenced_vertices;
+  const PolygonSoup soup = read_soup(input, name, new_surface, progress);
+  Welding welding;
+  MeshBuildResult built = new_surface ? build_welded(soup, name, welding, progress) : build_mesh(soup);
+  const std::size_t dropped = built.report.unreferenced_vertices - welding.merged;
   if (dropped > 0 && written_back)
     warn(progress, name + ": " + std::to_string(dropped) +
                        " unreferenced vertices (used by no face) are written back unchanged, without texture "
@@ -195,6 +221,9 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
   if (file_vertices) {
     if (written_back) file_vertices->positions = soup.positions;
     file_vertices->mesh_of = built.vertex_map;
+    for (std::size_t v = 0; v < welding.into.size(); ++v)  // a merged vertex is where it was merged into
+      if (file_vertices->mesh_of[v] < 0 && welding.into[v] != static_cast<std::int64_t>(v))
+        file_vertices->mesh_of[v] = built.vertex_map[static_cast<std::size_t>(welding.into[v])];
     file_vertices->of_mesh.assign(static_cast<std::size_t>(built.mesh.num_vertices()), -1);
     for (std::size_t v = 0; v < built.vertex_map.size(); ++v)
       if (built.vertex_map[v] >= 0)
@@ -210,8 +239,8 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress) {
 }
 
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back,
-               bool triangulate) {
-  return load_mesh(input, progress, &file_vertices, written_back, triangulate);
+               bool new_surface) {
+  return load_mesh(input, progress, &file_vertices, written_back, new_surface);
 }
 
 // ---- progress -----------------------------------------------------------------------------------------------

@@ -171,11 +171,12 @@ struct FileVertices {
   std::vector<int> mesh_of;    ///< file vertex -> mesh vertex, -1 for one used by no face
 };
 /// load_mesh that also returns the file's vertices; with `written_back` (the outputs keep the file's unreferenced
-/// vertices) the warning says that they are kept, else that they are dropped. With `triangulate` (an output that is a
-/// new mesh: `remesh`) polygons are fan-triangulated from their first corner instead of refused, and a warning says
-/// how many. \throw InputError, TopologyError as read_mesh / build_mesh.
+/// vertices) the warning says that they are kept, else that they are dropped. With `new_surface` (the output is a new
+/// mesh of the surface: `remesh`) polygons are fan-triangulated from their first corner instead of refused, and
+/// vertices at one position are merged (a surface cut at its texture seams) unless that leaves no manifold; warnings
+/// say how many. \throw InputError, TopologyError as read_mesh / build_mesh.
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices& file_vertices, bool written_back,
-               bool triangulate = false);
+               bool new_surface = false);
 
 // ---- batch --------------------------------------------------------------------------------------------------
 

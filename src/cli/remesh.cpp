@@ -70,7 +70,7 @@ nlohmann::json run_remesh(const std::string& input, const RemeshOutputs& out, co
   const FeatureFile feature_file = read_feature_file(opt.optimize.features_file);  // malformed: fails before any work
   StageMeter meter;
   FileVertices file_vertices;
-  const Mesh mesh = load_mesh(input, progress, file_vertices, /*written_back=*/false, /*triangulate=*/true);
+  const Mesh mesh = load_mesh(input, progress, file_vertices, /*written_back=*/false, /*new_surface=*/true);
   po.param.features.given = given_features(feature_file, mesh, file_vertices.mesh_of);
   const StageCost read = meter.lap();
   RemeshJob job;

@@ -2,7 +2,6 @@
 // Corners with bit-identical positions (after mapping -0 to +0) are welded into one vertex, numbered in the order
 // of their first appearance, so the result is deterministic and a closed STL becomes a closed mesh.
 #include <algorithm>
-#include <bit>
 #include <cstring>
 #include <string_view>
 #include <unordered_map>
@@ -10,24 +9,11 @@
 #include "common/errors.h"
 #include "io/read_mesh.h"
 #include "io/text_scanner.h"
+#include "io/weld_positions.h"
 
 namespace quadcover {
 
 namespace {
-
-struct PositionKey {
-  std::uint64_t x, y, z;
-  bool operator==(const PositionKey&) const = default;
-};
-
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= (k.y + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2)) * 0xBF58476D1CE4E5B9ull;
-    h ^= (k.z + 0x94D049BB133111EBull + (h << 6) + (h >> 2)) * 0x94D049BB133111EBull;
-    return static_cast<std::size_t>(h ^ (h >> 31));
-  }
-};
 
 // Welds corner positions into vertices in order of first appearance.
 class Welder {
@@ -35,7 +21,7 @@ class Welder {
   explicit Welder(std::size_t expected_corners) { index_.reserve(expected_corners / 4 + 16); }
 
   std::int64_t add(const double p[3], long location, PolygonSoup& soup) {
-    const PositionKey key{bits(p[0]), bits(p[1]), bits(p[2])};
+    const PositionKey key = PositionKey::of(p);
     const auto [it, inserted] = index_.try_emplace(key, static_cast<std::int64_t>(xyz_.size() / 3));
     if (inserted) {
       xyz_.insert(xyz_.end(), p, p + 3);
@@ -50,7 +36,6 @@ class Welder {
   }
 
  private:
-  static std::uint64_t bits(double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d); }
   std::unordered_map<PositionKey, std::int64_t, PositionHash> index_;
   std::vector<double> xyz_;
 };

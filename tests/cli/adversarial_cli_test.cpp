@@ -190,6 +190,44 @@ TEST_F(AdversarialCli, PolygonMeshesAreRemeshedAndRefusedByParam) {
   EXPECT_FALSE(fs::exists(path("param.obj")));
 }
 
+// A surface cut into pieces at every edge (each triangle with vertices of its own, as exporters split vertices at
+// texture seams): `remesh` merges the vertices at one position and remeshes the torus the file describes; two
+// tetrahedra touching at a corner stay apart (merged, that point would not be a manifold), and it says so.
+TEST_F(AdversarialCli, VerticesAtOnePositionAreMergedForRemesh) {
+  const Mesh torus = testing::make_torus(24, 12);
+  Eigen::MatrixX3d V(3 * torus.num_faces(), 3);
+  Eigen::MatrixX3i F(torus.num_faces(), 3);
+  for (int f = 0; f < torus.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      V.row(3 * f + k) = torus.V().row(torus.F()(f, k));
+      F(f, k) = 3 * f + k;
+    }
+  const CliRun cut = run("remesh " + write("cut_torus", V, F) + " -o " + path("cut.quads.obj") + " --json --report " +
+                         path("cut.json"));
+  ASSERT_EQ(cut.code, 0) << cut.err;
+  const int merged = 3 * torus.num_faces() - torus.num_vertices();
+  EXPECT_NE(cut.err.find(std::to_string(merged) + " vertices at the position of an earlier vertex merged"),
+            std::string::npos)
+      << cut.err;
+  EXPECT_TRUE(nlohmann::json::parse(cut.out)["same_topology"].get<bool>());
+  const nlohmann::json output = nlohmann::json::parse(testing::slurp(path("cut.json")))["surface_check"]["output"];
+  EXPECT_EQ(output["components"].get<int>(), 1);
+  EXPECT_EQ(output["genus"].get<int>(), 1);
+  EXPECT_EQ(output["non_quads"].get<int>(), 0);
+  Eigen::MatrixX3d T(8, 3);
+  T << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, -1, 0, 0, 0, -1, 0, 0, 0, -1;
+  Eigen::MatrixX3i G(8, 3);
+  G << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 4, 5, 6, 4, 7, 5, 5, 7, 6, 4, 6, 7;
+  const CliRun touching = run("remesh " + write("touching", T, G) + " -o " + path("touching.quads.obj") +
+                              " --faces 200 --report " + path("touching.json"));
+  ASSERT_EQ(touching.code, 0) << touching.err;
+  EXPECT_NE(touching.err.find("1 vertices at the position of another are not merged"), std::string::npos)
+      << touching.err;
+  const nlohmann::json apart = nlohmann::json::parse(testing::slurp(path("touching.json")))["surface_check"];
+  EXPECT_EQ(apart["input"]["components"].get<int>(), 2);
+  EXPECT_EQ(apart["output"]["components"].get<int>(), 2);
+}
+
 TEST_F(AdversarialCli, SliversAndNeedles) {
   // A grid whose upper rows are squashed onto a band of height 1e-9: needle triangles with angles near 0 and π.
   const Mesh grid = testing::make_grid(20);
