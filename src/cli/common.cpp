@@ -25,6 +25,7 @@
 #include "io/atomic_file.h"
 #include "io/read_mesh.h"
 #include "io/weld_positions.h"
+#include "mesh/degenerate_faces.h"
 
 namespace quadcover::cli {
 
@@ -179,28 +180,47 @@ PolygonSoup read_soup(const std::string& input, const std::string& name, bool ne
   return soup;
 }
 
-// The mesh of `soup` with its vertices at one point welded (io/weld_positions.h: `welding`); when the welded surface
-// is not a valid manifold (pieces that touch at a point), the soup as the file has it (welding.merged 0). Either way
-// said through `progress`. \throw as build_mesh(soup).
-MeshBuildResult build_welded(const PolygonSoup& soup, const std::string& name, Welding& welding,
-                             ProgressSink& progress) {
+// `soup` repaired as `quadcover repair` does (mesh/degenerate_faces.h: the zero-area triangles that carry no
+// surface removed, `removed`; faces turned to a consistent orientation), built. \throw as build_mesh.
+MeshBuildResult build_repaired(PolygonSoup soup, DegenerateFaceRemoval& removed) {
+  ValidationOptions options;
+  options.fix_orientation = true;
+  removed = remove_degenerate_faces(soup, options.degenerate_tolerance);
+  return build_mesh(soup, options);
+}
+
+// For a new surface (`remesh`): the mesh of `soup` with its vertices at one point welded (io/weld_positions.h:
+// `welding`) and repaired (build_repaired: `removed`); when the welded surface is not a valid manifold (pieces that
+// touch at a point), the same without the welding (welding.merged 0). Each change said through `progress`.
+// \throw as build_mesh(soup).
+MeshBuildResult build_new_surface(const PolygonSoup& soup, const std::string& name, Welding& welding,
+                                  DegenerateFaceRemoval& removed, ProgressSink& progress) {
   PolygonSoup joined = soup;
   welding = weld_identical_positions(joined);
-  if (welding.merged == 0) return build_mesh(soup);
-  try {
-    MeshBuildResult built = build_mesh(joined);
-    warn(progress,
-         name + ": " + std::to_string(welding.merged) + " vertices at the position of an earlier vertex " +
-             "merged into it (the file's surface is cut there, as exporters split vertices at texture seams)");
-    return built;
-  } catch (const TopologyError&) {
-    const std::size_t apart = welding.merged;
-    welding = {};
-    MeshBuildResult built = build_mesh(soup);
-    warn(progress, name + ": " + std::to_string(apart) + " vertices at the position of another are not merged: " +
-                       "merged, the surface would not be a manifold");
-    return built;
+  std::optional<MeshBuildResult> built;
+  if (welding.merged > 0) {
+    try {
+      built = build_repaired(std::move(joined), removed);
+      warn(progress, name + ": " + std::to_string(welding.merged) + " vertices at the position of an earlier vertex " +
+                         "merged into it (the file's surface is cut there, as exporters split vertices at texture " +
+                         "seams)");
+    } catch (const TopologyError&) {
+      const std::size_t apart = welding.merged;
+      welding = {};
+      built = build_repaired(soup, removed);
+      warn(progress, name + ": " + std::to_string(apart) + " vertices at the position of another are not merged: " +
+                         "merged, the surface would not be a manifold");
+    }
   }
+  if (!built) built = build_repaired(soup, removed);
+  if (removed.total() > 0)
+    warn(progress, name + ": " + std::to_string(removed.total()) + " zero-area triangles that carry no surface " +
+                       "removed (repeated vertices or faces, corners on an opposite edge or at one point; see " +
+                       "quadcover repair)");
+  if (built->report.flipped_faces > 0)
+    warn(progress, name + ": " + std::to_string(built->report.flipped_faces) +
+                       " faces turned to the orientation of their neighbours");
+  return std::move(*built);
 }
 
 Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* file_vertices, bool written_back,
@@ -208,8 +228,9 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
   const std::string name = input == "-" ? std::string("<stdin>") : input;
   const PolygonSoup soup = read_soup(input, name, new_surface, progress);
   Welding welding;
-  MeshBuildResult built = new_surface ? build_welded(soup, name, welding, progress) : build_mesh(soup);
-  const std::size_t dropped = built.report.unreferenced_vertices - welding.merged;
+  DegenerateFaceRemoval removed;
+  MeshBuildResult built = new_surface ? build_new_surface(soup, name, welding, removed, progress) : build_mesh(soup);
+  const std::size_t dropped = built.report.unreferenced_vertices - welding.merged - removed.merged_needles;
   if (dropped > 0 && written_back)
     warn(progress, name + ": " + std::to_string(dropped) +
                        " unreferenced vertices (used by no face) are written back unchanged, without texture "

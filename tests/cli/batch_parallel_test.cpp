@@ -41,7 +41,7 @@ TEST_P(BatchParallel, OutputsMatchSingleRunsAndABadFileFailsAlone) {
   const std::string command = GetParam();
   const std::string suffix = command == std::string("param") ? ".param.obj" : ".quad.obj";
   const std::vector<std::string> meshes{"eight_genus2", "torus_5k", "bunny_3k", "lilium_disk"};
-  const std::string bad = quadcover::testing::data_path("bad/spot_degenerate_face");
+  const std::string bad = quadcover::testing::data_path("bad/beetle_nonmanifold_edges");
 
   std::string inputs;
   for (const auto& m : meshes) {
@@ -61,9 +61,9 @@ TEST_P(BatchParallel, OutputsMatchSingleRunsAndABadFileFailsAlone) {
   // Results are listed in input order whatever the scheduling.
   EXPECT_FALSE(j["files"][2]["ok"]);
   EXPECT_EQ(j["files"][2]["exit_code"], 2);
-  EXPECT_NE(j["files"][2]["error"].get<std::string>().find("spot_degenerate_face.obj:"), std::string::npos)
+  EXPECT_NE(j["files"][2]["error"].get<std::string>().find("beetle_nonmanifold_edges.obj:"), std::string::npos)
       << j["files"][2]["error"];
-  EXPECT_FALSE(fs::exists(dir_ / "batch" / ("spot_degenerate_face" + suffix)));
+  EXPECT_FALSE(fs::exists(dir_ / "batch" / ("beetle_nonmanifold_edges" + suffix)));
 
   for (const auto& m : meshes) {
     const fs::path a = dir_ / "single" / (m + suffix), b = dir_ / "batch" / (m + suffix);
