@@ -180,15 +180,6 @@ PolygonSoup read_soup(const std::string& input, const std::string& name, bool ne
   return soup;
 }
 
-// `soup` repaired as `quadcover repair` does (mesh/degenerate_faces.h: the zero-area triangles that carry no
-// surface removed, `removed`; faces turned to a consistent orientation), built. \throw as build_mesh.
-MeshBuildResult build_repaired(PolygonSoup soup, DegenerateFaceRemoval& removed) {
-  ValidationOptions options;
-  options.fix_orientation = true;
-  removed = remove_degenerate_faces(soup, options.degenerate_tolerance);
-  return build_mesh(soup, options);
-}
-
 // For a new surface (`remesh`): the mesh of `soup` with its vertices at one point welded (io/weld_positions.h:
 // `welding`) and repaired (build_repaired: `removed`); when the welded surface is not a valid manifold (pieces that
 // touch at a point), the same without the welding (welding.merged 0). Each change said through `progress`.
@@ -254,6 +245,14 @@ Mesh load_mesh(const std::string& input, ProgressSink& progress, FileVertices* f
 }
 
 }  // namespace
+
+MeshBuildResult build_repaired(PolygonSoup soup, DegenerateFaceRemoval& removed) {
+  ValidationOptions options;
+  options.triangulate = true;
+  options.fix_orientation = true;
+  removed = remove_degenerate_faces(soup, options.degenerate_tolerance);
+  return build_mesh(soup, options);
+}
 
 Mesh load_mesh(const std::string& input, ProgressSink& progress) {
   return load_mesh(input, progress, nullptr, false, false);

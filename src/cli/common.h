@@ -54,6 +54,7 @@
 
 #include "cli/commands.h"
 #include "common/progress.h"
+#include "mesh/degenerate_faces.h"
 #include "mesh/mesh.h"
 
 namespace quadcover::cli {
@@ -157,6 +158,11 @@ std::mutex& stderr_mutex();
 /// Reports "warning: <text>" to `progress`: TerminalProgress shows it on its own line at once (batch mode too),
 /// unless --quiet. \pre none
 void warn(ProgressSink& progress, const std::string& text);
+
+/// `soup` repaired as `quadcover repair` does, built: the zero-area triangles that carry no surface removed
+/// (mesh/degenerate_faces.h, what was removed in `removed`), faces turned to a consistent orientation, polygons left
+/// fanned into triangles. \throw InputError, TopologyError as build_mesh (what cannot be repaired).
+MeshBuildResult build_repaired(PolygonSoup soup, DegenerateFaceRemoval& removed);
 
 /// Reads and validates a mesh (read_mesh + build_mesh) and warns through `progress` about what the input loses on
 /// the way: unreferenced vertices are dropped, so the vertex numbers of outputs are no longer the input's.

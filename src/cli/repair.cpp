@@ -25,12 +25,9 @@ nlohmann::json run_repair(const std::string& input, const std::string& output) {
     polygons += soup.face_size(f) > 3;
     short_faces += soup.face_size(f) < 3;
   }
-  ValidationOptions options;
   if (polygons > 0 && short_faces == 0) soup = triangulate_polygons(soup);
-  const DegenerateFaceRemoval removed = remove_degenerate_faces(soup, options.degenerate_tolerance);
-  options.triangulate = true;
-  options.fix_orientation = true;
-  const MeshBuildResult built = build_mesh(soup, options);
+  DegenerateFaceRemoval removed;
+  const MeshBuildResult built = build_repaired(std::move(soup), removed);
   const Mesh& mesh = built.mesh;
   std::vector<std::vector<int>> faces(static_cast<std::size_t>(mesh.num_faces()));
   for (int f = 0; f < mesh.num_faces(); ++f)
