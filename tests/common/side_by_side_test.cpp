@@ -36,6 +36,33 @@ TEST(SideBySide, SmallMeshesRunBothLargeOnesInOrder) {
   }
 }
 
+// Inside a branch of a pair run side by side, an inner pair runs in order on the branch's thread (both cores are
+// busy with the outer pair); after the outer pair, pairs run side by side again.
+TEST(SideBySide, APairInsideAPairRunsInOrder) {
+  std::atomic<int> inner_overlaps{0};
+  const auto inner_pair = [&] {
+    const std::thread::id here = std::this_thread::get_id();
+    std::atomic<int> running{0};
+    int order = 0, first_at = -1, second_at = -1;
+    bool same_thread = true;
+    const auto task = [&](int& at) {
+      if (++running > 1) ++inner_overlaps;
+      same_thread = same_thread && std::this_thread::get_id() == here;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      at = order++;
+      --running;
+    };
+    run_side_by_side(
+        10, [&] { task(first_at); }, [&] { task(second_at); });
+    EXPECT_TRUE(same_thread);
+    EXPECT_EQ(first_at, 0);
+    EXPECT_EQ(second_at, 1);
+  };
+  run_side_by_side(10, inner_pair, inner_pair);
+  EXPECT_EQ(inner_overlaps.load(), 0);
+  EXPECT_EQ(detail::side_by_side_depth, 0);  // left as it was, also on this thread
+}
+
 TEST(SideBySide, TheFirstTasksErrorWinsWhenBothThrowAndBothStillRun) {
   for (const int faces : {10, kSideBySideFaces}) {
     std::atomic<int> finished{0};
