@@ -409,6 +409,33 @@ def lattice_scan():
     return lattice_plate(3, 3, 8, 6)
 
 
+def bolted_plate(cell=0.25, nseg=16, levels=1):
+    # Hard: a CAD plate 4 x 3 x 0.25 with 11 drilled bolt holes (genus 11) of radius 0.3-0.46 cells, triangulated as
+    # CAD exports are (strips from a ring of grid points to each hole's n-gon, walls of `levels` rows): small holes
+    # with 90-degree rims, slivers.
+    nu, nv, thickness = int(round(4 / cell)), int(round(3 / cell)), 0.25
+    x, y, z = np.array([cell, 0, 0]), np.array([0, cell, 0]), np.array([0, 0, thickness / levels])
+    holes = [(round((i + 0.5) * nu / 4), round((j + 0.5) * nv / 3), 1, (0.3 + 0.08 * ((i + j) % 3)) * cell, nseg)
+             for i in range(4) for j in range(3) if (i, j) != (3, 2)]
+    parts = [rect_patch((0, 0, s), x, y, nu, nv, (0, 0, 1 if s else -1), holes) for s in (0, thickness)]
+    parts += [rect_patch((0, 0, 0), x, z, nu, levels, (0, -1, 0)), rect_patch((0, 3, 0), x, z, nu, levels, (0, 1, 0)),
+              rect_patch((0, 0, 0), y, z, nv, levels, (-1, 0, 0)), rect_patch((4, 0, 0), y, z, nv, levels, (1, 0, 0))]
+    for ic, jc, _, radius, n in holes:
+        pts, tris = [], []
+        rings = [circle_ring(pts, radius, n, s) for s in np.linspace(0, thickness, levels + 1)]
+        for (a, ta), (b, tb) in zip(rings, rings[1:]):
+            tris += zip_rings(a, ta, b, tb)
+        centre = np.array([ic * cell, jc * cell, 0])
+        parts.append(orient(np.array(pts) + centre, tris, lambda c, centre=centre: (centre - c) * (1, 1, 0)))
+    return merge(parts)
+
+
+def bolted_plate_fine():
+    # Hard: the same plate on a grid twice as fine, holes of 24 sides in two rows: the smallest holes are about 2.4
+    # default quad edges around (a handle thinner than a quad).
+    return bolted_plate(0.125, 24, 2)
+
+
 # name -> (generator, expected (boundary loops, genus, components), expected orientation of a closed surface)
 CASES = {
     "thin_box": (thin_box, (0, 0, 1), "outward"),
@@ -426,6 +453,8 @@ CASES = {
     "needle_triangles": (needle_triangles, (0, 0, 1), "outward"),
     "sharp_tetrahedron": (sharp_tetrahedron, (0, 0, 1), "outward"),
     "lattice_scan": (lattice_scan, (6, 9, 1), "open"),
+    "bolted_plate": (bolted_plate, (0, 11, 1), "outward"),
+    "bolted_plate_fine": (bolted_plate_fine, (0, 11, 1), "outward"),
 }
 
 # ---------------------------------------------------------------- self-check

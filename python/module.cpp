@@ -191,6 +191,7 @@ struct JobArgs {
   bool separate_cones = PipelineOptions{}.separate_coincident_cones;
   int split_cones = PipelineOptions{}.split_min_quarters;
   bool cancel_close_cones = PipelineOptions{}.cancel_close_cones;
+  double square_holes = PipelineOptions{}.square_hole_grid_units;
   std::optional<std::vector<std::pair<int, int>>> feature_edges;  ///< features=: given sharp edges (indices into V)
 };
 
@@ -219,6 +220,7 @@ PipelineOptions pipeline_options(const JobArgs& a) {
   o.separate_coincident_cones = a.separate_cones;
   o.split_min_quarters = a.split_cones;
   o.cancel_close_cones = a.cancel_close_cones;
+  o.square_hole_grid_units = a.square_holes;
   validate(o);  // ValueError naming the keyword before any work
   return o;
 }
@@ -430,7 +432,9 @@ constexpr const char* kParameterizeDoc =
     "split_cones: split every interior singularity of the field of index at least split_cones/4 in absolute value "
     "into ±1/4 ones (2, 3 or 4 = whole turns only; the CLI's --split-cones). "
     "cancel_close_cones: before the map, cancel the branch point pairs of opposite index less than one quad edge "
-    "apart (the CLI's --cancel-close-cones; report field.cancelled_close_pairs). "
+    "apart (the CLI's --cancel-close-cones; report field.cancelled_close_pairs). square_holes: closed crease loops "
+    "shorter than this many quad edges that run straight on one side (the rim of a small hole through a part) are "
+    "followed on that side only, so the hole comes out square in an even grid (the CLI's --square-holes; 0 = off). "
     "progress: optional callable(stage, fraction, message) called during the run; a truthy return cancels "
     "(RuntimeError 'cancelled by the progress callback'); Ctrl-C raises KeyboardInterrupt. V must be a #V×3 array "
     "of finite numbers and F a #F×3 integer array of indices into V, else ValueError.";
@@ -449,7 +453,8 @@ JobArgs job_args(double edge_length, int quads, int faces, const std::string& la
                  const std::string& rounding, long max_iterations, bool keep_better, int stiffening, int relaxation,
                  const std::string& field, const std::string& fill, const py::object& feature_angle, bool align_curves,
                  int fold_refinement_rounds, int validity_retries, bool round_curves, bool merge_cones, bool move_cones,
-                 bool separate_cones, int split_cones, bool cancel_close_cones, const py::object& features) {
+                 bool separate_cones, int split_cones, bool cancel_close_cones, double square_holes,
+                 const py::object& features) {
   const double angle = feature_angle_degrees(feature_angle);
   return JobArgs{edge_length,
                  quads,
@@ -473,6 +478,7 @@ JobArgs job_args(double edge_length, int quads, int faces, const std::string& la
                  separate_cones,
                  split_cones,
                  cancel_close_cones,
+                 square_holes,
                  feature_edge_pairs(features)};
 }
 
@@ -485,44 +491,13 @@ void def_jobs(py::module_& m) {
          int stiffening, int relaxation, const std::string& field, const std::string& fill,
          const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
          bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
-         bool cancel_close_cones, const py::object& features, py::object progress) {
-        return parameterize_py(
-            V, F,
-            job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
-                     relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones, features),
-            std::move(progress));
-      },
-      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
-      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
-      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
-      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
-      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "auto", py::arg("fill") = "smooth",
-      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
-      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
-      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
-      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
-      py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
-      py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
-      py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
-      py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
-      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones, py::arg("features") = py::none(),
-      py::arg("progress") = py::none(), kParameterizeDoc);
-  m.def(
-      "remesh",
-      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
-         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
-         int stiffening, int relaxation, const std::string& field, const std::string& fill,
-         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
-         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
-         bool cancel_close_cones, int smooth_quads, double smooth_rigidity, bool boundary_quads,
-         const py::object& features, py::object progress) {
-        return remesh_py(
-            V, F,
-            job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better, stiffening,
-                     relaxation, field, fill, feature_angle, align_curves, fold_refinement_rounds, validity_retries,
-                     round_curves, merge_cones, move_cones, separate_cones, split_cones, cancel_close_cones, features),
-            smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
+         bool cancel_close_cones, double square_holes, const py::object& features, py::object progress) {
+        return parameterize_py(V, F,
+                               job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations,
+                                        keep_better, stiffening, relaxation, field, fill, feature_angle, align_curves,
+                                        fold_refinement_rounds, validity_retries, round_curves, merge_cones, move_cones,
+                                        separate_cones, split_cones, cancel_close_cones, square_holes, features),
+                               std::move(progress));
       },
       py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
       py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
@@ -538,6 +513,39 @@ void def_jobs(py::module_& m) {
       py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
       py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
       py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones,
+      py::arg("square_holes") = PipelineOptions{}.square_hole_grid_units, py::arg("features") = py::none(),
+      py::arg("progress") = py::none(), kParameterizeDoc);
+  m.def(
+      "remesh",
+      [](const py::array& V, const py::array& F, double edge_length, int quads, int faces, const std::string& lattice,
+         const std::string& optimize, const std::string& rounding, long max_iterations, bool keep_better,
+         int stiffening, int relaxation, const std::string& field, const std::string& fill,
+         const py::object& feature_angle, bool align_curves, int fold_refinement_rounds, int validity_retries,
+         bool round_curves, bool merge_cones, bool move_cones, bool separate_cones, int split_cones,
+         bool cancel_close_cones, double square_holes, int smooth_quads, double smooth_rigidity, bool boundary_quads,
+         const py::object& features, py::object progress) {
+        return remesh_py(V, F,
+                         job_args(edge_length, quads, faces, lattice, optimize, rounding, max_iterations, keep_better,
+                                  stiffening, relaxation, field, fill, feature_angle, align_curves,
+                                  fold_refinement_rounds, validity_retries, round_curves, merge_cones, move_cones,
+                                  separate_cones, split_cones, cancel_close_cones, square_holes, features),
+                         smooth_quads, smooth_rigidity, boundary_quads, std::move(progress));
+      },
+      py::arg("V"), py::arg("F"), py::arg("edge_length") = 0.0, py::arg("quads") = 0, py::arg("faces") = 0,
+      py::arg("lattice") = "rotated", py::arg("optimize") = "relocate", py::arg("rounding") = "search3",
+      py::arg("max_iterations") = kAutoBudget, py::arg("keep_better") = true,
+      py::arg("stiffening") = StiffeningOptions{}.max_iterations,
+      py::arg("relaxation") = RelaxationOptions{}.iterations, py::arg("field") = "auto", py::arg("fill") = "smooth",
+      py::arg("feature_angle") = py::float_(FeatureOptions{}.sharp_angle_degrees), py::arg("align_curves") = true,
+      py::arg("fold_refinement_rounds") = PipelineOptions{}.fold_refinement_rounds,
+      py::arg("validity_retries") = PipelineOptions{}.validity_retries,
+      py::arg("round_curves") = ParamOptions{}.alignment.round_with_periods,
+      py::arg("merge_cones") = PipelineOptions{}.merge_coincident_cones,
+      py::arg("move_cones") = PipelineOptions{}.move_wound_cones,
+      py::arg("separate_cones") = PipelineOptions{}.separate_coincident_cones,
+      py::arg("split_cones") = PipelineOptions{}.split_min_quarters,
+      py::arg("cancel_close_cones") = PipelineOptions{}.cancel_close_cones,
+      py::arg("square_holes") = PipelineOptions{}.square_hole_grid_units,
       py::arg("smooth_quads") = QuadSmoothingOptions{}.iterations,
       py::arg("smooth_rigidity") = QuadSmoothingOptions{}.rigidity,
       py::arg("boundary_quads") = ExtractOptions{}.quadrangulate_boundary, py::arg("features") = py::none(),

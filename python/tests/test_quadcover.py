@@ -293,3 +293,17 @@ def test_cancel_close_cones_keyword_cancels_opposite_pairs_closer_than_a_quad_ed
     assert cancelled["original"] > 0 and cancelled["optimized"] == 0
     assert off["field"]["cancelled_close_pairs"] == {"original": 0, "optimized": 0}
     assert len(off["field"]["branch_points"]) - len(on["field"]["branch_points"]) == 2 * cancelled["original"]
+
+
+def test_square_holes_keyword_frees_the_plate_side_of_small_hole_rims():
+    # couplingdown_genus9's bolt holes: closed crease loops a few quad edges around. By default their rims are freed on
+    # the plate's side (options.freed_hole_rims); square_holes=0 follows them on both sides, as the CLI's
+    # --square-holes 0 does.
+    V, F = mesh("couplingdown_genus9")
+    plain = dict(optimize="none", keep_better=False, validity_retries=0, fold_refinement_rounds=0)
+    _, on = quadcover.parameterize(V, F, **plain)
+    _, off = quadcover.parameterize(V, F, square_holes=0, **plain)
+    assert on["options"]["square_holes"] == 8 and on["options"]["freed_hole_rims"] > 0
+    assert off["options"]["square_holes"] == 0 and off["options"]["freed_hole_rims"] == 0
+    with pytest.raises(ValueError, match="square_holes"):
+        quadcover.parameterize(V, F, square_holes=-1)

@@ -103,6 +103,13 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& options) {
              "the curves through the map's wrong windings are freed, and when it is still less valid than the map "
              "without, that one is kept (report: aligned_curves[].left_free_because, "
              "rounding.curve_rounding_dropped)");
+  cmd.add_option("--square-holes", options.square_hole_units,
+                 "Closed sharp-edge loops shorter than N quad edges that turn by a whole turn on one side and run "
+                 "straight on the other (the rim of a small hole through a part, a small boss) are followed on the "
+                 "straight side only: the quads around them stay an even grid and the hole comes out square, its "
+                 "cones on the rim (0 = follow every loop on both sides, the quads shrinking towards small holes)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd.add_option("--optimize", options.optimize,
                  "Distortion optimization of the field's matching (thesis ch. 6) before parameterizing: none; "
                  "relocate = Algorithm 6.1 moving and cancelling branch points, never creating any; full = with "
@@ -197,6 +204,7 @@ void apply_optimize_options(const OptimizeCliOptions& cli, PipelineOptions& opti
   options.param.features.sharp_angle_degrees = cli.no_features ? 0 : parse_feature_angle(cli.feature_angle);
   options.param.alignment.enabled = cli.align;
   options.param.alignment.round_with_periods = cli.round_curves;
+  options.square_hole_grid_units = cli.square_hole_units;
 }
 
 FeatureFile read_feature_file(const std::string& path) {

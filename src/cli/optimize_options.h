@@ -47,6 +47,7 @@ struct OptimizeCliOptions {
   bool no_features = false;          ///< --no-features: no sharp features (= --feature-angle off)
   bool align = true;                 ///< see ParamOptions::alignment
   bool round_curves = ParamOptions{}.alignment.round_with_periods;  ///< ParamOptions::alignment.round_with_periods
+  double square_hole_units = PipelineOptions{}.square_hole_grid_units;  ///< PipelineOptions::square_hole_grid_units
 };
 
 /// --fill as FieldOptions::fill. \throw InputError naming --fill for another word.

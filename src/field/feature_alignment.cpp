@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "common/union_find.h"
+#include "field/crease_loops.h"
 #include "mesh/segment_grid.h"
 #include "mesh/shape_operator.h"
 
@@ -122,11 +123,14 @@ FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& o
   out.constrained.assign(static_cast<std::size_t>(nf), 0);
   out.source_edge.assign(static_cast<std::size_t>(nf), -1);
   out.direction = Eigen::VectorXcd::Zero(nf);
+  std::vector<unsigned char> freed(static_cast<std::size_t>(nf), 0);
+  if (options.free_short_loops_below > 0)
+    freed = freed_loop_sides(mesh, closed_crease_loops(mesh, out.feature_edges), options.free_short_loops_below);
   for (int f = 0; f < nf; ++f) {
     int best = -1;
     for (int k = 0; k < 3; ++k) {
       const int e = mesh.FE()(f, k);
-      if (strength[e] == 0) continue;
+      if (strength[e] == 0 || (freed[f] >> k & 1) != 0) continue;
       if (best < 0) {
         best = k;
         continue;

@@ -26,6 +26,10 @@ struct FeatureOptions {
   /// on coarse organic meshes; CAD creases are long chains (BENCHMARKS.md, "Option defaults"). 1 keeps every
   /// sharp edge.
   int min_curve_edges = 8;
+  /// Closed crease loops shorter than this (model units; 0 = none) that turn by a whole turn on one side and run
+  /// straight on the other (the rim of a small hole through a plate, field/crease_loops.h) are followed on the
+  /// straight side only: the turning side's faces along them are left free. The pipeline sets it from the density.
+  double free_short_loops_below = 0;
   /// Sharp features given by the user (`--features FILE`): when set, the sharp edges are exactly the edges lying on
   /// these segments (both halves of a split edge too, so a refined mesh keeps them), whatever their dihedral angle;
   /// sharp_angle_degrees and min_curve_edges are then not used. Empty: no sharp features.

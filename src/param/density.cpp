@@ -16,18 +16,23 @@ LoopResolution loop_resolution(const Mesh& mesh, const DensityOptions& options, 
   const double finest = std::max(h / std::sqrt(options.max_loop_quads_factor),
                                  std::sqrt(mesh.total_area() / std::max(mesh.num_faces(), 1)));
   double resolving = h;
+  const auto consider = [&](int loop, bool rim, int lowest_vertex, double length) {
+    const double needed = length / options.min_loop_grid_units;
+    if (needed >= resolving || needed < finest) return;
+    resolving = needed;
+    r.loop = loop;
+    r.rim = rim;
+    r.lowest_vertex = lowest_vertex;
+    r.length = length;
+  };
   const auto& loops = mesh.boundary_loops();
   for (std::size_t l = 0; l < loops.size(); ++l) {
     double length = 0;
     for (const int e : mesh.boundary_loop_edges()[l]) length += mesh.edge_lengths()[e];
-    const double needed = length / options.min_loop_grid_units;
-    if (needed < resolving && needed >= finest) {
-      resolving = needed;
-      r.loop = static_cast<int>(l);
-      r.lowest_vertex = *std::min_element(loops[l].begin(), loops[l].end());
-      r.length = length;
-    }
+    consider(static_cast<int>(l), false, *std::min_element(loops[l].begin(), loops[l].end()), length);
   }
+  for (std::size_t l = 0; l < options.hole_rims.size(); ++l)
+    consider(static_cast<int>(l), true, options.hole_rims[l].lowest_vertex, options.hole_rims[l].length);
   r.quads_factor = (h / resolving) * (h / resolving);
   return r;
 }

@@ -7,6 +7,13 @@
 
 namespace quadcover {
 
+/// A closed crease loop round a hole through the part whose turning side the field leaves free (field/crease_loops.h):
+/// the default density resolves it as it resolves a boundary loop.
+struct HoleRim {
+  int lowest_vertex = -1;
+  double length = 0;
+};
+
 struct DensityOptions {
   /// Target quad edge length h in model units (> 0 to use). One grid unit = h along the (RMS-normalized) field.
   double edge_length = 0;
@@ -25,6 +32,8 @@ struct DensityOptions {
   /// per input triangle (the memory stays that of the input's resolution); 0 = off.
   double min_loop_grid_units = 4.0;
   double max_loop_quads_factor = 16.0;
+  /// Hole rims held to the same minimum as the boundary loops (set by the pipeline with the rims it frees).
+  std::vector<HoleRim> hole_rims;
   /// Per connected component, in the order of their lowest vertex numbers, how many times finer than h its quads
   /// are: component c is meshed at edge length h / component_density[c]. Empty: 1 everywhere. Set by
   /// fix_component_density.
@@ -36,7 +45,8 @@ struct DensityOptions {
 
 /// The boundary loop that made the default density finer (DensityOptions::min_loop_grid_units).
 struct LoopResolution {
-  int loop = -1;            ///< index into mesh.boundary_loops(), -1 when no loop made it finer
+  int loop = -1;            ///< index into mesh.boundary_loops() (or hole_rims), -1 when no loop made it finer
+  bool rim = false;         ///< the loop is DensityOptions::hole_rims[loop]
   int lowest_vertex = -1;   ///< that loop's lowest vertex number (0-based)
   double length = 0;        ///< its length in model units
   double quads_factor = 1;  ///< the quads of the finer density over those of the coarser one (1: not finer)

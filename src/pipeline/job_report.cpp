@@ -40,6 +40,8 @@ nlohmann::json options_json(const PipelineOptions& o) {
           {"stiffening", o.param.stiffening.max_iterations},
           {"align_curves", o.param.alignment.enabled},
           {"round_curves", o.param.alignment.round_with_periods},
+          {"square_holes", o.square_hole_grid_units},
+          {"freed_hole_rims", o.param.density.hole_rims.size()},
           {"smooth_quads", o.smoothing.iterations},
           {"smooth_rigidity", o.smoothing.rigidity},
           {"refine_curve_triangles", o.refine_curve_triangles},
@@ -198,7 +200,8 @@ nlohmann::json param_report(const Mesh& input_mesh, const ParamJob& job, const E
                   {"first_quads", job.density.first_quads},
                   {"quads", job.density.quads},
                   {"resolves", job.density.resolves},
-                  {"raised_for_loop", job.density.raised.loop},
+                  {"raised_for_loop", job.density.raised.rim ? 0 : job.density.raised.loop},
+                  {"raised_for_hole_rim", job.density.raised.rim ? job.density.raised.loop : 0},
                   {"raised_quads_factor", job.density.raised.quads_factor},
                   {"component_density", map.component_density}};
   r["field"] = field_json(job);

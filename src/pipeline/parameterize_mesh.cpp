@@ -8,6 +8,7 @@
 
 #include "common/side_by_side.h"
 #include "field/compute_frame_field.h"
+#include "field/crease_loops.h"
 #include "field/indices.h"
 #include "mesh/vertex_rings.h"
 #include "optimize/curl_energy.h"
@@ -49,13 +50,26 @@ void record_comparison_solve(const StageCost& both, ParamJob& job) {
   job.peak_bytes.emplace_back("keep_better", both.peak_bytes);
 }
 
+/// The closed crease loops whose turning side the field leaves free (FeatureOptions::free_short_loops_below), as
+/// holes for the default density.
+std::vector<HoleRim> hole_rims(const Mesh& mesh, const FeatureOptions& features) {
+  std::vector<HoleRim> rims;
+  if (features.free_short_loops_below <= 0) return rims;
+  for (const CreaseLoop& loop : closed_crease_loops(mesh, feature_constraints(mesh, features).feature_edges))
+    if (free_side(loop, features.free_short_loops_below) != 0)
+      rims.push_back({*std::min_element(loop.vertices.begin(), loop.vertices.end()), loop.length});
+  return rims;
+}
+
 /// The default density made finer for a boundary loop (param/density.h LoopResolution; r.loop ≥ 0), the loop
 /// numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
 LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density) {
   LoopDensityRaise raise;
-  raise.loop = 1;
-  for (const auto& loop : mesh.boundary_loops())
-    raise.loop += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
+  raise.rim = r.rim;
+  raise.loop = r.rim ? r.loop + 1 : 1;
+  if (!r.rim)
+    for (const auto& loop : mesh.boundary_loops())
+      raise.loop += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
   raise.vertex = r.lowest_vertex + 1;
   raise.at = mesh.V().row(r.lowest_vertex);
   raise.length = r.length;
@@ -80,9 +94,9 @@ void fix_default_and_loop_density(const Mesh& mesh, const FrameField& field, std
   density.edge_length = r.edge_length;  // the coarser default
   char text[200];
   std::snprintf(text, sizeof text,
-                "the default density was not made finer for boundary loop %d (through vertex %d): about %.3g quads "
-                "would not fit in the memory available",
-                raise.loop, raise.vertex, quads);
+                "the default density was not made finer for %s %d (through vertex %d): about %.3g quads would not fit "
+                "in the memory available",
+                raise.rim ? "hole rim" : "boundary loop", raise.loop, raise.vertex, quads);
   job.warnings.push_back(text);
 }
 
@@ -279,11 +293,11 @@ std::vector<std::string> refinement_warnings(const ParamJob& job, std::size_t be
 std::string loop_density_warning(const LoopDensityRaise& raise) {
   char text[400];
   std::snprintf(text, sizeof text,
-                "the default density was made %.1f times finer (quads) so that boundary loop %d (through vertex %d at "
+                "the default density was made %.1f times finer (quads) so that %s %d (through vertex %d at "
                 "(%.6g, %.6g, %.6g), length %.6g) is %g quad edges around and keeps a ring of quads (pass --faces or "
                 "--edge-length to choose)",
-                raise.quads_factor, raise.loop, raise.vertex, raise.at.x(), raise.at.y(), raise.at.z(), raise.length,
-                raise.grid_units);
+                raise.quads_factor, raise.rim ? "the rim of hole" : "boundary loop", raise.loop, raise.vertex,
+                raise.at.x(), raise.at.y(), raise.at.z(), raise.length, raise.grid_units);
   return text;
 }
 
@@ -551,6 +565,28 @@ FrameFieldResult field_on_refined_mesh(const Mesh& input, ParamJob& job, Progres
   return field;
 }
 
+/// field_on_refined_mesh with the short crease loops freed on their turning side (FeatureOptions::
+/// free_short_loops_below: PipelineOptions::square_hole_grid_units quad edges h). h is first taken from the mesh
+/// alone (target_edge_length without branch points, at least the default h); when the field's branch points make
+/// the default h finer and so fewer loops that short, the field is made again with those. The freed loops are the
+/// density's hole rims (param/density.h).
+FrameFieldResult field_with_square_holes(const Mesh& input, ParamJob& job, ProgressSink& progress) {
+  ParamOptions& param = job.options.param;
+  const double units = job.options.square_hole_grid_units;
+  param.features.free_short_loops_below = units * target_edge_length(input, param.density);
+  param.density.hole_rims = hole_rims(input, param.features);
+  FrameFieldResult field = field_on_refined_mesh(input, job, progress);
+  if (param.density.hole_rims.empty()) return field;
+  DensityOptions without_rims = param.density;
+  without_rims.hole_rims.clear();
+  const int branch_points = static_cast<int>(field.branch_points.size());
+  param.features.free_short_loops_below = units * target_edge_length(input, without_rims, branch_points);
+  const std::vector<HoleRim> rims = hole_rims(input, param.features);
+  if (rims.size() == param.density.hole_rims.size()) return field;
+  param.density.hole_rims = rims;
+  return field_on_refined_mesh(input, job, progress);
+}
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
   validate(options);
@@ -565,7 +601,7 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
     job.refinement = refine_for_curves(input, param.features);
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
-  const FrameFieldResult field = field_on_refined_mesh(input, job, progress);
+  const FrameFieldResult field = field_with_square_holes(input, job, progress);
   const Mesh& mesh = job.mesh(input);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());

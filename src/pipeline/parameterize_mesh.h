@@ -24,6 +24,7 @@ namespace quadcover {
 /// warning name it.
 struct LoopDensityRaise {
   int loop = 0;    ///< the loop's number as in the report's boundary_loops (0: the density was not made finer)
+  bool rim = false;  ///< loop is instead the number of a hole rim (DensityOptions::hole_rims, from 1)
   int vertex = 0;  ///< its lowest vertex, 1-based as in the file
   Eigen::Vector3d at = Eigen::Vector3d::Zero();  ///< that vertex's position
   double length = 0;                             ///< the loop's length in model units

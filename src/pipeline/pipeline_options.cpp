@@ -24,6 +24,7 @@ void validate(const PipelineOptions& o) {
   if (o.smoothing.iterations < 0) throw InputError("smooth_quads", 0, "must be >= 0 (0 = off)");
   if (!(o.smoothing.rigidity >= 0 && o.smoothing.rigidity <= 1))
     throw InputError("smooth_rigidity", 0, "must be in [0, 1]");
+  if (!(o.square_hole_grid_units >= 0)) throw InputError("square_holes", 0, "must be >= 0 (0 = off)");
   const double angle = p.features.sharp_angle_degrees;
   if (!(angle >= 0 && angle <= 180)) {
     std::ostringstream got;

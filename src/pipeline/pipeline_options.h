@@ -31,6 +31,11 @@ struct PipelineOptions {
   /// Split the edges where the curve constraints would hold a triangle at zero area (pipeline/curve_refinement.h);
   /// the map then lives on a finer triangulation (ParamJob::mesh).
   bool refine_curve_triangles = false;
+  /// Closed crease loops shorter than this many quad edges h of the density asked for (target_edge_length) and
+  /// straight on one side are followed on that side only (FeatureOptions::free_short_loops_below,
+  /// field/crease_loops.h): small holes through a part come out square in an even grid (BENCHMARKS.md, "Short
+  /// crease loops as square holes"). 0 = off.
+  double square_hole_grid_units = 8.0;
   /// Before the map: cancel the branch point pairs of opposite index closer than one quad edge h along the mesh
   /// edges (close_opposite_cone_merges, pipeline/cone_merging.h) in the field the map is meant to be made from:
   /// Algorithm 6.1's, or the field stage's with OptimizeMode::None (keep-better compares the optimized field with

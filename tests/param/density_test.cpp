@@ -69,6 +69,28 @@ TEST(DefaultDensity, StaysWhereTheLoopsAreLongOrTooShortForTheCap) {
   EXPECT_EQ(loop_resolution(plate, off, h).loop, -1);
 }
 
+// A hole rim (DensityOptions::hole_rims: a crease loop round a hole through the part) is held to the same four quad
+// edges as a boundary loop; the shorter of a rim and a boundary loop wins.
+TEST(DefaultDensity, HoleRimsAreMadeFourQuadEdgesAroundAsBoundaryLoopsAre) {
+  const Mesh grid = testing::make_grid(10);  // its one boundary loop is about 17 h long
+  const double h = unraised_edge_length(grid);
+  DensityOptions rims;
+  rims.hole_rims = {{7, 2.0 * h}, {3, 2.5 * h}};
+  const LoopResolution r = loop_resolution(grid, rims, h);
+  EXPECT_TRUE(r.rim);
+  EXPECT_EQ(r.loop, 0);
+  EXPECT_EQ(r.lowest_vertex, 7);
+  EXPECT_NEAR(r.length, 2.0 * h, 1e-12);
+  EXPECT_NEAR(r.quads_factor, 4.0, 1e-9);  // h → h / 2
+  EXPECT_NEAR(target_edge_length(grid, rims), 0.5 * h, 1e-12);
+  const Mesh plate = plate_with_holes(10);  // holes 0.4 long: shorter than a rim of 0.5
+  rims.hole_rims = {{0, 0.5}};
+  const double plate_h = unraised_edge_length(plate);
+  EXPECT_FALSE(loop_resolution(plate, rims, plate_h).rim);
+  rims.hole_rims = {{0, 0.3}};
+  EXPECT_TRUE(loop_resolution(plate, rims, plate_h).rim);
+}
+
 TEST(DefaultDensity, AGivenDensityIsNeverChanged) {
   const Mesh plate = plate_with_holes(10);
   const FrameField none;  // not read for an explicit density

@@ -114,6 +114,7 @@ TEST_P(FoldRefinementHardCases, LeavesNoNonPositiveTriangle) {
   off.fold_refinement_rounds = 0;
   off.validity_retries = 0;  // one density: also the default one is kept as it is
   off.param.density.target_quads = c.quads;
+  off.square_hole_grid_units = 0;  // the fat torus's circles are 72° creases: followed on both sides, as when made
   const ParamJob without = parameterize_mesh(mesh, off);
   ASSERT_GT(non_positive(without.mesh(mesh), without.map.uv), 0) << c.name << ": the case no longer occurs";
   PipelineOptions on = off;
@@ -167,6 +168,7 @@ TEST(FoldRefinement, ConesWithAShortRingEndWithoutANonPositiveTriangle) {
   on.move_wound_cones = false;
   on.merge_coincident_cones = false;
   on.validity_retries = 0;
+  on.square_hole_grid_units = 0;  // the field of the map with those cones: every rim followed on both sides
   PipelineOptions off = on;
   off.param.untangle.rewind_rings = false;
   const ParamJob without = parameterize_mesh(mesh, off);

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "metrics/quad_quality.h"
 #include "param/seams.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/remesh_mesh.h"
@@ -235,6 +236,31 @@ TEST(HardCases, AFanDiskGetsVerticesForItsCones) {
   const RemeshJob tetrahedron = expect_valid_job(Mesh::from_triangles(V, F), PipelineOptions{});
   EXPECT_EQ(tetrahedron.param.cone_splits, 0);
   EXPECT_FALSE(tetrahedron.param.refinement.mesh);
+}
+
+// A small hole drilled through a coarse CAD plate (two rims of 16 edges, each about 6 quad edges around at the
+// default density): aligned to the rims on the plate's side too, the field is polar around the hole and the quads
+// shrink towards it like log r; with the plate's side of each rim left free (PipelineOptions::square_hole_grid_units,
+// field/crease_loops.h) the field stays parallel, the hole comes out square and the grid even.
+TEST(HardCases, ASmallHoleThroughAPlateComesOutSquareInAnEvenGrid) {
+  const Mesh plate = testing::make_drilled_plate(16, 0.15);
+  const RemeshJob square = expect_valid_job(plate, PipelineOptions{});
+  const double h = square.param.map.edge_length;
+  ASSERT_EQ(square.param.options.param.density.hole_rims.size(), 2u);
+  EXPECT_LT(square.param.options.param.density.hole_rims[0].length, 8 * h);
+  PipelineOptions round_options;
+  round_options.square_hole_grid_units = 0;
+  round_options.param.density.edge_length = h;  // the same density
+  const RemeshJob round = expect_valid_job(plate, round_options);
+  EXPECT_TRUE(round.param.options.param.density.hole_rims.empty());
+  const double rsd_square = quad_quality(square.extraction.mesh).rsd_edge_length;
+  const double rsd_round = quad_quality(round.extraction.mesh).rsd_edge_length;
+  EXPECT_LT(rsd_square, 0.6 * rsd_round) << rsd_square << " vs " << rsd_round;
+  EXPECT_EQ(square.surface.output.genus, 1);
+  // Rims longer than square_hole_grid_units quad edges stay followed on both sides.
+  PipelineOptions fine;
+  fine.param.density.edge_length = square.param.options.param.density.hole_rims[0].length / 10;
+  EXPECT_TRUE(remesh_mesh(plate, fine).param.options.param.density.hole_rims.empty());
 }
 
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned

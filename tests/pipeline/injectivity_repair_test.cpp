@@ -415,6 +415,7 @@ TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) 
   plain.validity_retries = 0;
   plain.move_wound_cones = false;
   plain.merge_coincident_cones = false;
+  plain.square_hole_grid_units = 0;  // the field of the map with the fake pairs: every rim followed on both sides
   const ParamJob without = parameterize_mesh(mesh, plain);
   const Mesh& m0 = without.mesh(mesh);
   const std::size_t wrong_before = wrong_winding_vertices(m0, without.map).size();

@@ -1,5 +1,6 @@
 #include "support/test_meshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -87,6 +88,36 @@ Mesh make_cylinder(int n_around, int n_up, double r, double h) {
       F.row(q) << id(i, j), id(i + 1, j), id(i + 1, j + 1);
       F.row(q + 1) << id(i, j), id(i + 1, j + 1), id(i, j + 1);
     }
+  return Mesh::from_triangles(V, F);
+}
+
+Mesh make_drilled_plate(int n_around, double r, double side, double thickness) {
+  const int n = n_around;
+  // vertices: top square ring, top hole ring, bottom square ring, bottom hole ring (k-th at angle 2πk/n)
+  Eigen::MatrixX3d V(4 * n, 3);
+  const auto ring = [&](int which, int k) { return which * n + (k + n) % n; };
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n, c = std::cos(a), s = std::sin(a);
+    const double to_square = 0.5 * side / std::max(std::abs(c), std::abs(s));
+    for (int level = 0; level < 2; ++level) {
+      const double z = level == 0 ? thickness : 0.0;
+      V.row(ring(2 * level, k)) << to_square * c, to_square * s, z;
+      V.row(ring(2 * level + 1, k)) << r * c, r * s, z;
+    }
+  }
+  Eigen::MatrixX3i F(8 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    const int st = ring(0, k), st1 = ring(0, k + 1), ct = ring(1, k), ct1 = ring(1, k + 1);
+    const int sb = ring(2, k), sb1 = ring(2, k + 1), cb = ring(3, k), cb1 = ring(3, k + 1);
+    F.row(8 * k) << ct, st, st1;  // top, facing +z
+    F.row(8 * k + 1) << ct, st1, ct1;
+    F.row(8 * k + 2) << cb, sb1, sb;  // bottom, facing −z
+    F.row(8 * k + 3) << cb, cb1, sb1;
+    F.row(8 * k + 4) << sb, sb1, st1;  // outer wall, facing out
+    F.row(8 * k + 5) << sb, st1, st;
+    F.row(8 * k + 6) << cb, ct1, cb1;  // hole wall, facing the axis
+    F.row(8 * k + 7) << cb, ct, ct1;
+  }
   return Mesh::from_triangles(V, F);
 }
 

@@ -21,6 +21,11 @@ Mesh make_grid(int n);
 Eigen::MatrixX3i grid_faces_with_holes(const Mesh& grid, int n);
 /// An open cylinder of radius r and height h around the z axis, n_around × n_up quads.
 Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
+/// A square plate [−side/2, side/2]² × [0, thickness] drilled through its centre by a hole of radius r (genus 1), as
+/// CAD exports triangulate it: top and bottom are one strip of 2·n_around triangles from the square to the hole's
+/// n-gon (n_around a multiple of 8: the square's corners are among the angles), walls of one row of quads. Every
+/// edge of the square and both rims are 90° creases; each rim is a closed crease loop.
+Mesh make_drilled_plate(int n_around, double r, double side = 2.0, double thickness = 0.5);
 /// Two components in one mesh: make_torus(12, 8) and, after its vertices, make_cylinder(10, 4).
 Mesh make_torus_and_cylinder();
 /// Copies of `mesh` side by side, one per scale: copy c scaled by scales[c] and moved along x by c times 1.5 widths
