@@ -1,5 +1,6 @@
 #pragma once
 // The loop of the validity retries (pipeline/validity_retries.h), shared by the param and the remesh job.
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -39,13 +40,19 @@ std::string under_resolved(Job& job, const Validity& v) {
   return "";
 }
 
-/// The warning of a job made `halvings` times at half the default quad edge (none for 0). \pre halvings >= 0
+/// The warning of a job made `halvings` times at half the default quad edge factor (none for 0): how many times more
+/// quads its h gives than `first_h`, the first attempt's (the factor of 4 per halving, unless the branch points' bound
+/// of the default h held it finer already; 4 per halving when attempt 0 gave no map, first_h 0). \pre halvings >= 0
 template <class Job>
-void say_made_finer(Job& job, int halvings) {
-  if (halvings == 0) return;
+void say_made_finer(Job& job, int halvings, double first_h) {
   ParamJob& p = param_job(job);
+  const double ratio =
+      first_h > 0 ? (first_h / p.map.edge_length) * (first_h / p.map.edge_length) : 1 << (2 * halvings);
+  if (halvings == 0 || ratio < 1.01) return;  // the same h as attempt 0: nothing was made finer
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%.3g", ratio);
   p.warnings.push_back("the default density was too coarse for this shape (a part thinner than the quad edge): made " +
-                       std::to_string(1 << (2 * halvings)) + " times finer, h = " + std::to_string(p.map.edge_length) +
+                       std::string(factor) + " times finer, h = " + std::to_string(p.map.edge_length) +
                        " (pass --faces or --edge-length to choose)");
 }
 
@@ -61,11 +68,13 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
   using Judged = std::pair<decltype(run(once)), Validity>;
   std::optional<Judged> best;  // while a finer attempt runs
   int best_halvings = 0;
+  double first_h = 0;  // the h of attempt 0
   for (int halvings = 0;; ++halvings) {
     const bool last = !adjustable || halvings == kCoarseHalvings || progress.skip_improvements();
     std::string why;
     try {
       auto job = run(o);
+      if (halvings == 0) first_h = param_job(job).map.edge_length;
       const Validity v = judge(job);
       why = last ? "" : under_resolved(job, v);
       if (!best || !(best->second < v)) best.emplace(std::move(job), v), best_halvings = halvings;
@@ -84,7 +93,7 @@ auto first_attempt(const PipelineOptions& once, int once_retries, Run& run, Judg
     o.param.density.default_edge_factor /= 2;
     progress.report("retry", -1, "default density too coarse (" + why + "): attempt at half the quad edge");
   }
-  say_made_finer(best->first, best_halvings);
+  say_made_finer(best->first, best_halvings, first_h);
   return std::move(*best);
 }
 

@@ -168,6 +168,22 @@ TEST(ValidityRetries, ADensityMadeFinerForALoopIsKeptAndSaidByTheRetries) {
   EXPECT_NE(job.param.warnings[1].find("kept a valid result"), std::string::npos) << job.param.warnings[1];
 }
 
+// The warning of a default density made finer says how many times more quads the kept h gives than the first
+// attempt's: 4 per halving of the edge factor, less when the branch points' bound held the default h finer already.
+TEST(ValidityRetries, TheFinerDensityWarningSaysTheFactorOfTheKeptEdgeLength) {
+  const auto said = [](double first_h, double kept_h, int halvings) {
+    ParamJob job;
+    job.map.edge_length = kept_h;
+    say_made_finer(job, halvings, first_h);
+    return job.warnings.empty() ? std::string() : job.warnings.front();
+  };
+  EXPECT_NE(said(0.2, 0.1, 1).find("made 4 times finer, h = 0.100000"), std::string::npos);
+  EXPECT_NE(said(0.0989, 0.0615, 2).find("made 2.59 times finer"), std::string::npos);
+  EXPECT_NE(said(0, 0.05, 2).find("made 16 times finer"), std::string::npos);  // attempt 0 gave no map
+  EXPECT_EQ(said(0.1, 0.1, 2), "");                                            // nothing was made finer
+  EXPECT_EQ(said(0.2, 0.1, 0), "");
+}
+
 TEST(ValidityRetries, AValidFirstAttemptRunsOnceWithoutAWarning) {
   StubRuns stub;
   stub.by_factor = {{1000, folds(0)}};
