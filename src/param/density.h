@@ -43,7 +43,7 @@ struct DensityOptions {
   bool edge_length_from_default = false;
 };
 
-/// The boundary loop that made the default density finer (DensityOptions::min_loop_grid_units).
+/// The boundary loop or hole rim that made the default density finer (DensityOptions::min_loop_grid_units).
 struct LoopResolution {
   int loop = -1;            ///< index into mesh.boundary_loops() (or hole_rims), -1 when no loop made it finer
   bool rim = false;         ///< the loop is DensityOptions::hole_rims[loop]

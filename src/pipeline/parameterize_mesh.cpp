@@ -62,7 +62,8 @@ std::vector<HoleRim> hole_rims(const Mesh& mesh, const FeatureOptions& features)
 }
 
 /// The default density made finer for a boundary loop (param/density.h LoopResolution; r.loop ≥ 0), the loop
-/// numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h).
+/// numbered as the report's boundary_loops number it (pipeline/boundary_loop_check.h), or for a hole rim (numbered
+/// from 1 in DensityOptions::hole_rims).
 LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density) {
   LoopDensityRaise raise;
   raise.rim = r.rim;
