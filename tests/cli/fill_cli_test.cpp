@@ -70,6 +70,28 @@ TEST_F(FillCli, SplitConesChoosesWhichSingularitiesAreSplit) {
   EXPECT_FALSE(fs::exists(path("refused.obj")));
 }
 
+// --square-holes N: the rims of couplingdown_genus9's small bolt holes are freed on the plate's side by default (8
+// quad edges) and not with 0; a negative count is refused naming the option, with no output file.
+TEST_F(FillCli, SquareHolesCountsQuadEdgesAndRefusesNegatives) {
+  const auto run = [&](const std::string& name, const std::string& extra) {
+    return quadcover::testing::run_cli_report("param " + quadcover::testing::data_path("couplingdown_genus9") + " -o " +
+                                                  path(name + ".obj") +
+                                                  " --optimize none --keep-better false --retries 0 -q " + extra,
+                                              path(name + ".json"));
+  };
+  const nlohmann::json by_default = run("square", ""), off = run("round", "--square-holes 0");
+  EXPECT_EQ(by_default["options"]["square_holes"], 8.0);
+  EXPECT_GT(by_default["options"]["freed_hole_rims"].get<int>(), 0);
+  EXPECT_EQ(off["options"]["square_holes"], 0.0);
+  EXPECT_EQ(off["options"]["freed_hole_rims"], 0);
+  const auto r = run_cli("param " + quadcover::testing::data_path("couplingdown_genus9") + " -o " +
+                             path("refused.obj") + " --square-holes -1 -q",
+                         path("err.txt"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--square-holes"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("refused.obj")));
+}
+
 TEST_F(FillCli, AnotherWordIsRefused) {
   for (const std::string command : {"param", "remesh"}) {
     SCOPED_TRACE(command);
