@@ -59,10 +59,9 @@ double left_angle(const Mesh& mesh, const CreaseLoop& loop, std::size_t i) {
   return std::nan("");
 }
 
+/// The sum of the corner angles at v, from the mesh's angle defect (2π − Σα inside, π − Σα on the boundary).
 double vertex_angle(const Mesh& mesh, int v) {
-  double angle = 0;
-  for (const Mesh::FanCorner& c : mesh.fan(v)) angle += mesh.corner_angles()(c.face, c.corner);
-  return angle;
+  return (mesh.is_boundary_vertex(v) ? kPi : 2 * kPi) - mesh.angle_defect()[v];
 }
 
 }  // namespace

@@ -50,13 +50,12 @@ void record_comparison_solve(const StageCost& both, ParamJob& job) {
   job.peak_bytes.emplace_back("keep_better", both.peak_bytes);
 }
 
-/// The closed crease loops whose turning side the field leaves free (FeatureOptions::free_short_loops_below), as
-/// holes for the default density.
-std::vector<HoleRim> hole_rims(const Mesh& mesh, const FeatureOptions& features) {
+/// The loops whose turning side the field leaves free below `max_length` (field/crease_loops.h free_side), as holes
+/// for the default density.
+std::vector<HoleRim> hole_rims(const std::vector<CreaseLoop>& loops, double max_length) {
   std::vector<HoleRim> rims;
-  if (features.free_short_loops_below <= 0) return rims;
-  for (const CreaseLoop& loop : closed_crease_loops(mesh, feature_constraints(mesh, features).feature_edges))
-    if (free_side(loop, features.free_short_loops_below) != 0)
+  for (const CreaseLoop& loop : loops)
+    if (free_side(loop, max_length) != 0)
       rims.push_back({*std::min_element(loop.vertices.begin(), loop.vertices.end()), loop.length});
   return rims;
 }
@@ -67,10 +66,13 @@ std::vector<HoleRim> hole_rims(const Mesh& mesh, const FeatureOptions& features)
 LoopDensityRaise loop_density_raise(const Mesh& mesh, const LoopResolution& r, const DensityOptions& density) {
   LoopDensityRaise raise;
   raise.rim = r.rim;
-  raise.loop = r.rim ? r.loop + 1 : 1;
-  if (!r.rim)
+  if (r.rim) {
+    raise.loop = r.loop + 1;
+  } else {
+    raise.loop = 1;
     for (const auto& loop : mesh.boundary_loops())
       raise.loop += *std::min_element(loop.begin(), loop.end()) < r.lowest_vertex;
+  }
   raise.vertex = r.lowest_vertex + 1;
   raise.at = mesh.V().row(r.lowest_vertex);
   raise.length = r.length;
@@ -575,14 +577,20 @@ FrameFieldResult field_with_square_holes(const Mesh& input, ParamJob& job, Progr
   ParamOptions& param = job.options.param;
   const double units = job.options.square_hole_grid_units;
   param.features.free_short_loops_below = units * target_edge_length(input, param.density);
-  param.density.hole_rims = hole_rims(input, param.features);
+  std::vector<CreaseLoop> loops;
+  if (param.features.free_short_loops_below > 0) {
+    FeatureOptions sharp_edges_only = param.features;
+    sharp_edges_only.free_short_loops_below = 0;
+    loops = closed_crease_loops(input, feature_constraints(input, sharp_edges_only).feature_edges);
+  }
+  param.density.hole_rims = hole_rims(loops, param.features.free_short_loops_below);
   FrameFieldResult field = field_on_refined_mesh(input, job, progress);
   if (param.density.hole_rims.empty()) return field;
   DensityOptions without_rims = param.density;
   without_rims.hole_rims.clear();
   const int branch_points = static_cast<int>(field.branch_points.size());
   param.features.free_short_loops_below = units * target_edge_length(input, without_rims, branch_points);
-  const std::vector<HoleRim> rims = hole_rims(input, param.features);
+  const std::vector<HoleRim> rims = hole_rims(loops, param.features.free_short_loops_below);
   if (rims.size() == param.density.hole_rims.size()) return field;
   param.density.hole_rims = rims;
   return field_on_refined_mesh(input, job, progress);
