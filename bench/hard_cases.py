@@ -309,6 +309,23 @@ def needle_triangles():
     return orient(V, F, lambda c: c)
 
 
+def gear():
+    # Hard: a coarse CAD export of a spur gear with 16 teeth: a prism over an outline of 8 vertices a tooth, caps fanned
+    # around their centres. Both outlines and the tooth corners are 90° creases on chains of at most 3 edges (too
+    # short for feature curves; followed as crisp creases between corners).
+    n, pts = 128, []
+    for z in (0.3, 0.0):
+        for k in range(n):
+            r = 1.0 if 2 <= k % 8 < 6 else 0.8
+            pts.append((r * np.cos(2 * np.pi * k / n), r * np.sin(2 * np.pi * k / n), z))
+    pts += [(0.0, 0.0, 0.3), (0.0, 0.0, 0.0)]
+    tris = []
+    for k in range(n):
+        t, t1, b, b1 = k, (k + 1) % n, n + k, n + (k + 1) % n
+        tris += [(2 * n, t, t1), (2 * n + 1, b1, b), (b, b1, t1), (b, t1, t)]
+    return np.array(pts), np.array(tris)
+
+
 def sharp_tetrahedron():
     # Hard: a tall tetrahedron whose side faces meet at 30-degree apex angles (a +3/4 cone of the field at the
     # apex: one quad corner) and whose base corners carry half cones; 40 x 40 subdivided faces.
@@ -452,6 +469,7 @@ CASES = {
     "inverted_torus": (inverted_torus, (0, 1, 1), "inward"),
     "needle_triangles": (needle_triangles, (0, 0, 1), "outward"),
     "sharp_tetrahedron": (sharp_tetrahedron, (0, 0, 1), "outward"),
+    "gear": (gear, (0, 0, 1), "outward"),
     "lattice_scan": (lattice_scan, (6, 9, 1), "open"),
     "bolted_plate": (bolted_plate, (0, 11, 1), "outward"),
     "bolted_plate_fine": (bolted_plate_fine, (0, 11, 1), "outward"),

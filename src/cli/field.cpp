@@ -169,7 +169,7 @@ void save_followed_features(const std::string& path, const Mesh& mesh, const std
     source << "given by --features";
   else
     source << "dihedral angle above " << features.sharp_angle_degrees << " degrees, on curves of at least "
-           << features.min_curve_edges << " such edges";
+           << features.min_curve_edges << " such edges or crisp between corners";
   write_feature_edges(
       path, edges,
       {"quadcover: the " + std::to_string(edges.size()) + " sharp edges the field followed (" + source.str() + ")",

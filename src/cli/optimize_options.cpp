@@ -57,11 +57,11 @@ void add_validity_options(CLI::App& cmd, OptimizeCliOptions& options) {
 void add_feature_options(CLI::App& cmd, std::string& feature_angle, std::string& features_file, bool& no_features,
                          const std::string& features_help) {
   auto* angle =
-      cmd.add_option(
-             "--feature-angle", feature_angle,
-             "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
-             "such edges) are followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp "
-             "features (boundaries are still followed)")
+      cmd.add_option("--feature-angle", feature_angle,
+                     "Sharp features: interior edges whose dihedral angle exceeds DEG degrees (on curves of at least 8 "
+                     "such edges, or shorter creases between flat sides and between corners, as a gear's teeth) are "
+                     "followed by the field and, with --align, lie on quad edges; 0 or 'off' = no sharp features "
+                     "(boundaries are still followed)")
           ->type_name("DEG|off")
           ->capture_default_str();
   auto* features = cmd.add_option("--features", features_file, features_help)->type_name("FILE")->excludes(angle);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <utility>
 
 #include "common/union_find.h"
 #include "field/crease_loops.h"
@@ -14,9 +15,9 @@ namespace quadcover {
 
 namespace {
 
-// Keeps the sharp edges that lie on chains of at least `min_edges` sharp edges continuing each other.
-void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& sharp) {
-  if (min_edges <= 1 || sharp.empty()) return;
+// Per sharp edge (in `sharp`'s order): whether it lies on a chain of at least `min_edges` sharp edges continuing each
+// other (turning by less than 40° at their common vertex).
+std::vector<char> on_long_chains(const Mesh& mesh, int min_edges, const std::vector<int>& sharp) {
   const int ne = mesh.num_edges();
   std::vector<std::vector<int>> at(static_cast<std::size_t>(mesh.num_vertices()));
   for (int e : sharp)
@@ -36,7 +37,75 @@ void keep_feature_curves(const Mesh& mesh, int min_edges, std::vector<int>& shar
   }
   std::vector<int> size(static_cast<std::size_t>(ne), 0);
   for (int e : sharp) ++size[static_cast<std::size_t>(curves.find(e))];
-  std::erase_if(sharp, [&](int e) { return size[static_cast<std::size_t>(curves.find(e))] < min_edges; });
+  std::vector<char> on(sharp.size());
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    on[i] = size[static_cast<std::size_t>(curves.find(sharp[i]))] >= min_edges;
+  return on;
+}
+
+// Per sharp edge: whether every edge of its faces that is not sharp bends by less than `degrees`.
+std::vector<char> crisp_edges(const Mesh& mesh, const Eigen::VectorXd& beta, const std::vector<int>& sharp,
+                              double degrees) {
+  std::vector<char> is_sharp(static_cast<std::size_t>(mesh.num_edges()), 0);
+  for (int e : sharp) is_sharp[static_cast<std::size_t>(e)] = 1;
+  const double limit = degrees * std::numbers::pi / 180.0;
+  const auto calm = [&](int f) {
+    for (int k = 0; k < 3; ++k) {
+      const int g = mesh.FE()(f, k);
+      if (is_sharp[static_cast<std::size_t>(g)] == 0 && std::abs(beta[g]) >= limit) return false;
+    }
+    return true;
+  };
+  std::vector<char> crisp(sharp.size());
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    crisp[i] = calm(mesh.EF()(sharp[i], 0)) && calm(mesh.EF()(sharp[i], 1));
+  return crisp;
+}
+
+// Clears the `candidate` edges that do not lie between two corners of the network of the `kept` and candidate edges
+// (those with an end no other edge of it reaches, repeatedly), then those joined to fewer than min_edges candidates.
+void keep_between_corners(const Mesh& mesh, const std::vector<int>& sharp, const std::vector<char>& kept,
+                          std::vector<char>& candidate, int min_edges) {
+  std::vector<int> degree(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  const auto in_network = [&](std::size_t i) { return kept[i] != 0 || candidate[i] != 0; };
+  const auto end = [&](std::size_t i, int j) { return static_cast<std::size_t>(mesh.E()(sharp[i], j)); };
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (in_network(i)) ++degree[end(i, 0)], ++degree[end(i, 1)];
+  for (bool peeled = true; peeled;) {
+    peeled = false;
+    for (std::size_t i = 0; i < sharp.size(); ++i)
+      if (candidate[i] != 0 && (degree[end(i, 0)] == 1 || degree[end(i, 1)] == 1)) {
+        candidate[i] = 0, --degree[end(i, 0)], --degree[end(i, 1)];
+        peeled = true;
+      }
+  }
+  detail::UnionFind network(mesh.num_vertices());
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (candidate[i] != 0) network.unite(static_cast<int>(end(i, 0)), static_cast<int>(end(i, 1)));
+  std::vector<int> size(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (candidate[i] != 0) ++size[static_cast<std::size_t>(network.find(static_cast<int>(end(i, 0))))];
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (size[static_cast<std::size_t>(network.find(static_cast<int>(end(i, 0))))] < min_edges) candidate[i] = 0;
+}
+
+// Keeps the sharp edges on long chains and the crisp ones between corners of their network
+// (FeatureOptions::min_curve_edges, crisp_crease_degrees).
+void keep_feature_curves(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta,
+                         std::vector<int>& sharp) {
+  const int min_edges = options.min_curve_edges;
+  if (min_edges <= 1 || sharp.empty()) return;
+  const std::vector<char> on_chain = on_long_chains(mesh, min_edges, sharp);
+  std::vector<char> crisp(sharp.size(), 0);
+  if (options.crisp_crease_degrees > 0) {
+    crisp = crisp_edges(mesh, beta, sharp, options.crisp_crease_degrees);
+    for (std::size_t i = 0; i < sharp.size(); ++i) crisp[i] = crisp[i] != 0 && on_chain[i] == 0;
+    keep_between_corners(mesh, sharp, on_chain, crisp, min_edges);
+  }
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (on_chain[i] != 0 || crisp[i] != 0) kept.push_back(sharp[i]);
+  sharp = std::move(kept);
 }
 
 // The interior edges lying on the given segments: both ends and the midpoint within a 1e-9 of the mean edge length.
@@ -62,7 +131,7 @@ std::vector<int> edges_on_segments(const Mesh& mesh, const std::vector<FeatureSe
   return edges;
 }
 
-// The sharp interior edges: the given ones, or those above the angle on curves of min_curve_edges.
+// The sharp interior edges: the given ones, or those above the angle on long chains or crisp between corners.
 std::vector<int> sharp_edges(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta) {
   if (options.given) return edges_on_segments(mesh, *options.given);
   std::vector<int> sharp;
@@ -70,7 +139,7 @@ std::vector<int> sharp_edges(const Mesh& mesh, const FeatureOptions& options, co
   const double threshold = options.sharp_angle_degrees * std::numbers::pi / 180.0;
   for (int e = 0; e < mesh.num_edges(); ++e)
     if (!mesh.is_boundary_edge(e) && std::abs(beta[e]) > threshold) sharp.push_back(e);
-  keep_feature_curves(mesh, options.min_curve_edges, sharp);
+  keep_feature_curves(mesh, options, beta, sharp);
   return sharp;
 }
 

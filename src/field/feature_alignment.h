@@ -26,6 +26,11 @@ struct FeatureOptions {
   /// on coarse organic meshes; CAD creases are long chains (BENCHMARKS.md, "Option defaults"). 1 keeps every
   /// sharp edge.
   int min_curve_edges = 8;
+  /// A sharp edge on a shorter chain still counts when every other edge of its two faces bends by less than this many
+  /// degrees (a crisp crease between flat sides, as on a machined part, not a fold in a scan's noise), it lies between
+  /// two corners of the network of such edges and kept chains, and at least min_curve_edges such edges are joined to
+  /// it: the short flanks and tooth tops of a gear (BENCHMARKS.md, "Crisp short creases"). 0 = chains only.
+  double crisp_crease_degrees = 5.0;
   /// Closed crease loops shorter than this (model units; 0 = none) that turn by a whole turn on one side and run
   /// straight on the other (the rim of a small hole through a plate, field/crease_loops.h) are followed on the
   /// straight side only: the turning side's faces along them are left free. The pipeline sets it from the density.

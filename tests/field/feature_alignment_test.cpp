@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <string>
 
+#include "common/union_find.h"
 #include "field/compute_frame_field.h"
 #include "mesh/shape_operator.h"
 #include "mesh/split_edges.h"
@@ -140,6 +143,64 @@ TEST(Features, CurveFilter) {
     for (int j = 0; j < 2; ++j) ++count[static_cast<std::size_t>(bunny.E()(e, j))];
   for (int e : b_kept)
     EXPECT_GE(count[static_cast<std::size_t>(bunny.E()(e, 0))] + count[static_cast<std::size_t>(bunny.E()(e, 1))], 3);
+}
+
+// Short crisp creases (FeatureOptions::crisp_crease_degrees): a gear's outline and tooth corners are chains of at most
+// 3 sharp edges between 90° corners, every one between flat sides: all are followed, none without the rule. With
+// arcs bending 7.5° an edge (6 teeth) the tooth tops are not crisp and the flanks alone make networks of 4 edges:
+// none is followed until the limit is raised above 7.5°.
+TEST(Features, CrispShortCreasesBetweenCornersAreFollowed) {
+  FeatureOptions all;
+  all.min_curve_edges = 1;
+  const Mesh gear = testing::make_gear(12);
+  const std::vector<int> sharp = feature_constraints(gear, all).feature_edges;
+  EXPECT_EQ(sharp.size(), 2u * 96 + 24 * 2);
+  EXPECT_EQ(feature_constraints(gear).feature_edges, sharp);
+  FeatureOptions chains_only;
+  chains_only.crisp_crease_degrees = 0;
+  EXPECT_TRUE(feature_constraints(gear, chains_only).feature_edges.empty());
+  const Mesh coarse = testing::make_gear(6);
+  EXPECT_TRUE(feature_constraints(coarse).feature_edges.empty());
+  FeatureOptions wider;
+  wider.crisp_crease_degrees = 8;
+  EXPECT_EQ(feature_constraints(coarse, wider).feature_edges, feature_constraints(coarse, all).feature_edges);
+}
+
+// On real meshes, recomputed from the definition: every followed edge off the long chains is crisp (each edge of its
+// faces that is not sharp bends by less than 5°), each of its ends meets another followed edge, and at least 8 such
+// edges are joined to it.
+TEST(Features, CrispCreasesOffTheChainsAreCrispAndBetweenCorners) {
+  const double limit = 5.0 * std::numbers::pi / 180, sharp_angle = 35.0 * std::numbers::pi / 180;
+  for (const char* name : {"fandisk", "bunny_3k", "couplingdown_genus9"}) {
+    const Mesh mesh = testing::load_test_mesh(name);
+    const Eigen::VectorXd beta = signed_dihedral_angles(mesh);
+    FeatureOptions chains_only;
+    chains_only.crisp_crease_degrees = 0;
+    const std::vector<int> chains = feature_constraints(mesh, chains_only).feature_edges;
+    const std::vector<int> kept = feature_constraints(mesh).feature_edges;
+    std::vector<int> degree(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    for (int e : kept)
+      for (int j = 0; j < 2; ++j) ++degree[static_cast<std::size_t>(mesh.E()(e, j))];
+    std::vector<int> added;
+    for (int e : kept) {
+      if (std::binary_search(chains.begin(), chains.end(), e)) continue;
+      added.push_back(e);
+      for (int j = 0; j < 2; ++j) {
+        EXPECT_GE(degree[static_cast<std::size_t>(mesh.E()(e, j))], 2) << name << " edge " << e;
+        for (int k = 0; k < 3; ++k) {
+          const int g = mesh.FE()(mesh.EF()(e, j), k);
+          EXPECT_TRUE(std::abs(beta[g]) > sharp_angle || std::abs(beta[g]) < limit) << name << " edge " << e;
+        }
+      }
+    }
+    EXPECT_TRUE(std::includes(kept.begin(), kept.end(), chains.begin(), chains.end())) << name;
+    detail::UnionFind joined(mesh.num_vertices());
+    for (int e : added) joined.unite(mesh.E()(e, 0), mesh.E()(e, 1));
+    std::vector<int> joined_edges(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    for (int e : added) ++joined_edges[static_cast<std::size_t>(joined.find(mesh.E()(e, 0)))];
+    for (int e : added) EXPECT_GE(joined_edges[static_cast<std::size_t>(joined.find(mesh.E()(e, 0)))], 8) << name;
+    if (std::string(name) == "fandisk") EXPECT_EQ(added.size(), 20u);  // of the 54 sharp edges off its long chains
+  }
 }
 
 }  // namespace

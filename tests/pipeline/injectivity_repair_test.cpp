@@ -377,14 +377,17 @@ TEST(RingRewinding, TheReportNamesTheConesWhoseDiskWasLaidOutAgain) {
 
 TEST(RingRewinding, GivesUpTheCurveConstraintsBesideAConeRoundedOntoACurvesImage) {
   // fandisk: a −1/4 branch point two edges from a feature line is rounded onto that line's image; the strip
-  // between them has no width, and the cone's ring winds a turn short with a regular vertex at 4π beside it.
+  // between them has no width, and the cone's ring winds a turn short with a regular vertex at 4π beside it (with
+  // the long chains alone as features: crisp_crease_degrees = 0).
   const Mesh mesh = testing::load_test_mesh("fandisk");
-  PipelineOptions strict;
+  PipelineOptions chains_only;
+  chains_only.param.features.crisp_crease_degrees = 0;
+  PipelineOptions strict = chains_only;
   strict.param.untangle.release_near_wrong_windings = false;
   const ParamJob without = parameterize_mesh(mesh, strict);
   const Mesh& m0 = without.mesh(mesh);
   ASSERT_GT(wrongly_wound(m0, without.map), 0) << "the case this test is about no longer occurs";
-  const ParamJob with = parameterize_mesh(mesh, PipelineOptions{});
+  const ParamJob with = parameterize_mesh(mesh, chains_only);
   const Mesh& m1 = with.mesh(mesh);
   EXPECT_EQ(wrongly_wound(m1, with.map), 0);
   EXPECT_EQ(non_positive_triangles(with.map), 0);
@@ -444,7 +447,9 @@ TEST(ConeMoves, FakeConePairsMoveToTheVertexTheMapWindsAroundAndFewerStayWrong) 
 
 TEST(FeatureCounts, TheReportCountsTheInputsSharpEdgesNotTheRefinedHalves) {
   const Mesh mesh = testing::load_test_mesh("fandisk");
-  const ParamJob job = parameterize_mesh(mesh, PipelineOptions{});
+  PipelineOptions chains_only;  // the long chains alone as features: this map is refined
+  chains_only.param.features.crisp_crease_degrees = 0;
+  const ParamJob job = parameterize_mesh(mesh, chains_only);
   ASSERT_GT(job.refinement.split.size(), 0u) << "the case this test is about (a refined map) no longer occurs";
   const nlohmann::json r = param_report(mesh, job, job.map.uv, "fandisk");
   const FeatureConstraints input = feature_constraints(mesh, field_stage_options(job.options).features);

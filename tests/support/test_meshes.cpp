@@ -121,6 +121,27 @@ Mesh make_drilled_plate(int n_around, double r, double side, double thickness) {
   return Mesh::from_triangles(V, F);
 }
 
+Mesh make_gear(int teeth, double thickness) {
+  const int n = 8 * teeth;
+  Eigen::MatrixX3d V(2 * n + 2, 3);  // top outline, bottom outline, top centre, bottom centre
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n, r = (k % 8) >= 2 && (k % 8) < 6 ? 1.0 : 0.8;
+    V.row(k) << r * std::cos(a), r * std::sin(a), thickness;
+    V.row(n + k) << r * std::cos(a), r * std::sin(a), 0.0;
+  }
+  V.row(2 * n) << 0, 0, thickness;
+  V.row(2 * n + 1) << 0, 0, 0;
+  Eigen::MatrixX3i F(4 * n, 3);
+  for (int k = 0; k < n; ++k) {
+    const int t = k, t1 = (k + 1) % n, b = n + k, b1 = n + (k + 1) % n;
+    F.row(4 * k) << 2 * n, t, t1;          // top, facing +z
+    F.row(4 * k + 1) << 2 * n + 1, b1, b;  // bottom, facing −z
+    F.row(4 * k + 2) << b, b1, t1;         // wall, facing out
+    F.row(4 * k + 3) << b, t1, t;
+  }
+  return Mesh::from_triangles(V, F);
+}
+
 Mesh make_ellipsoid(int level, double a, double b, double c) {
   std::vector<Eigen::Vector3d> P = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   std::vector<Eigen::Vector3i> T = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},

@@ -26,6 +26,11 @@ Mesh make_cylinder(int n_around, int n_up, double r = 1.0, double h = 2.0);
 /// n-gon (n_around a multiple of 8: the square's corners are among the angles), walls of one row of quads. Every
 /// edge of the square and both rims are 90° creases; each rim is a closed crease loop.
 Mesh make_drilled_plate(int n_around, double r, double side = 2.0, double thickness = 0.5);
+/// A spur gear as a coarse CAD export: a prism of `thickness` over an outline of `teeth` teeth (8 outline vertices a
+/// tooth: 4 on the top at radius 1, 4 at the root at radius 0.8), each cap a fan around its centre, the wall one row
+/// of quads. Both outlines and the wall edges at the tooth corners are 90° creases, on chains of at most 3 edges
+/// that turn by 90° at every corner; every other edge bends by 3.75° (the arcs) or not at all.
+Mesh make_gear(int teeth, double thickness = 0.3);
 /// Two components in one mesh: make_torus(12, 8) and, after its vertices, make_cylinder(10, 4).
 Mesh make_torus_and_cylinder();
 /// Copies of `mesh` side by side, one per scale: copy c scaled by scales[c] and moved along x by c times 1.5 widths
