@@ -55,6 +55,8 @@ void add_global_options(CLI::App& cmd, GlobalOptions& global) {
 }
 
 const std::vector<std::string> kOutputOptions = {"--output", "--report", "--param", "--png", "--report-html", "--plot"};
+/// Outputs of one input only (no batch folder for them), also never counted as inputs.
+const std::vector<std::string> kSingleOutputOptions = {"--save-features"};
 
 const char* const kBatchNamingHelp =
     "Several files or a folder run as a batch; outputs are named after the input's stem (a/bunny.obj -> "
@@ -762,7 +764,9 @@ std::vector<std::pair<FileId, std::string>> protected_inputs(const std::vector<s
   for (const auto& f : files) add(f);
   if (global.command)
     for (const CLI::Option* o : global.command->get_options()) {
-      if (std::find(kOutputOptions.begin(), kOutputOptions.end(), "--" + o->get_single_name()) != kOutputOptions.end())
+      const std::string name = "--" + o->get_single_name();
+      if (std::find(kOutputOptions.begin(), kOutputOptions.end(), name) != kOutputOptions.end() ||
+          std::find(kSingleOutputOptions.begin(), kSingleOutputOptions.end(), name) != kSingleOutputOptions.end())
         continue;
       for (const auto& value : o->results()) add(value);
     }

@@ -138,6 +138,10 @@ TEST_F(FeatureAngleCli, SavedFeaturesGiveBackTheSameQuads) {
   const std::string saved = quadcover::testing::slurp(path("saved.txt"));
   EXPECT_EQ(saved.rfind("# quadcover: the 682 sharp edges the field followed (dihedral angle above 35 degrees", 0), 0u)
       << saved.substr(0, 200);
+  // The same command again replaces its own output (the saved file is not an input of it).
+  const auto again = run_cli("field " + mesh + " -o " + path("f.json") + " -q --save-features " + path("saved.txt"));
+  EXPECT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(quadcover::testing::slurp(path("saved.txt")), saved);
   const std::string common = std::string(quadcover::testing::kWithoutRepairs) + " -q";
   ASSERT_EQ(run_cli("remesh " + mesh + " -o " + path("given.obj") + common + " --features " + path("saved.txt")).code,
             0);
