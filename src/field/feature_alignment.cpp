@@ -15,9 +15,14 @@ namespace quadcover {
 
 namespace {
 
-// Per sharp edge (in `sharp`'s order): whether it lies on a chain of at least `min_edges` sharp edges continuing each
-// other (turning by less than 40° at their common vertex).
-std::vector<char> on_long_chains(const Mesh& mesh, int min_edges, const std::vector<int>& sharp) {
+// The chains of sharp edges continuing each other (turning by less than 40° at their common vertex): per sharp edge
+// (in `sharp`'s order) its chain's edge count and length.
+struct Chains {
+  std::vector<int> edges;
+  std::vector<double> length;
+};
+
+Chains sharp_chains(const Mesh& mesh, const std::vector<int>& sharp) {
   const int ne = mesh.num_edges();
   std::vector<std::vector<int>> at(static_cast<std::size_t>(mesh.num_vertices()));
   for (int e : sharp)
@@ -36,11 +41,17 @@ std::vector<char> on_long_chains(const Mesh& mesh, int min_edges, const std::vec
           curves.unite(edges[i], edges[j]);
   }
   std::vector<int> size(static_cast<std::size_t>(ne), 0);
-  for (int e : sharp) ++size[static_cast<std::size_t>(curves.find(e))];
-  std::vector<char> on(sharp.size());
-  for (std::size_t i = 0; i < sharp.size(); ++i)
-    on[i] = size[static_cast<std::size_t>(curves.find(sharp[i]))] >= min_edges;
-  return on;
+  std::vector<double> length(static_cast<std::size_t>(ne), 0.0);
+  for (int e : sharp) {
+    ++size[static_cast<std::size_t>(curves.find(e))];
+    length[static_cast<std::size_t>(curves.find(e))] += mesh.edge_lengths()[e];
+  }
+  Chains chains;
+  for (int e : sharp) {
+    chains.edges.push_back(size[static_cast<std::size_t>(curves.find(e))]);
+    chains.length.push_back(length[static_cast<std::size_t>(curves.find(e))]);
+  }
+  return chains;
 }
 
 // Per sharp edge: whether every edge of its faces that is not sharp bends by less than `degrees`.
@@ -90,16 +101,19 @@ void keep_between_corners(const Mesh& mesh, const std::vector<int>& sharp, const
 }
 
 // Keeps the sharp edges on long chains and the crisp ones between corners of their network
-// (FeatureOptions::min_curve_edges, crisp_crease_degrees).
+// (FeatureOptions::min_curve_edges, crisp_crease_degrees, crisp_min_length).
 void keep_feature_curves(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta,
                          std::vector<int>& sharp) {
   const int min_edges = options.min_curve_edges;
   if (min_edges <= 1 || sharp.empty()) return;
-  const std::vector<char> on_chain = on_long_chains(mesh, min_edges, sharp);
+  const Chains chains = sharp_chains(mesh, sharp);
+  std::vector<char> on_chain(sharp.size());
+  for (std::size_t i = 0; i < sharp.size(); ++i) on_chain[i] = chains.edges[i] >= min_edges;
   std::vector<char> crisp(sharp.size(), 0);
   if (options.crisp_crease_degrees > 0) {
     crisp = crisp_edges(mesh, beta, sharp, options.crisp_crease_degrees);
-    for (std::size_t i = 0; i < sharp.size(); ++i) crisp[i] = crisp[i] != 0 && on_chain[i] == 0;
+    for (std::size_t i = 0; i < sharp.size(); ++i)
+      crisp[i] = crisp[i] != 0 && on_chain[i] == 0 && chains.length[i] >= options.crisp_min_length;
     keep_between_corners(mesh, sharp, on_chain, crisp, min_edges);
   }
   std::vector<int> kept;
@@ -176,6 +190,10 @@ std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector
     out.push_back({mesh.V().row(key.first).transpose(), mesh.V().row(key.second).transpose()});
   }
   return out;
+}
+
+std::vector<int> followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options) {
+  return sharp_edges(mesh, options, signed_dihedral_angles(mesh));
 }
 
 FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& options) {

@@ -31,6 +31,10 @@ struct FeatureOptions {
   /// two corners of the network of such edges and kept chains, and at least min_curve_edges such edges are joined to
   /// it: the short flanks and tooth tops of a gear (BENCHMARKS.md, "Crisp short creases"). 0 = chains only.
   double crisp_crease_degrees = 5.0;
+  /// Crisp short creases on a chain (sharp edges continuing each other) shorter than this (model units; 0 = any) are
+  /// not followed: the pipeline sets it to the quad edge length the user asked for (--faces, --edge-length), since
+  /// shorter creases crowd the field's cones (a gear's teeth at a few hundred quads); 0 at the default density.
+  double crisp_min_length = 0;
   /// Closed crease loops shorter than this (model units; 0 = none) that turn by a whole turn on one side and run
   /// straight on the other (the rim of a small hole through a plate, field/crease_loops.h) are followed on the
   /// straight side only: the turning side's faces along them are left free. The pipeline sets it from the density.
@@ -66,6 +70,10 @@ struct FeatureConstraints {
   std::vector<int> source_edge;    ///< #F: the edge the face is aligned with, -1 where unconstrained
   std::vector<int> feature_edges;  ///< sharp interior edges, ascending (boundary edges not listed)
 };
+
+/// The sharp interior edges feature_constraints follows (its feature_edges), without the faces' constraints.
+/// \pre none
+std::vector<int> followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options);
 
 /// Finds boundary and sharp edges (detected from the dihedral angle, or the given ones) and, for every face having
 /// one, the direction its cross must contain.

@@ -65,6 +65,7 @@ nlohmann::json features_json(const Mesh& mesh, const PipelineOptions& o) {
   return {{"sharp_angle_degrees", given ? nlohmann::json() : nlohmann::json(o.param.features.sharp_angle_degrees)},
           {"given_edges", given ? nlohmann::json(o.param.features.given->size()) : nlohmann::json()},
           {"boundaries", o.param.features.boundaries},
+          {"crisp_crease_degrees", o.param.features.crisp_crease_degrees},
           {"sharp_edges", c.feature_edges.size()},
           {"constrained_faces", std::count(c.constrained.begin(), c.constrained.end(), 1)}};
 }
@@ -147,6 +148,7 @@ nlohmann::json validity_retries_json(const ParamJob& job) {
     attempts.push_back({{"quads_factor", a.quads_factor},
                         {"field", to_string(a.field_style)},
                         {"optimize", to_string(a.optimize)},
+                        {"crisp_creases", a.crisp_creases},
                         {"edge_length", a.edge_length},
                         {"valid", a.validity.valid()},
                         {"topology_changes", a.validity.topology_changes},

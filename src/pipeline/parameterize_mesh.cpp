@@ -9,6 +9,7 @@
 #include "common/side_by_side.h"
 #include "field/compute_frame_field.h"
 #include "field/crease_loops.h"
+#include "field/feature_alignment.h"
 #include "field/indices.h"
 #include "mesh/vertex_rings.h"
 #include "optimize/curl_energy.h"
@@ -596,6 +597,20 @@ FrameFieldResult field_with_square_holes(const Mesh& input, ParamJob& job, Progr
   return field_on_refined_mesh(input, job, progress);
 }
 
+namespace {
+
+/// The sharp edges of `input` that `features` follow only as crisp short creases (FeatureOptions::
+/// crisp_crease_degrees): those beyond the long chains' count.
+int crisp_crease_count(const Mesh& input, const FeatureOptions& features) {
+  if (features.crisp_crease_degrees <= 0 || features.given || features.sharp_angle_degrees <= 0) return 0;
+  FeatureOptions chains_only = features;
+  chains_only.crisp_crease_degrees = 0;
+  return static_cast<int>(followed_sharp_edges(input, features).size() -
+                          followed_sharp_edges(input, chains_only).size());
+}
+
+}  // namespace
+
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
   validate(options);
@@ -610,10 +625,15 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
     job.refinement = refine_for_curves(input, param.features);
     if (job.refinement.mesh) lap(meter, job, "refinement");
   }
+  // Crisp short creases shorter than the quad edge asked for crowd the field's cones; the default density is made fine
+  // enough for the cones (30 quads a branch point, param/density.h), whatever they follow.
+  const bool requested = param.density.target_quads > 0 || param.density.edge_length > 0;
+  param.features.crisp_min_length = requested ? target_edge_length(input, param.density) : 0;
   const FrameFieldResult field = field_with_square_holes(input, job, progress);
   const Mesh& mesh = job.mesh(input);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
+  job.crisp_creases = crisp_crease_count(input, param.features);
   lap(meter, job, "field");
   fix_density(mesh, field.field, available_bytes(options.max_memory_bytes), job);
   OptimizeOptions oo = optimize_stage_options(job.options, param);

@@ -66,6 +66,8 @@ struct ParamJob {
   int field_branch_points = 0;  ///< branch points of the field stage's field, before the optimization
   /// Quarters the field stage moved to split singularities of |index| >= 1/2 (FieldOptions::split_min_quarters).
   int field_singularity_moves = 0;
+  /// Sharp edges the field followed only as crisp short creases (FeatureOptions::crisp_crease_degrees).
+  int crisp_creases = 0;
   /// Opposite branch point pairs cancelled before the map (PipelineOptions::cancel_close_cones): in Algorithm 6.1's
   /// field, or in the field stage's with OptimizeMode::None (options.optimize says which).
   int cancelled_close_pairs = 0;

@@ -107,6 +107,16 @@ inline bool fall_back_to_curvature(const PipelineOptions& given, FieldStyle firs
          given.validity_retries > 0 && !progress.skip_improvements();
 }
 
+/// The fallback for creases finer than the density: when the best result so far is still not valid and its field
+/// followed crisp short creases (FeatureOptions::crisp_crease_degrees; ParamJob::crisp_creases), the job runs once
+/// more following the long crease chains alone (a coarse gear at a few hundred quads: its teeth, a quad or two
+/// across, crowd the field's cones and the map winds wrong at 20 vertices; without them it is valid). With retries
+/// on and no time limit or Ctrl-C reached. \pre none
+inline bool fall_back_to_long_chains(const PipelineOptions& given, const Validity& best, int crisp_creases,
+                                     ProgressSink& progress) {
+  return crisp_creases > 0 && !best.valid() && given.validity_retries > 0 && !progress.skip_improvements();
+}
+
 /// The largest map (triangles) that fall_back_to_full_optimization makes again.
 inline constexpr int kFullFallbackMaxFaces = 30000;
 
@@ -151,7 +161,8 @@ void fall_back(const PipelineOptions& options, int retries, const std::string& w
                                   v,
                                   param_job(next).options.field_style,
                                   seconds_since(start),
-                                  options.optimize};
+                                  options.optimize,
+                                  options.param.features.crisp_crease_degrees > 0};
     a.add(std::move(next), attempt);
   } catch (const InputError& e) {
     param_job(a.best).warnings.push_back(what +
@@ -159,10 +170,11 @@ void fall_back(const PipelineOptions& options, int retries, const std::string& w
   }
 }
 
-/// Attempt 0 = first_attempt(given minus its retries), then FieldStyle::Auto's fallback (fall_back_to_curvature)
-/// and the full optimization's (fall_back_to_full_optimization), each kept when more valid, then, while the best so
-/// far is worth_retrying, up to given.validity_retries further attempts run(attempt_options(given, h0, k)) with the
-/// field and optimization of the best, keeping the best by `judge`. The kept job's ParamJob (param_job(job)) records
+/// Attempt 0 = first_attempt(given minus its retries), then FieldStyle::Auto's fallback (fall_back_to_curvature),
+/// the long crease chains' (fall_back_to_long_chains) and the full optimization's (fall_back_to_full_optimization),
+/// each kept when more valid, then, while the best so far is worth_retrying, up to given.validity_retries further
+/// attempts run(attempt_options(given, h0, k)) with the field, features and optimization of the best, keeping the
+/// best by `judge`. The kept job's ParamJob (param_job(job)) records
 /// the attempts; a warning says when the kept one is not the first or is not valid. A time limit or Ctrl-C ends the
 /// retries (recorded as cut short).
 /// \throw InputError for invalid options (validate).
@@ -176,18 +188,27 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   using Job = decltype(first);
   const FieldStyle first_style = param_job(first).options.field_style;
   Attempts<Job> a{std::move(first), first_validity, {}, 0};
-  a.all.push_back(
-      {1.0, param_job(a.best).map.edge_length, first_validity, first_style, seconds_since(start), once.optimize});
+  a.all.push_back({1.0, param_job(a.best).map.edge_length, first_validity, first_style, seconds_since(start),
+                   once.optimize, once.param.features.crisp_crease_degrees > 0});
   if (fall_back_to_curvature(given, first_style, a.best_validity, progress)) {
     progress.report("retry", -1, "result not valid: the map made again from the curvature-guided field");
     PipelineOptions curvature = once;
     curvature.field_style = FieldStyle::Curvature;
     fall_back(curvature, given.validity_retries, "the map from the curvature-guided field", run, judge, progress, a);
   }
+  if (fall_back_to_long_chains(given, a.best_validity, param_job(a.best).crisp_creases, progress)) {
+    progress.report("retry", -1, "result not valid: the map made again following the long crease chains alone");
+    PipelineOptions chains = once;
+    chains.field_style = param_job(a.best).options.field_style;
+    chains.param.features.crisp_crease_degrees = 0;
+    fall_back(chains, given.validity_retries, "the map following the long crease chains alone", run, judge, progress,
+              a);
+  }
   if (fall_back_to_full_optimization(given, a.best_validity, param_job(a.best).map.uv.rows(), progress)) {
     progress.report("retry", -1, "result not valid: the map made again with the full optimization");
     PipelineOptions full = once;
     full.field_style = param_job(a.best).options.field_style;
+    full.param.features.crisp_crease_degrees = param_job(a.best).options.param.features.crisp_crease_degrees;
     full.optimize = OptimizeMode::Full;
     fall_back(full, given.validity_retries, "the map with the full optimization", run, judge, progress, a);
   }
@@ -197,6 +218,7 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
   PipelineOptions retried = given;
   retried.field_style = param_job(a.best).options.field_style;
   retried.optimize = param_job(a.best).options.optimize;
+  retried.param.features.crisp_crease_degrees = param_job(a.best).options.param.features.crisp_crease_degrees;
   const double h0 = param_job(a.best).options.param.density.edge_length;
   for (int k = 1; k <= given.validity_retries && a.best_validity.worth_retrying(); ++k) {
     if (progress.skip_improvements()) {
@@ -213,7 +235,8 @@ auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, Progr
                                   v,
                                   retried.field_style,
                                   seconds_since(start),
-                                  retried.optimize};
+                                  retried.optimize,
+                                  retried.param.features.crisp_crease_degrees > 0};
     a.add(std::move(next), attempt);
   }
   ParamJob& kept = param_job(a.best);

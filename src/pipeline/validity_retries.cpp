@@ -79,6 +79,9 @@ std::string validity_warning(const std::vector<ValidityAttempt>& attempts, int u
     if (a.field_style != attempts[0].field_style) differs = "the " + to_string(a.field_style) + " field";
     if (a.optimize != attempts[0].optimize)
       differs += (differs.empty() ? "the " : " and the ") + std::string(to_string(a.optimize)) + " optimization";
+    if (a.crisp_creases != attempts[0].crisp_creases)
+      differs += (differs.empty() ? "" : " and ") +
+                 std::string(a.crisp_creases ? "the short crisp creases" : "the long crease chains alone as features");
     const std::string at = "at " + percent(a.quads_factor) + " quads";
     if (differs.empty()) return at;
     return a.quads_factor == 1 ? "using " + differs : "using " + differs + " " + at;

@@ -45,6 +45,9 @@ struct ValidityAttempt {
   FieldStyle field_style = FieldStyle::Curvature;  ///< the field stage's preset it ran with (resolved)
   double seconds = 0;  ///< wall time of its job: the attempts not kept cost time too, outside the kept job's stages
   OptimizeMode optimize = OptimizeMode::Relocate;  ///< Algorithm 6.1's mode it ran with
+  /// Whether its field followed crisp short creases (FeatureOptions::crisp_crease_degrees > 0; off in the fallback
+  /// to the long crease chains, pipeline/retry_until_valid.h).
+  bool crisp_creases = true;
 };
 
 /// The interior vertices around which φ winds other than the field's cross-field index says (param/ring_winding.h

@@ -148,7 +148,7 @@ TEST(Features, CurveFilter) {
 // Short crisp creases (FeatureOptions::crisp_crease_degrees): a gear's outline and tooth corners are chains of at most
 // 3 sharp edges between 90° corners, every one between flat sides: all are followed, none without the rule. With
 // arcs bending 7.5° an edge (6 teeth) the tooth tops are not crisp and the flanks alone make networks of 4 edges:
-// none is followed until the limit is raised above 7.5°.
+// none is followed until the limit is raised above 7.5°; nor what is shorter than crisp_min_length.
 TEST(Features, CrispShortCreasesBetweenCornersAreFollowed) {
   FeatureOptions all;
   all.min_curve_edges = 1;
@@ -164,6 +164,16 @@ TEST(Features, CrispShortCreasesBetweenCornersAreFollowed) {
   FeatureOptions wider;
   wider.crisp_crease_degrees = 8;
   EXPECT_EQ(feature_constraints(coarse, wider).feature_edges, feature_constraints(coarse, all).feature_edges);
+  // Chains shorter than crisp_min_length are not crisp creases: from 0.16 the roots (3 edges at radius 0.8, 0.157
+  // long: 72 edges), from 0.2 the tooth tops too (0.196 long), and with them the rest, whose networks are then 4
+  // edges (a flank's two outline edges and two corner edges).
+  FeatureOptions longer;
+  longer.crisp_min_length = 0.15;
+  EXPECT_EQ(feature_constraints(gear, longer).feature_edges, sharp);
+  longer.crisp_min_length = 0.16;
+  EXPECT_EQ(feature_constraints(gear, longer).feature_edges.size(), sharp.size() - 72);
+  longer.crisp_min_length = 0.2;
+  EXPECT_TRUE(feature_constraints(gear, longer).feature_edges.empty());
 }
 
 // On real meshes, recomputed from the definition: every followed edge off the long chains is crisp (each edge of its

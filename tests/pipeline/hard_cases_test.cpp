@@ -12,6 +12,7 @@
 
 #include "metrics/feature_fidelity.h"
 #include "metrics/quad_quality.h"
+#include "param/density.h"
 #include "param/seams.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/remesh_mesh.h"
@@ -283,6 +284,18 @@ TEST(HardCases, AGearKeepsItsTeeth) {
   const RemeshJob chains = expect_valid_job(gear, chains_only);
   EXPECT_GT(covered(crisp), 60);
   EXPECT_LT(covered(chains), 30);
+  EXPECT_EQ(crisp.param.crisp_creases, 2 * 96 + 2 * 24);
+  EXPECT_EQ(chains.param.crisp_creases, 0);
+  // At a requested density, creases shorter than its quad edge are not followed (FeatureOptions::crisp_min_length):
+  // at 300 quads (h 0.16) the 0.157-long roots go, at 150 (h 0.22) everything.
+  for (const int quads : {300, 150}) {
+    PipelineOptions coarse;
+    coarse.param.density.target_quads = quads;
+    coarse.validity_retries = 0;
+    const ParamJob job = parameterize_mesh(gear, coarse);
+    EXPECT_DOUBLE_EQ(job.options.param.features.crisp_min_length, target_edge_length(gear, coarse.param.density));
+    EXPECT_EQ(job.crisp_creases, quads == 300 ? 240 - 72 : 0) << quads;
+  }
 }
 
 // The same meshes with curves (creases, boundaries) with --round-curves (param/curve_rounding.h): every line pinned

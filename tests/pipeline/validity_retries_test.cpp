@@ -332,6 +332,64 @@ TEST(ValidityRetries, ANotValidRelocatedMapIsMadeAgainWithTheFullOptimizationOnS
   }
 }
 
+/// A job whose validity depends only on whether its field followed crisp short creases, of which the mesh has
+/// `crisp_edges` (FeatureOptions::crisp_crease_degrees).
+struct CreaseStub {
+  Validity crisp, chains;
+  int crisp_edges = 40;
+  std::vector<bool> runs;  // per run: crisp creases on
+  StubJob run(const PipelineOptions& o) {
+    StubJob job;
+    job.param.options = o;
+    job.param.options.field_style = FieldStyle::Curvature;
+    job.param.map.edge_length = 0.2;
+    const bool on = o.param.features.crisp_crease_degrees > 0;
+    job.param.crisp_creases = on ? crisp_edges : 0;
+    runs.push_back(on);
+    return job;
+  }
+  StubJob kept() {
+    PipelineOptions given;
+    given.optimize = OptimizeMode::None;  // no fallback to the full optimization
+    given.field_style = FieldStyle::Curvature;
+    given.param.density.edge_length = 0.2;
+    return retry_until_valid(
+        given, [&](const PipelineOptions& o) { return run(o); },
+        [&](const StubJob& job) { return job.param.options.param.features.crisp_crease_degrees > 0 ? crisp : chains; },
+        null_progress());
+  }
+};
+
+// A map not valid with the crisp short creases followed is made again following the long chains alone, kept when
+// more valid and said; not when the mesh has no such crease, nor when the map is valid.
+TEST(ValidityRetries, ANotValidMapWithCrispCreasesIsMadeAgainFollowingTheLongChainsAlone) {
+  CreaseStub stub{wound(20), Validity{}, 40, {}};
+  StubJob job = stub.kept();
+  EXPECT_EQ(stub.runs, (std::vector{true, false}));
+  EXPECT_EQ(job.param.validity_attempt_used, 1);
+  EXPECT_EQ(job.param.options.param.features.crisp_crease_degrees, 0);
+  ASSERT_EQ(job.param.validity_attempts.size(), 2u);
+  EXPECT_TRUE(job.param.validity_attempts[0].crisp_creases);
+  EXPECT_FALSE(job.param.validity_attempts[1].crisp_creases);
+  ASSERT_EQ(job.param.warnings.size(), 1u);
+  EXPECT_NE(job.param.warnings[0].find("retried using the long crease chains alone as features and kept a valid "
+                                       "result"),
+            std::string::npos)
+      << job.param.warnings[0];
+  CreaseStub worse{wound(2), wound(3), 40, {}};  // not more valid: the crisp creases' map stays
+  job = worse.kept();
+  EXPECT_EQ(worse.runs.size(), 2u);
+  EXPECT_EQ(job.param.validity_attempt_used, 0);
+  EXPECT_GT(job.param.options.param.features.crisp_crease_degrees, 0);
+  CreaseStub none{wound(2), Validity{}, 0, {}};  // no crisp crease followed: nothing to drop
+  none.kept();
+  EXPECT_EQ(none.runs, (std::vector{true}));
+  CreaseStub valid{Validity{}, wound(2), 40, {}};
+  job = valid.kept();
+  EXPECT_EQ(valid.runs, (std::vector{true}));
+  EXPECT_TRUE(job.param.warnings.empty());
+}
+
 /// A sink past its time limit: the improving stages are skipped.
 struct PastLimit : ProgressSink {
   void report(std::string_view, double, std::string_view) override {}
