@@ -82,13 +82,21 @@ void keep_between_corners(const Mesh& mesh, const std::vector<int>& sharp, const
   const auto end = [&](std::size_t i, int j) { return static_cast<std::size_t>(mesh.E()(sharp[i], j)); };
   for (std::size_t i = 0; i < sharp.size(); ++i)
     if (in_network(i)) ++degree[end(i, 0)], ++degree[end(i, 1)];
-  for (bool peeled = true; peeled;) {
-    peeled = false;
-    for (std::size_t i = 0; i < sharp.size(); ++i)
-      if (candidate[i] != 0 && (degree[end(i, 0)] == 1 || degree[end(i, 1)] == 1)) {
-        candidate[i] = 0, --degree[end(i, 0)], --degree[end(i, 1)];
-        peeled = true;
-      }
+  std::vector<std::vector<std::size_t>> at(static_cast<std::size_t>(mesh.num_vertices()));  // candidates per vertex
+  for (std::size_t i = 0; i < sharp.size(); ++i)
+    if (candidate[i] != 0) at[end(i, 0)].push_back(i), at[end(i, 1)].push_back(i);
+  std::vector<std::size_t> loose;  // vertices one network edge reaches
+  for (std::size_t v = 0; v < degree.size(); ++v)
+    if (degree[v] == 1) loose.push_back(v);
+  while (!loose.empty()) {
+    const std::size_t v = loose.back();
+    loose.pop_back();
+    for (const std::size_t i : at[v]) {
+      if (candidate[i] == 0 || degree[v] != 1) continue;
+      candidate[i] = 0;
+      for (int j = 0; j < 2; ++j)
+        if (--degree[end(i, j)] == 1) loose.push_back(end(i, j));
+    }
   }
   detail::UnionFind network(mesh.num_vertices());
   for (std::size_t i = 0; i < sharp.size(); ++i)
