@@ -109,9 +109,9 @@ inline bool fall_back_to_curvature(const PipelineOptions& given, FieldStyle firs
 
 /// The fallback for creases finer than the density: when the best result so far is still not valid and its field
 /// followed crisp short creases (FeatureOptions::crisp_crease_degrees; ParamJob::crisp_creases), the job runs once
-/// more following the long crease chains alone (a coarse gear at a few hundred quads: its teeth, a quad or two
-/// across, crowd the field's cones and the map winds wrong at 20 vertices; without them it is valid). With retries
-/// on and no time limit or Ctrl-C reached. \pre none
+/// more following the long crease chains alone. Creases a quad or two long crowd the field's cones (a coarse gear's
+/// teeth at a few hundred quads wound the map wrong at 11 vertices); crisp_min_length keeps those shorter than a
+/// requested quad edge out, this catches the rest. With retries on and no time limit or Ctrl-C reached. \pre none
 inline bool fall_back_to_long_chains(const PipelineOptions& given, const Validity& best, int crisp_creases,
                                      ProgressSink& progress) {
   return crisp_creases > 0 && !best.valid() && given.validity_retries > 0 && !progress.skip_improvements();
@@ -174,9 +174,8 @@ void fall_back(const PipelineOptions& options, int retries, const std::string& w
 /// the long crease chains' (fall_back_to_long_chains) and the full optimization's (fall_back_to_full_optimization),
 /// each kept when more valid, then, while the best so far is worth_retrying, up to given.validity_retries further
 /// attempts run(attempt_options(given, h0, k)) with the field, features and optimization of the best, keeping the
-/// best by `judge`. The kept job's ParamJob (param_job(job)) records
-/// the attempts; a warning says when the kept one is not the first or is not valid. A time limit or Ctrl-C ends the
-/// retries (recorded as cut short).
+/// best by `judge`. The kept job's ParamJob (param_job(job)) records the attempts; a warning says when the kept one is
+/// not the first or is not valid. A time limit or Ctrl-C ends the retries (recorded as cut short).
 /// \throw InputError for invalid options (validate).
 template <class Run, class Judge>
 auto retry_until_valid(const PipelineOptions& given, Run run, Judge judge, ProgressSink& progress) {
