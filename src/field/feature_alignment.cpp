@@ -109,11 +109,11 @@ void keep_between_corners(const Mesh& mesh, const std::vector<int>& sharp, const
 }
 
 // Keeps the sharp edges on long chains and the crisp ones between corners of their network
-// (FeatureOptions::min_curve_edges, crisp_crease_degrees, crisp_min_length).
-void keep_feature_curves(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta,
-                         std::vector<int>& sharp) {
+// (FeatureOptions::min_curve_edges, crisp_crease_degrees, crisp_min_length); returns how many are kept as crisp.
+int keep_feature_curves(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta,
+                        std::vector<int>& sharp) {
   const int min_edges = options.min_curve_edges;
-  if (min_edges <= 1 || sharp.empty()) return;
+  if (min_edges <= 1 || sharp.empty()) return 0;
   const Chains chains = sharp_chains(mesh, sharp);
   std::vector<char> on_chain(sharp.size());
   for (std::size_t i = 0; i < sharp.size(); ++i) on_chain[i] = chains.edges[i] >= min_edges;
@@ -128,6 +128,7 @@ void keep_feature_curves(const Mesh& mesh, const FeatureOptions& options, const 
   for (std::size_t i = 0; i < sharp.size(); ++i)
     if (on_chain[i] != 0 || crisp[i] != 0) kept.push_back(sharp[i]);
   sharp = std::move(kept);
+  return static_cast<int>(std::count(crisp.begin(), crisp.end(), 1));
 }
 
 // The interior edges lying on the given segments: both ends and the midpoint within a 1e-9 of the mean edge length.
@@ -154,14 +155,17 @@ std::vector<int> edges_on_segments(const Mesh& mesh, const std::vector<FeatureSe
 }
 
 // The sharp interior edges: the given ones, or those above the angle on long chains or crisp between corners.
-std::vector<int> sharp_edges(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta) {
-  if (options.given) return edges_on_segments(mesh, *options.given);
-  std::vector<int> sharp;
+FollowedSharpEdges sharp_edges(const Mesh& mesh, const FeatureOptions& options, const Eigen::VectorXd& beta) {
+  FollowedSharpEdges sharp;
+  if (options.given) {
+    sharp.edges = edges_on_segments(mesh, *options.given);
+    return sharp;
+  }
   if (options.sharp_angle_degrees <= 0) return sharp;
   const double threshold = options.sharp_angle_degrees * std::numbers::pi / 180.0;
   for (int e = 0; e < mesh.num_edges(); ++e)
-    if (!mesh.is_boundary_edge(e) && std::abs(beta[e]) > threshold) sharp.push_back(e);
-  keep_feature_curves(mesh, options, beta, sharp);
+    if (!mesh.is_boundary_edge(e) && std::abs(beta[e]) > threshold) sharp.edges.push_back(e);
+  sharp.crisp = keep_feature_curves(mesh, options, beta, sharp.edges);
   return sharp;
 }
 
@@ -200,7 +204,7 @@ std::vector<FeatureSegment> feature_segments(const Mesh& mesh, const std::vector
   return out;
 }
 
-std::vector<int> followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options) {
+FollowedSharpEdges followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options) {
   return sharp_edges(mesh, options, signed_dihedral_angles(mesh));
 }
 
@@ -212,7 +216,7 @@ FeatureConstraints feature_constraints(const Mesh& mesh, const FeatureOptions& o
   if (options.boundaries)
     for (int e = 0; e < ne; ++e)
       if (mesh.is_boundary_edge(e)) strength[e] = std::numbers::pi;
-  out.feature_edges = sharp_edges(mesh, options, beta);
+  out.feature_edges = sharp_edges(mesh, options, beta).edges;
   // A given edge may be flat: it still wins over no feature, and boundaries still win over it.
   for (int e : out.feature_edges) strength[e] = std::max(std::abs(beta[e]), 1e-6);
   out.constrained.assign(static_cast<std::size_t>(nf), 0);

@@ -71,9 +71,15 @@ struct FeatureConstraints {
   std::vector<int> feature_edges;  ///< sharp interior edges, ascending (boundary edges not listed)
 };
 
-/// The sharp interior edges feature_constraints follows (its feature_edges), without the faces' constraints.
-/// \pre none
-std::vector<int> followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options);
+/// The sharp interior edges feature_constraints follows (its feature_edges, ascending), and how many of them only as
+/// crisp short creases (FeatureOptions::crisp_crease_degrees).
+struct FollowedSharpEdges {
+  std::vector<int> edges;
+  int crisp = 0;
+};
+
+/// The sharp edges feature_constraints follows, without the faces' constraints. \pre none
+FollowedSharpEdges followed_sharp_edges(const Mesh& mesh, const FeatureOptions& options);
 
 /// Finds boundary and sharp edges (detected from the dihedral angle, or the given ones) and, for every face having
 /// one, the direction its cross must contain.

@@ -572,18 +572,16 @@ FrameFieldResult field_on_refined_mesh(const Mesh& input, ParamJob& job, Progres
 /// field_on_refined_mesh with the short crease loops freed on their turning side (FeatureOptions::
 /// free_short_loops_below: PipelineOptions::square_hole_grid_units quad edges h). h is first taken from the mesh
 /// alone (target_edge_length without branch points, at least the default h); when the field's branch points make
-/// the default h finer and so fewer loops that short, the field is made again with those. The freed loops are the
-/// density's hole rims (param/density.h).
-FrameFieldResult field_with_square_holes(const Mesh& input, ParamJob& job, ProgressSink& progress) {
+/// the default h finer and so fewer loops that short, the field is made again with those. The loops are traced from
+/// `sharp_edges`, the input's sharp edges the field follows (followed_sharp_edges); the freed ones are the density's
+/// hole rims (param/density.h).
+FrameFieldResult field_with_square_holes(const Mesh& input, const std::vector<int>& sharp_edges, ParamJob& job,
+                                         ProgressSink& progress) {
   ParamOptions& param = job.options.param;
   const double units = job.options.square_hole_grid_units;
   param.features.free_short_loops_below = units * target_edge_length(input, param.density);
   std::vector<CreaseLoop> loops;
-  if (param.features.free_short_loops_below > 0) {
-    FeatureOptions sharp_edges_only = param.features;
-    sharp_edges_only.free_short_loops_below = 0;
-    loops = closed_crease_loops(input, feature_constraints(input, sharp_edges_only).feature_edges);
-  }
+  if (param.features.free_short_loops_below > 0) loops = closed_crease_loops(input, sharp_edges);
   param.density.hole_rims = hole_rims(loops, param.features.free_short_loops_below);
   FrameFieldResult field = field_on_refined_mesh(input, job, progress);
   if (param.density.hole_rims.empty()) return field;
@@ -596,20 +594,6 @@ FrameFieldResult field_with_square_holes(const Mesh& input, ParamJob& job, Progr
   param.density.hole_rims = rims;
   return field_on_refined_mesh(input, job, progress);
 }
-
-namespace {
-
-/// The sharp edges of `input` that `features` follow only as crisp short creases (FeatureOptions::
-/// crisp_crease_degrees): those beyond the long chains' count.
-int crisp_crease_count(const Mesh& input, const FeatureOptions& features) {
-  if (features.crisp_crease_degrees <= 0 || features.given || features.sharp_angle_degrees <= 0) return 0;
-  FeatureOptions chains_only = features;
-  chains_only.crisp_crease_degrees = 0;
-  return static_cast<int>(followed_sharp_edges(input, features).size() -
-                          followed_sharp_edges(input, chains_only).size());
-}
-
-}  // namespace
 
 ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, ProgressSink& progress,
                            const FirstMapCheck& check) {
@@ -629,11 +613,12 @@ ParamJob parameterize_once(const Mesh& input, const PipelineOptions& options, Pr
   // enough for the cones (30 quads a branch point, param/density.h), whatever they follow.
   const bool requested = param.density.target_quads > 0 || param.density.edge_length > 0;
   param.features.crisp_min_length = requested ? target_edge_length(input, param.density) : 0;
-  const FrameFieldResult field = field_with_square_holes(input, job, progress);
+  const FollowedSharpEdges sharp = followed_sharp_edges(input, param.features);
+  job.crisp_creases = sharp.crisp;
+  const FrameFieldResult field = field_with_square_holes(input, sharp.edges, job, progress);
   const Mesh& mesh = job.mesh(input);
   job.field_branch_points = static_cast<int>(field.branch_points.size());
   job.field_singularity_moves = static_cast<int>(field.singularity_moves.size());
-  job.crisp_creases = crisp_crease_count(input, param.features);
   lap(meter, job, "field");
   fix_density(mesh, field.field, available_bytes(options.max_memory_bytes), job);
   OptimizeOptions oo = optimize_stage_options(job.options, param);
